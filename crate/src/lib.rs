@@ -1,0 +1,16 @@
+//! # fiveaxis: the engine of the five-axis machine-tool accuracy calculator
+//!
+//! Plain Rust (nalgebra, `f64`); the only WebAssembly-specific code is the thin binding in
+//! [`wasm`]. Inside the engine lengths are in mm and angles in radians; the binding converts
+//! angles from and to degrees at the JavaScript edge.
+//!
+//! Studies, one module each, all built on [`geometry`] and [`rotary`]:
+//! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
+
+pub mod error;
+pub mod geometry;
+pub mod nonlinear;
+pub mod rotary;
+pub mod wasm;
+
+pub use error::{Error, Result};

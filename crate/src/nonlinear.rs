@@ -1,0 +1,687 @@
+//! Nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018, Sections 3 and 4).
+//!
+//! # The model
+//! A move takes the rotary axes from `(θk0, θm0)` to `(θk1, θm1)` with the angles interpolated
+//! linearly (eq 10): `θ(u) = (1-u)·θ0 + u·θ1`, `u ∈ [0, 1]`. The tool orientation follows
+//! `P(u) = V(θk(u), θm(u))` (eq 9), while the ideal orientation moves on the great circle
+//! through `V0 = P(0)` and `V1 = P(1)`: `Q(u)` (eqs 11-16). The nonlinear error is the distance of
+//! the tool point from the plane of that great circle (eqs 19-21):
+//!
+//! ```text
+//! δ(u) = L · |P(u) · n|,   n = (V0 × V1) / |V0 × V1|,   δ = max over u of δ(u)
+//! ```
+//!
+//! `L` (mm) is the tool length for a head, or the distance from the rotary centre to the tool
+//! point for a table. `δ` is in mm. For a unit `P`, `|P·n|` is the sine of the angle between
+//! `P(u)` and the plane; eq 19's chord `|Q(u) - P(u)|` is the same to first order.
+//!
+//! # Degenerate moves (no unique plane)
+//! * **Coincident** ends (`V0 = V1`, e.g. a full turn of K, or no move at all): the ideal
+//!   orientation does not move, `Q(u) = V0`, and the error is eq 19's chord
+//!   `δ(u) = L·|P(u) - V0|`.
+//! * **Opposite** ends (`V1 = -V0`): every plane through `±V0` is a great circle joining them;
+//!   the reference is the least-squares plane through `±V0` fitted to the path (sampled at
+//!   [`FIT_SAMPLES`] equal steps of u), then `δ(u) = L·|P(u)·n|` as usual.
+//!
+//! The ends count as coincident or opposite when `|V0 × V1| <` [`DEGENERATE_SINE`]. Close to that,
+//! the plane is ill-conditioned (a tiny change of the end moves it a lot); `plane_sine` reports
+//! `|V0 × V1|` so a caller can warn.
+//!
+//! # Exact maximum
+//! `g(u) = P(u)·n` is smooth with analytic `g'` and `g''` (see
+//! [`RotaryType::tool_vector_derivatives`]). It is sampled at `16 + 4·(|Δθk| + |Δθm|)` steps
+//! (Δ in radians, so that no extremum hides between samples), each local maximum of `|g|` is
+//! refined by safeguarded Newton steps on `g' = 0` inside its bracket (golden-section search where
+//! the bracket does not change sign), to `u` within 1e-13.
+
+use crate::error::{check_count, check_positive, check_range, Error, Result};
+use crate::geometry::angle_between;
+use crate::rotary::{Group, Pose, RotaryType};
+use nalgebra::Vector3;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Below this value of `|V0 × V1|` the ends count as coincident or opposite.
+pub const DEGENERATE_SINE: f64 = 1e-9;
+/// Samples of the path used to fit the reference plane of an opposite-ends move.
+pub const FIT_SAMPLES: usize = 257;
+/// Largest accepted angle, degrees or radians equivalent (ten turns).
+pub const MAX_ANGLE_DEG: f64 = 3600.0;
+/// Largest accepted tool length / pivot distance, mm.
+pub const MAX_LENGTH_MM: f64 = 1.0e5;
+
+/// How the reference plane of a move was defined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Reference {
+    /// The plane of `V0` and `V1` (the normal case).
+    Plane,
+    /// `V0 = V1`: chord distance from the fixed ideal orientation.
+    Coincident,
+    /// `V1 = -V0`: least-squares plane through `±V0`.
+    Opposite,
+}
+
+/// A move of the two rotary axes of one type, angles in radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Move {
+    /// The machine's rotary-axis type.
+    pub rtype: RotaryType,
+    /// Start pose.
+    pub start: Pose,
+    /// End pose.
+    pub end: Pose,
+}
+
+impl Move {
+    /// A move from `start` to `end`.
+    pub fn new(rtype: RotaryType, start: Pose, end: Pose) -> Self {
+        Self { rtype, start, end }
+    }
+
+    /// Checks the angles: finite and within ±[`MAX_ANGLE_DEG`] (inputs are in radians here,
+    /// messages in degrees).
+    pub fn validate(&self) -> Result<()> {
+        let lim = MAX_ANGLE_DEG;
+        for (name, v) in [
+            ("start.k", self.start.k),
+            ("start.m", self.start.m),
+            ("end.k", self.end.k),
+            ("end.m", self.end.m),
+        ] {
+            check_range(name, v.to_degrees(), -lim, lim, "degrees")?;
+        }
+        Ok(())
+    }
+
+    /// The pose at parameter `u` by linear interpolation of the angles (eq 10).
+    pub fn pose_at(&self, u: f64) -> Pose {
+        Pose::new(
+            self.start.k + u * (self.end.k - self.start.k),
+            self.start.m + u * (self.end.m - self.start.m),
+        )
+    }
+
+    /// `P(u)`, the tool orientation at `u` (eq 9).
+    pub fn orientation(&self, u: f64) -> Vector3<f64> {
+        self.rtype.tool_vector(self.pose_at(u))
+    }
+
+    fn increments(&self) -> (f64, f64) {
+        (self.end.k - self.start.k, self.end.m - self.start.m)
+    }
+}
+
+/// The deviation function of one move: the reference plane (or chord) and how to evaluate it.
+#[derive(Debug, Clone, Copy)]
+pub struct Deviation {
+    mv: Move,
+    dk: f64,
+    dm: f64,
+    /// `n` for a plane, `-V0` for the chord form.
+    w: Vector3<f64>,
+    reference: Reference,
+    plane_sine: f64,
+    v0: Vector3<f64>,
+    v1: Vector3<f64>,
+}
+
+/// Where along the move the error is largest.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Peak {
+    /// Parameter `u ∈ [0, 1]` of the maximum.
+    pub u: f64,
+    /// The error there, as a fraction of `L` (multiply by `L` for mm).
+    pub value: f64,
+}
+
+impl Deviation {
+    /// Sets up the reference for `mv` (see the module docs for the degenerate cases).
+    pub fn new(mv: Move) -> Self {
+        let (dk, dm) = mv.increments();
+        let v0 = mv.orientation(0.0);
+        let v1 = mv.orientation(1.0);
+        let cross = v0.cross(&v1);
+        let plane_sine = cross.norm();
+        let (reference, w) = if plane_sine >= DEGENERATE_SINE {
+            (Reference::Plane, cross / plane_sine)
+        } else if v0.dot(&v1) > 0.0 {
+            (Reference::Coincident, -v0)
+        } else {
+            (Reference::Opposite, best_fit_normal(&mv, &v0))
+        };
+        Self {
+            mv,
+            dk,
+            dm,
+            w,
+            reference,
+            plane_sine,
+            v0,
+            v1,
+        }
+    }
+
+    /// How the reference was defined.
+    pub fn reference(&self) -> Reference {
+        self.reference
+    }
+
+    /// `|V0 × V1|`, the sine of the angle between the end orientations.
+    pub fn plane_sine(&self) -> f64 {
+        self.plane_sine
+    }
+
+    /// Unit normal of the reference plane (for the coincident case: `-V0`).
+    pub fn normal(&self) -> Vector3<f64> {
+        self.w
+    }
+
+    /// Start and end tool orientations `V0`, `V1`.
+    pub fn ends(&self) -> (Vector3<f64>, Vector3<f64>) {
+        (self.v0, self.v1)
+    }
+
+    /// `g(u) = P(u)·w` and its first two derivatives in `u`.
+    fn g(&self, u: f64) -> (f64, f64, f64) {
+        let (p, d1, d2) =
+            self.mv
+                .rtype
+                .tool_vector_derivatives(self.mv.pose_at(u), self.dk, self.dm);
+        (p.dot(&self.w), d1.dot(&self.w), d2.dot(&self.w))
+    }
+
+    /// The deviation at `u` as a fraction of `L`: `|P(u)·n|`, or `|P(u) - V0|` for coincident ends.
+    pub fn at(&self, u: f64) -> f64 {
+        self.value_of(self.g(u).0)
+    }
+
+    fn value_of(&self, g: f64) -> f64 {
+        match self.reference {
+            // |P - V0| = sqrt(2 - 2 P·V0) = sqrt(2 + 2 g) with g = -P·V0.
+            Reference::Coincident => (2.0 + 2.0 * g).max(0.0).sqrt(),
+            _ => g.abs(),
+        }
+    }
+
+    /// The objective maximised: `|g|` for planes, `g` for the chord (monotone in the chord).
+    fn objective(&self, g: f64) -> f64 {
+        match self.reference {
+            Reference::Coincident => g,
+            _ => g.abs(),
+        }
+    }
+
+    /// The exact maximum of the deviation over `u ∈ [0, 1]` and where it occurs.
+    pub fn peak(&self) -> Peak {
+        let span = self.dk.abs() + self.dm.abs();
+        let n = (16.0 + (4.0 * span).ceil()).min(20_000.0) as usize;
+        let h = 1.0 / n as f64;
+        let samples: Vec<(f64, f64, f64)> = (0..=n).map(|i| self.g(i as f64 * h)).collect();
+        let obj: Vec<f64> = samples.iter().map(|s| self.objective(s.0)).collect();
+        let mut best_u = 0.0;
+        let mut best_obj = obj[0];
+        if obj[n] > best_obj {
+            best_u = 1.0;
+            best_obj = obj[n];
+        }
+        for i in 1..n {
+            if obj[i] < obj[i - 1] || obj[i] < obj[i + 1] {
+                continue;
+            }
+            let sign = match self.reference {
+                Reference::Coincident => 1.0,
+                _ => {
+                    if samples[i].0 >= 0.0 {
+                        1.0
+                    } else {
+                        -1.0
+                    }
+                }
+            };
+            let (u, o) = self.refine((i - 1) as f64 * h, (i + 1) as f64 * h, sign, i as f64 * h);
+            if o > best_obj {
+                best_obj = o;
+                best_u = u;
+            }
+        }
+        // For planes the objective is |g| itself; for the chord it is g, which value_of maps.
+        Peak {
+            u: best_u,
+            value: self.value_of(best_obj),
+        }
+    }
+
+    /// Maximises `sign·g` on `[a, b]` starting near `u0`: Newton on `g' = 0` kept inside a
+    /// bracket, golden-section search when `g'` does not change sign over the bracket.
+    /// Returns `(u, objective)`.
+    fn refine(&self, a: f64, b: f64, sign: f64, u0: f64) -> (f64, f64) {
+        let h = |u: f64| {
+            let (g, d1, d2) = self.g(u);
+            (sign * g, sign * d1, sign * d2)
+        };
+        let (_, ha, _) = h(a);
+        let (_, hb, _) = h(b);
+        let result_u = if ha > 0.0 && hb < 0.0 {
+            // Bracketed root of the derivative: safeguarded Newton.
+            let (mut lo, mut hi) = (a, b);
+            let mut u = u0;
+            for _ in 0..60 {
+                let (_, d1, d2) = h(u);
+                if d1 > 0.0 {
+                    lo = u;
+                } else {
+                    hi = u;
+                }
+                let newton = if d2 < 0.0 { u - d1 / d2 } else { f64::NAN };
+                let next = if newton.is_finite() && newton > lo && newton < hi {
+                    newton
+                } else {
+                    0.5 * (lo + hi)
+                };
+                if (next - u).abs() < 1e-14 || hi - lo < 1e-14 {
+                    u = next;
+                    break;
+                }
+                u = next;
+            }
+            u
+        } else {
+            golden_max(|u| h(u).0, a, b)
+        };
+        let u = result_u.clamp(0.0, 1.0);
+        (u, self.objective(self.g(u).0))
+    }
+}
+
+/// Maximises a unimodal `f` on `[a, b]` by golden-section search to 1e-13.
+fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    while b - a > 1e-13 {
+        if fc > fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// Least-squares plane through `±v0` fitted to the sampled path: the normal is `v0 × d`, `d` the
+/// principal direction of the path's projection onto the plane perpendicular to `v0`.
+fn best_fit_normal(mv: &Move, v0: &Vector3<f64>) -> Vector3<f64> {
+    // An orthonormal basis (e1, e2) of the plane perpendicular to v0.
+    let helper = if v0.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let e1 = v0.cross(&helper).normalize();
+    let e2 = v0.cross(&e1);
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for i in 0..FIT_SAMPLES {
+        let p = mv.orientation(i as f64 / (FIT_SAMPLES - 1) as f64);
+        let (x, y) = (p.dot(&e1), p.dot(&e2));
+        sxx += x * x;
+        sxy += x * y;
+        syy += y * y;
+    }
+    let theta = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let d = e1 * theta.cos() + e2 * theta.sin();
+    v0.cross(&d).normalize()
+}
+
+/// Eq (25): the Group I error at `u = 0.5` as a fraction of `L`, in terms of the start angle of
+/// M and the increments (radians). `None` where the denominator `|V0 × V1|` vanishes.
+pub fn approx_group1(theta_m: f64, d_m: f64, d_k: f64) -> Option<f64> {
+    let (m0, m1, mh) = (theta_m, theta_m + d_m, theta_m + 0.5 * d_m);
+    let num = m0.sin() * m1.sin() * mh.cos() * d_k.sin()
+        - mh.sin() * (0.5 * d_k).sin() * (2.0 * theta_m + d_m).sin();
+    let c = m0.cos() * m1.cos() + m0.sin() * m1.sin() * d_k.cos();
+    let den = (1.0 - c * c).max(0.0).sqrt();
+    (den >= DEGENERATE_SINE).then(|| (num / den).abs())
+}
+
+/// Eq (30): the Group II error at `u = 0.5` as a fraction of `L` (see [`approx_group1`]).
+pub fn approx_group2(theta_m: f64, d_m: f64, d_k: f64) -> Option<f64> {
+    let (m0, m1, mh) = (theta_m, theta_m + d_m, theta_m + 0.5 * d_m);
+    let num = m0.cos() * m1.cos() * mh.sin() * d_k.sin()
+        - mh.cos() * (2.0 * theta_m + d_m).sin() * (0.5 * d_k).sin();
+    let c = m0.sin() * m1.sin() + m0.cos() * m1.cos() * d_k.cos();
+    let den = (1.0 - c * c).max(0.0).sqrt();
+    (den >= DEGENERATE_SINE).then(|| (num / den).abs())
+}
+
+/// The paper's u = 0.5 approximation for the type's group (eq 25 or eq 30), fraction of `L`.
+pub fn approx_half(group: Group, theta_m: f64, d_m: f64, d_k: f64) -> Option<f64> {
+    match group {
+        Group::I => approx_group1(theta_m, d_m, d_k),
+        Group::II => approx_group2(theta_m, d_m, d_k),
+    }
+}
+
+/// Eq (26): `|sin(Δθm/2)·sin(Δθk/2)|`, the u = 0.5 error (fraction of `L`) of a move starting
+/// at the pole: θm0 = 0 (mod π) for Group I, θm0 = ±π/2 (mod π) for Group II (by eq 31).
+/// Note that it is the value at u = 0.5, which is the exact maximum only when |Δθk| = |Δθm|; at
+/// the pole the exact error curve is `|sin(u·Δθm)·sin((1-u)·Δθk)|`.
+pub fn closed_form_pole(d_m: f64, d_k: f64) -> f64 {
+    ((0.5 * d_m).sin() * (0.5 * d_k).sin()).abs()
+}
+
+/// True when a move of this group starting at `theta_m` starts at the pole (eq 26 applies).
+pub fn starts_at_pole(group: Group, theta_m: f64) -> bool {
+    let shifted = match group {
+        Group::I => theta_m,
+        Group::II => theta_m + PI / 2.0,
+    };
+    let r = shifted.rem_euclid(PI);
+    r < 1e-12 || PI - r < 1e-12
+}
+
+/// Everything the page shows about one move. Lengths in mm, `u` dimensionless, angles radians.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct MoveAnalysis {
+    /// Exact maximum error δ, mm.
+    pub max: f64,
+    /// Where it occurs, `u ∈ [0, 1]`.
+    pub u_at_max: f64,
+    /// The error at u = 0.5 from the vectors, mm.
+    pub at_half: f64,
+    /// The paper's approximation (eq 25 or 30), mm; `None` for coincident or opposite ends.
+    pub approx: Option<f64>,
+    /// `(max - approx) / max`, the fraction by which the approximation falls short.
+    pub approx_shortfall: Option<f64>,
+    /// Eq 26, mm, when the move starts at the pole; else `None`.
+    pub closed_form: Option<f64>,
+    /// How the reference plane was defined.
+    pub reference: Reference,
+    /// `|V0 × V1|`.
+    pub plane_sine: f64,
+    /// Angle between V0 and V1, radians.
+    pub sweep_angle: f64,
+    /// Start tool orientation V0 (unit vector, workpiece coordinates).
+    pub start_vector: [f64; 3],
+    /// End tool orientation V1.
+    pub end_vector: [f64; 3],
+    /// Unit normal of the reference plane (for coincident ends: -V0).
+    pub normal: [f64; 3],
+    /// Sample parameters of the curve, equally spaced in [0, 1].
+    pub u: Vec<f64>,
+    /// δ(u) at those samples, mm.
+    pub delta: Vec<f64>,
+}
+
+/// Analyses one move: the δ(u) curve at `samples` points (≥ 2), the exact maximum, the
+/// approximations. `length` is `L` in mm.
+pub fn analyze(mv: Move, length: f64, samples: usize) -> Result<MoveAnalysis> {
+    mv.validate()?;
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_count("samples", samples, 2, 100_000)?;
+    let dev = Deviation::new(mv);
+    let peak = dev.peak();
+    let (dk, dm) = mv.increments();
+    let group = mv.rtype.group();
+    let approx = match dev.reference {
+        Reference::Plane => approx_half(group, mv.start.m, dm, dk).map(|a| a * length),
+        _ => None,
+    };
+    let max = peak.value * length;
+    let approx_shortfall = match approx {
+        Some(a) if max > 1e-15 * length => Some((max - a) / max),
+        _ => None,
+    };
+    let closed_form = starts_at_pole(group, mv.start.m).then(|| closed_form_pole(dm, dk) * length);
+    let u: Vec<f64> = (0..samples)
+        .map(|i| i as f64 / (samples - 1) as f64)
+        .collect();
+    let delta = u.iter().map(|&x| dev.at(x) * length).collect();
+    let (v0, v1) = dev.ends();
+    Ok(MoveAnalysis {
+        max,
+        u_at_max: peak.u,
+        at_half: dev.at(0.5) * length,
+        approx,
+        approx_shortfall,
+        closed_form,
+        reference: dev.reference,
+        plane_sine: dev.plane_sine,
+        sweep_angle: angle_between(&v0, &v1),
+        start_vector: v0.into(),
+        end_vector: v1.into(),
+        normal: dev.w.into(),
+        u,
+        delta,
+    })
+}
+
+/// The exact maximum error (fraction of `L`) of many moves of one type, for bulk use:
+/// `moves` holds `[θk0, θm0, θk1, θm1]` per move (radians), the result one value per move.
+pub fn max_errors(rtype: RotaryType, moves: &[[f64; 4]]) -> Vec<f64> {
+    moves
+        .iter()
+        .map(|m| {
+            let mv = Move::new(rtype, Pose::new(m[0], m[1]), Pose::new(m[2], m[3]));
+            Deviation::new(mv).peak().value
+        })
+        .collect()
+}
+
+/// Fig 4: the maximum error (mm) against the start angle of K, `k_from..=k_to` (radians) at `n`
+/// points, for fixed `theta_m`, increments `d_k`, `d_m`. The paper's finding: a constant.
+pub fn sweep_start_k(
+    rtype: RotaryType,
+    length: f64,
+    theta_m: f64,
+    d_k: f64,
+    d_m: f64,
+    k_range: (f64, f64),
+    n: usize,
+) -> Result<Vec<f64>> {
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_count("n", n, 2, 100_000)?;
+    let ks = linspace(k_range.0, k_range.1, n);
+    ks.iter()
+        .map(|&k| {
+            let mv = Move::new(
+                rtype,
+                Pose::new(k, theta_m),
+                Pose::new(k + d_k, theta_m + d_m),
+            );
+            mv.validate()?;
+            Ok(Deviation::new(mv).peak().value * length)
+        })
+        .collect()
+}
+
+/// One curve of [`sweep_start_m`]: the increment ratio and the errors along θm0.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct RatioCurve {
+    /// `K = Δθk / Δθm`.
+    pub ratio: f64,
+    /// Exact maximum error, mm, one per θm0.
+    pub exact: Vec<f64>,
+    /// The u = 0.5 approximation (eq 25/30), mm; `None` where the ends coincide or are opposite.
+    pub approx: Vec<Option<f64>>,
+}
+
+/// Fig 7: the maximum error (mm) against the start angle of M over `m_range` (radians, `n`
+/// points), one curve per increment ratio `K = Δθk/Δθm` with `Δθm = d_m` fixed (θk0 = 0; the
+/// error does not depend on it).
+pub fn sweep_start_m(
+    rtype: RotaryType,
+    length: f64,
+    d_m: f64,
+    ratios: &[f64],
+    m_range: (f64, f64),
+    n: usize,
+) -> Result<Vec<RatioCurve>> {
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_count("n", n, 2, 100_000)?;
+    check_count("ratios.length", ratios.len(), 1, 16)?;
+    let ms = linspace(m_range.0, m_range.1, n);
+    let group = rtype.group();
+    ratios
+        .iter()
+        .enumerate()
+        .map(|(i, &ratio)| {
+            check_range(&format!("ratios[{i}]"), ratio, -100.0, 100.0, "")?;
+            let d_k = ratio * d_m;
+            let mut exact = Vec::with_capacity(n);
+            let mut approx = Vec::with_capacity(n);
+            for &m in &ms {
+                let mv = Move::new(rtype, Pose::new(0.0, m), Pose::new(d_k, m + d_m));
+                mv.validate()?;
+                let dev = Deviation::new(mv);
+                exact.push(dev.peak().value * length);
+                approx.push(match dev.reference {
+                    Reference::Plane => approx_half(group, m, d_m, d_k).map(|a| a * length),
+                    _ => None,
+                });
+            }
+            Ok(RatioCurve {
+                ratio,
+                exact,
+                approx,
+            })
+        })
+        .collect()
+}
+
+/// Figs 3, 5 and 8: the maximum error and where it occurs over a grid of increments.
+/// Grids are row-major with `ny` rows (Δθm, `m_range`) and `nx` columns (Δθk, `k_range`):
+/// entry `[iy * nx + ix]`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct IncrementGrid {
+    /// Columns.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+    /// Δθk of each column, radians.
+    pub d_k: Vec<f64>,
+    /// Δθm of each row, radians.
+    pub d_m: Vec<f64>,
+    /// Exact maximum error, mm.
+    pub max: Vec<f64>,
+    /// u of the maximum; `None` where the error is zero (no unique maximum).
+    pub u_at_max: Vec<Option<f64>>,
+}
+
+/// Computes an [`IncrementGrid`] for moves starting at `(0, theta_m)`.
+pub fn sweep_increments(
+    rtype: RotaryType,
+    length: f64,
+    theta_m: f64,
+    k_range: (f64, f64),
+    m_range: (f64, f64),
+    nx: usize,
+    ny: usize,
+) -> Result<IncrementGrid> {
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_count("nx", nx, 2, 2001)?;
+    check_count("ny", ny, 2, 2001)?;
+    let d_k = linspace(k_range.0, k_range.1, nx);
+    let d_m = linspace(m_range.0, m_range.1, ny);
+    let mut max = Vec::with_capacity(nx * ny);
+    let mut u_at_max = Vec::with_capacity(nx * ny);
+    for &dm in &d_m {
+        for &dk in &d_k {
+            let mv = Move::new(rtype, Pose::new(0.0, theta_m), Pose::new(dk, theta_m + dm));
+            mv.validate()?;
+            let peak = Deviation::new(mv).peak();
+            max.push(peak.value * length);
+            u_at_max.push((peak.value > 1e-12).then_some(peak.u));
+        }
+    }
+    Ok(IncrementGrid {
+        nx,
+        ny,
+        d_k,
+        d_m,
+        max,
+        u_at_max,
+    })
+}
+
+/// One row of [`compare_types`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct TypeComparison {
+    /// The type.
+    #[serde(rename = "type")]
+    pub rtype: RotaryType,
+    /// Its group.
+    pub group: Group,
+    /// Exact maximum error, mm.
+    pub max: f64,
+    /// u of the maximum.
+    pub u_at_max: f64,
+    /// Eq 25/30 approximation, mm.
+    pub approx: Option<f64>,
+    /// Reference used.
+    pub reference: Reference,
+}
+
+/// The same move (angles of K and M) on each of the twelve types.
+pub fn compare_types(length: f64, start: Pose, end: Pose) -> Result<Vec<TypeComparison>> {
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    RotaryType::ALL
+        .iter()
+        .map(|&t| {
+            let a = analyze(Move::new(t, start, end), length, 2)?;
+            Ok(TypeComparison {
+                rtype: t,
+                group: t.group(),
+                max: a.max,
+                u_at_max: a.u_at_max,
+                approx: a.approx,
+                reference: a.reference,
+            })
+        })
+        .collect()
+}
+
+/// `n ≥ 2` equally spaced values from `a` to `b` inclusive.
+pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    if n < 2 {
+        return vec![a];
+    }
+    (0..n)
+        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+        .collect()
+}
+
+/// Checks a `(from, to)` range of degrees given as field `name`.
+pub fn check_range_deg(name: &str, range: (f64, f64)) -> Result<()> {
+    check_range(
+        &format!("{name}.from"),
+        range.0,
+        -MAX_ANGLE_DEG,
+        MAX_ANGLE_DEG,
+        "degrees",
+    )?;
+    check_range(
+        &format!("{name}.to"),
+        range.1,
+        -MAX_ANGLE_DEG,
+        MAX_ANGLE_DEG,
+        "degrees",
+    )?;
+    if range.0 == range.1 {
+        return Err(Error::field(name, "the range is empty: 'from' equals 'to'"));
+    }
+    Ok(())
+}

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Installs whatever the build and the tests need and is not already present.
+# Idempotent: every step first checks, then installs only what is missing.
+#
+#   scripts/setup.sh           toolchain for building the engine and the page
+#   scripts/setup.sh --test    also the headless browser for the end-to-end tests
+#
+# What it may install (and how):
+#   - the wasm32-unknown-unknown target       (rustup)
+#   - wasm-bindgen-cli at the exact version of wasm-bindgen in Cargo.lock (cargo install)
+#   - wasm-pack                                (cargo install --locked)
+#   - wasm-opt comes from the npm package binaryen (node_modules/.bin, on PATH in npm scripts):
+#     Debian's binaryen 108 corrupts the externref table that wasm-bindgen 0.2.130 emits.
+#   - chromium, with --test                    (Debian package chromium)
+#   - the npm packages of package-lock.json   (npm ci)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+
+want_browser=0
+[ "${1:-}" = "--test" ] && want_browser=1
+
+say() { printf '[setup] %s\n' "$*"; }
+
+# cargo install with the crate's own lock file; when the registry mirror lacks a locked
+# version (seen: a mirror a few days behind crates.io), resolve afresh instead.
+cargo_install() {
+  cargo install --locked "$@" || { say "retrying without --locked"; cargo install "$@"; }
+}
+
+command -v cargo >/dev/null || { echo "[setup] cargo not found: install Rust with rustup first (https://rustup.rs)" >&2; exit 1; }
+command -v node >/dev/null || { echo "[setup] node not found: install Node.js 20 or newer first" >&2; exit 1; }
+
+# 1. The wasm32 target.
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  say "adding the wasm32-unknown-unknown target"
+  rustup target add wasm32-unknown-unknown
+fi
+
+# 2. wasm-bindgen-cli at the version the lock file pins (the CLI and the library must agree exactly).
+bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
+if [ -z "$bindgen_version" ]; then
+  echo "[setup] could not read the wasm-bindgen version from Cargo.lock" >&2; exit 1
+fi
+have_bindgen=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
+if [ "$have_bindgen" != "$bindgen_version" ]; then
+  say "installing wasm-bindgen-cli $bindgen_version (have: ${have_bindgen:-none}); this takes a few minutes"
+  cargo_install wasm-bindgen-cli --version "=$bindgen_version" --force
+fi
+
+# 3. wasm-pack (its own downloads of wasm-bindgen and wasm-opt are not used: both are on PATH).
+if ! command -v wasm-pack >/dev/null; then
+  say "installing wasm-pack; this takes a few minutes"
+  cargo_install wasm-pack
+fi
+
+# 4. Debian packages: for the tests, chromium.
+apt_pkgs=()
+if [ "$want_browser" = 1 ] && [ ! -x /usr/bin/chromium ]; then apt_pkgs+=(chromium); fi
+if [ "${#apt_pkgs[@]}" -gt 0 ]; then
+  sudo_cmd=()
+  [ "$(id -u)" = 0 ] || sudo_cmd=(sudo)
+  say "installing Debian packages: ${apt_pkgs[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${apt_pkgs[@]}" >/dev/null
+fi
+
+# 5. npm packages, when node_modules is missing or older than the lock file.
+if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+  say "installing npm packages (npm ci)"
+  npm ci --no-audit --no-fund
+fi
+say "toolchain ready"
