@@ -34,7 +34,7 @@
 //! refined by safeguarded Newton steps on `g' = 0` inside its bracket (golden-section search where
 //! the bracket does not change sign), to `u` within 1e-13.
 
-use crate::error::{check_count, check_positive, check_range, Error, Result};
+use crate::error::{check_count, check_positive, check_range, Result};
 use crate::geometry::angle_between;
 use crate::rotary::{Group, Pose, RotaryType};
 use nalgebra::Vector3;
@@ -662,26 +662,4 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
         .collect()
-}
-
-/// Checks a `(from, to)` range of degrees given as field `name`.
-pub fn check_range_deg(name: &str, range: (f64, f64)) -> Result<()> {
-    check_range(
-        &format!("{name}.from"),
-        range.0,
-        -MAX_ANGLE_DEG,
-        MAX_ANGLE_DEG,
-        "degrees",
-    )?;
-    check_range(
-        &format!("{name}.to"),
-        range.1,
-        -MAX_ANGLE_DEG,
-        MAX_ANGLE_DEG,
-        "degrees",
-    )?;
-    if range.0 == range.1 {
-        return Err(Error::field(name, "the range is empty: 'from' equals 'to'"));
-    }
-    Ok(())
 }
