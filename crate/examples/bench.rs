@@ -1,0 +1,76 @@
+//! Native timings of the engine's heavy kernels, for `npm run bench` (scripts/bench.mjs times the
+//! same kernels as WebAssembly in Node on the same inputs and prints the ratio).
+//! Prints one JSON object per line: `{"name": ..., "ms": ..., "check": ...}`.
+
+use fiveaxis::nonlinear;
+use fiveaxis::rotary::RotaryType;
+use std::time::Instant;
+
+/// The moves of the benchmark, degrees `[θk0, θm0, θk1, θm1]`, from the same formula as
+/// scripts/bench.mjs.
+fn moves(n: usize) -> Vec<[f64; 4]> {
+    (0..n)
+        .map(|i| {
+            let x = i as f64 * 0.001;
+            let k0 = 180.0 * (7.3 * x).sin();
+            let m0 = 90.0 * (3.1 * x + 1.0).sin();
+            let dk = 60.0 * (1.7 * x + 2.0).sin();
+            let dm = 60.0 * (2.9 * x + 3.0).sin();
+            [k0, m0, k0 + dk, m0 + dm]
+        })
+        .collect()
+}
+
+/// Best of `repeat` runs, milliseconds, and the last result's checksum.
+fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
+    let mut best = f64::INFINITY;
+    let mut sum = 0.0;
+    for _ in 0..repeat {
+        let t = Instant::now();
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64() * 1e3);
+        sum = check(&r);
+    }
+    (best, sum)
+}
+
+fn report(name: &str, (ms, check): (f64, f64)) {
+    println!("{{\"name\":\"{name}\",\"ms\":{ms:.3},\"check\":{check:.12e}}}");
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let t = RotaryType::parse("CAZ")?;
+    let deg = moves(1_000_000);
+    // The kernel takes radians; converting is part of what the wasm call does too.
+    report(
+        "nonlinear: exact max of 10^6 moves",
+        time(
+            3,
+            || {
+                let rad: Vec<[f64; 4]> = deg.iter().map(|m| m.map(f64::to_radians)).collect();
+                nonlinear::max_errors(t, &rad)
+            },
+            |r| r.iter().sum(),
+        ),
+    );
+    let r90 = 90f64.to_radians();
+    report(
+        "nonlinear: 361x361 increment grid",
+        time(
+            3,
+            || {
+                nonlinear::sweep_increments(
+                    t,
+                    1.0,
+                    10f64.to_radians(),
+                    (-r90, r90),
+                    (-r90, r90),
+                    361,
+                    361,
+                )
+            },
+            |g| g.as_ref().map_or(f64::NAN, |g| g.max.iter().sum()),
+        ),
+    );
+    Ok(())
+}

@@ -1,0 +1,66 @@
+// `npm run bench`: times the engine's heavy kernels natively (crate/examples/bench.rs, release
+// build) and as WebAssembly in Node (the release package crate/pkg) on the same inputs, and
+// prints both times and their ratio. Best of 3 runs each.
+import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import * as fa from '../crate/pkg/fiveaxis.js';
+
+const root = fileURLToPath(new URL('..', import.meta.url));
+fa.initSync({ module: readFileSync(new URL('../crate/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+
+/** Same formula as crate/examples/bench.rs. */
+function moves(n) {
+  const out = new Float64Array(4 * n);
+  for (let i = 0; i < n; i++) {
+    const x = i * 0.001;
+    const k0 = 180 * Math.sin(7.3 * x);
+    const m0 = 90 * Math.sin(3.1 * x + 1);
+    out.set([k0, m0, k0 + 60 * Math.sin(1.7 * x + 2), m0 + 60 * Math.sin(2.9 * x + 3)], 4 * i);
+  }
+  return out;
+}
+
+function time(repeat, f, check) {
+  let best = Infinity;
+  let sum = 0;
+  for (let i = 0; i < repeat; i++) {
+    const t = performance.now();
+    const r = f();
+    best = Math.min(best, performance.now() - t);
+    sum = check(r);
+  }
+  return { ms: best, check: sum };
+}
+const total = (a) => a.reduce((s, v) => s + v, 0);
+
+const wasm = {};
+const mv = moves(1_000_000);
+wasm['nonlinear: exact max of 10^6 moves'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
+wasm['nonlinear: 361x361 increment grid'] = time(
+  3,
+  () => fa.nonlinearGrid({ type: 'CAZ', length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
+  (g) => total(g.max),
+);
+
+console.error('building and running the native benchmark (cargo run --release --example bench) ...');
+const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
+const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
+
+const rows = Object.keys(native).map((name) => {
+  const n = native[name];
+  const w = wasm[name];
+  const agree = w ? Math.abs(w.check - n.check) <= 1e-9 * Math.max(1, Math.abs(n.check)) : false;
+  return {
+    kernel: name,
+    'native ms': n.ms.toFixed(1),
+    'wasm ms': w ? w.ms.toFixed(1) : '—',
+    'wasm/native': w ? (w.ms / n.ms).toFixed(2) : '—',
+    'same result': agree ? 'yes' : 'NO',
+  };
+});
+console.table(rows);
+if (rows.some((r) => r['same result'] !== 'yes')) {
+  console.error('native and wasm results differ: see the checksums');
+  process.exitCode = 1;
+}

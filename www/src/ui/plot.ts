@@ -1,0 +1,57 @@
+// Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
+import type { Config, Data, Layout } from 'plotly.js';
+
+type PlotlyModule = typeof import('plotly.js');
+let plotly: Promise<PlotlyModule> | null = null;
+
+export function loadPlotly(): Promise<PlotlyModule> {
+  plotly ??= import('plotly.js-dist-min').then((m) => ((m as { default?: PlotlyModule }).default ?? m) as PlotlyModule);
+  return plotly;
+}
+
+const baseLayout: Partial<Layout> = {
+  font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', size: 12, color: '#1f2328' },
+  margin: { l: 64, r: 20, t: 24, b: 52 },
+  paper_bgcolor: '#ffffff',
+  plot_bgcolor: '#ffffff',
+  hovermode: 'closest',
+  legend: { orientation: 'v', x: 1.02, xanchor: 'left', y: 1, yanchor: 'top', font: { size: 11 } },
+};
+
+/** Axis with a title (every plot must say what and in which unit). */
+export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Partial<Layout['xaxis']> {
+  return { title: { text: title }, zeroline: false, gridcolor: '#e6e8eb', automargin: true, ...extra };
+}
+
+/** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
+export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
+  const P = await loadPlotly();
+  const config: Partial<Config> = {
+    responsive: true,
+    displaylogo: false,
+    toImageButtonOptions: { format: 'png', filename, scale: 2 },
+    modeBarButtonsToRemove: ['select2d', 'lasso2d'],
+  };
+  el.setAttribute('role', 'img');
+  el.setAttribute('aria-label', title);
+  // title.automargin (plotly.js >= 2.13) is missing from @types/plotly.js.
+  const titleLayout = { text: title, font: { size: 13 }, automargin: true, yref: 'paper' } as Partial<Layout['title']>;
+  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout }, config);
+  el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
+}
+
+/** Shows a note over a plot's area without removing the last good plot. */
+export function note(el: HTMLElement, text: string | null) {
+  let n = el.parentElement?.querySelector<HTMLElement>(':scope > .plot-note');
+  if (!text) {
+    n?.remove();
+    return;
+  }
+  if (!n) {
+    n = document.createElement('div');
+    n.className = 'plot-note';
+    n.setAttribute('role', 'status');
+    el.before(n);
+  }
+  n.textContent = text;
+}
