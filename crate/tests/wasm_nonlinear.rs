@@ -174,7 +174,9 @@ fn sweeps_and_grid_have_the_documented_shapes() {
 
 #[wasm_bindgen_test]
 fn bulk_max_errors_rejects_ragged_input() {
-    let ok = wasm::nonlinear_max_errors("CAZ", 2.0, &[0.0, 0.0, 40.0, 40.0]).expect("valid");
+    let moves = |v: &[f64]| JsValue::from(js_sys::Float64Array::from(v));
+    let ok = wasm::nonlinear_max_errors("CAZ".into(), 2.0.into(), moves(&[0.0, 0.0, 40.0, 40.0]))
+        .expect("valid");
     assert!((ok.to_vec()[0] - 2.0 * 20f64.to_radians().sin().powi(2)).abs() < 1e-9);
     let err: JsValue = wasm::nonlinear_max_errors("CAZ", 2.0, &[0.0, 1.0, 2.0])
         .expect_err("ragged")

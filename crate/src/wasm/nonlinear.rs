@@ -8,6 +8,7 @@ use crate::nonlinear::{self, Move, Reference};
 use js_sys::Float64Array;
 use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS_TYPES: &'static str = r#"
@@ -295,17 +296,34 @@ pub fn nonlinear_compare_types(
     output(&rows)
 }
 
-/// Bulk: the exact maximum error (mm) of many moves of one type. `moves` holds
-/// `[θk0, θm0, θk1, θm1]` in degrees per move (length a multiple of 4).
+/// Bulk: the exact maximum error (mm) of many moves of one type. `moves` is a `Float64Array`
+/// holding `[θk0, θm0, θk1, θm1]` in degrees per move (length a multiple of 4).
+///
+/// The parameters are taken as `JsValue` and checked here: wasm-bindgen does not check the
+/// JavaScript types of `&str`, `f64` or slice parameters, and a wrong type must give an error.
 #[wasm_bindgen(js_name = nonlinearMaxErrors)]
 pub fn nonlinear_max_errors(
-    rtype: &str,
-    length: f64,
-    moves: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "RotaryTypeName | string")] rtype: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] length: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array")] moves: JsValue,
 ) -> Result<Float64Array, JsError> {
-    let t = parse_type(rtype)?;
+    let rtype: String = input(rtype)
+        .map_err(|_| js_error(Error::field("type", "expected a type name such as \"CAZ\"")))?;
+    let t = parse_type(&rtype)?;
+    let length = length
+        .as_f64()
+        .ok_or_else(|| js_error(Error::field("length", "expected a number of mm")))?;
     crate::error::check_positive("length", length, nonlinear::MAX_LENGTH_MM, "mm")
         .map_err(js_error)?;
+    let moves = moves
+        .dyn_into::<Float64Array>()
+        .map_err(|_| {
+            js_error(Error::field(
+                "moves",
+                "expected a Float64Array of [θk0, θm0, θk1, θm1] per move",
+            ))
+        })?
+        .to_vec();
     if moves.len() % 4 != 0 {
         return Err(js_error(Error::field(
             "moves",
@@ -315,8 +333,8 @@ pub fn nonlinear_max_errors(
     let mut quads = Vec::with_capacity(moves.len() / 4);
     for (n, c) in moves.chunks_exact(4).enumerate() {
         let mut q = [0.0; 4];
-        for j in 0..4 {
-            q[j] = check_deg(&format!("moves[{}]", 4 * n + j), c[j])?;
+        for (j, v) in c.iter().enumerate() {
+            q[j] = check_deg(&format!("moves[{}]", 4 * n + j), *v)?;
         }
         quads.push(q);
     }
