@@ -178,9 +178,27 @@ fn bulk_max_errors_rejects_ragged_input() {
     let ok = wasm::nonlinear_max_errors("CAZ".into(), 2.0.into(), moves(&[0.0, 0.0, 40.0, 40.0]))
         .expect("valid");
     assert!((ok.to_vec()[0] - 2.0 * 20f64.to_radians().sin().powi(2)).abs() < 1e-9);
-    let err: JsValue = wasm::nonlinear_max_errors("CAZ", 2.0, &[0.0, 1.0, 2.0])
-        .expect_err("ragged")
-        .into();
+    let err: JsValue =
+        wasm::nonlinear_max_errors("CAZ".into(), 2.0.into(), moves(&[0.0, 1.0, 2.0]))
+            .expect_err("ragged")
+            .into();
     let err: js_sys::Error = err.dyn_into().expect("Error");
     assert!(String::from(err.message()).starts_with("moves:"));
+    // Wrong JavaScript types are errors too, not undefined behaviour.
+    for (t, l, m, field) in [
+        (JsValue::from_f64(1.0), 2.0.into(), moves(&[]), "type"),
+        ("CAZ".into(), "2".into(), moves(&[]), "length"),
+        (
+            "CAZ".into(),
+            2.0.into(),
+            js_sys::Array::new().into(),
+            "moves",
+        ),
+    ] {
+        let err: JsValue = wasm::nonlinear_max_errors(t, l, m)
+            .expect_err("wrong type")
+            .into();
+        let err: js_sys::Error = err.dyn_into().expect("Error");
+        assert!(String::from(err.message()).starts_with(field), "{field}");
+    }
 }
