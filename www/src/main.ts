@@ -1,55 +1,80 @@
-// The page shell: one tab per study; each panel is mounted when first opened.
+// The page shell: one tab per study (each panel is mounted when first opened), the unit
+// preferences, and the page state: share link, inputs kept across reloads, reset, named cases.
 import './style.css';
 import type { Panel } from './panels/panel';
 import { nonlinearPanel } from './panels/nonlinear';
+import { el } from './ui/fields';
+import { download } from './ui/export';
+import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
+import * as state from './ui/state';
 
 const panels: Panel[] = [nonlinearPanel];
 
-function setup() {
-  const tabs = document.getElementById('tabs');
-  const host = document.getElementById('panels');
-  if (!tabs || !host) return;
-  const mounted = new Map<string, HTMLElement>();
+const mounted = new Map<string, HTMLElement>();
+let active = panels[0].id;
+let restoring = false;
 
-  const show = async (id: string) => {
-    const panel = panels.find((p) => p.id === id) ?? panels[0];
-    for (const b of tabs.querySelectorAll<HTMLButtonElement>('button[role=tab]')) {
-      const on = b.dataset.panel === panel.id;
-      b.setAttribute('aria-selected', String(on));
-      b.tabIndex = on ? 0 : -1;
-    }
-    for (const [pid, el] of mounted) el.hidden = pid !== panel.id;
-    if (!mounted.has(panel.id)) {
-      const section = document.createElement('section');
-      section.id = `panel-${panel.id}`;
-      section.className = 'panel';
-      section.setAttribute('role', 'tabpanel');
-      section.setAttribute('aria-labelledby', `tab-${panel.id}`);
-      host.append(section);
-      mounted.set(panel.id, section);
-      try {
-        await panel.mount(section);
-        section.dataset.ready = 'true';
-      } catch (err) {
-        section.append(Object.assign(document.createElement('p'), { className: 'warn', textContent: `This panel failed to load: ${String(err)}` }));
-        throw err;
-      }
-    }
-  };
+function banner(text: string | null) {
+  const b = document.getElementById('banner');
+  if (!b) return;
+  b.hidden = !text;
+  b.querySelector('.banner-text')!.textContent = text ?? '';
+}
 
-  for (const p of panels) {
-    const b = document.createElement('button');
-    b.type = 'button';
-    b.id = `tab-${p.id}`;
-    b.setAttribute('role', 'tab');
-    b.setAttribute('aria-controls', `panel-${p.id}`);
-    b.dataset.panel = p.id;
-    b.textContent = p.title;
-    b.addEventListener('click', () => void show(p.id));
-    tabs.append(b);
+// ---- saving the state (URL fragment and local storage), a moment after the last change
+let saveTimer: number | undefined;
+function scheduleSave() {
+  if (restoring) return;
+  clearTimeout(saveTimer);
+  saveTimer = window.setTimeout(saveNow, 250);
+}
+async function saveNow() {
+  clearTimeout(saveTimer);
+  const s = state.capture(active);
+  state.saveLocal(s);
+  const fragment = await state.encode(s);
+  history.replaceState(null, '', `#${fragment}`);
+  document.body.dataset.saved = String(Number(document.body.dataset.saved ?? 0) + 1);
+}
+
+// ---- panels
+async function show(id: string) {
+  const panel = panels.find((p) => p.id === id) ?? panels[0];
+  active = panel.id;
+  const tabs = document.getElementById('tabs')!;
+  for (const b of tabs.querySelectorAll<HTMLButtonElement>('button[role=tab]')) {
+    const on = b.dataset.panel === panel.id;
+    b.setAttribute('aria-selected', String(on));
+    b.tabIndex = on ? 0 : -1;
   }
-  tabs.addEventListener('keydown', (e) => {
-    const list = [...tabs.querySelectorAll<HTMLButtonElement>('button[role=tab]')];
+  for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
+  if (!mounted.has(panel.id)) {
+    const section = el('section', { id: `panel-${panel.id}`, class: 'panel', role: 'tabpanel', 'aria-labelledby': `tab-${panel.id}` });
+    document.getElementById('panels')!.append(section);
+    mounted.set(panel.id, section);
+    try {
+      await panel.mount(section);
+      const unknown = state.applyPending(panel.prefix);
+      if (unknown.length) banner(`This link has settings this version does not know; they were ignored: ${unknown.join(', ')}.`);
+      section.dataset.ready = 'true';
+    } catch (err) {
+      section.append(el('p', { class: 'warn' }, `This panel failed to load: ${String(err)}`));
+      throw err;
+    }
+  }
+  scheduleSave();
+}
+
+function tabs() {
+  const bar = document.getElementById('tabs')!;
+  for (const p of panels) {
+    const b = el('button', { type: 'button', id: `tab-${p.id}`, role: 'tab', 'aria-controls': `panel-${p.id}` }, p.title);
+    b.dataset.panel = p.id;
+    b.addEventListener('click', () => void show(p.id));
+    bar.append(b);
+  }
+  bar.addEventListener('keydown', (e) => {
+    const list = [...bar.querySelectorAll<HTMLButtonElement>('button[role=tab]')];
     const i = list.findIndex((b) => b.getAttribute('aria-selected') === 'true');
     const j = e.key === 'ArrowRight' ? (i + 1) % list.length : e.key === 'ArrowLeft' ? (i - 1 + list.length) % list.length : -1;
     if (j >= 0) {
@@ -57,7 +82,159 @@ function setup() {
       void show(list[j].dataset.panel ?? '');
     }
   });
-  void show(panels[0].id);
+}
+
+// ---- toolbar: units, link, reset, cases, print
+function toolbar() {
+  const bar = document.getElementById('toolbar')!;
+  const unitSelect = (id: string, label: string, defs: Record<string, { name: string }>, value: string, onChange: (v: string) => void) => {
+    const wrap = el('label', { class: 'tool', for: id }, `${label} `);
+    const s = el('select', { id });
+    for (const [k, d] of Object.entries(defs)) s.append(el('option', { value: k }, d.name));
+    s.value = value;
+    s.addEventListener('change', () => onChange(s.value));
+    wrap.append(s);
+    return { wrap, s };
+  };
+  const len = unitSelect('units-length', 'Small lengths', LENGTH_UNITS, units().length, (v) => setUnits({ length: v as LengthUnit }));
+  const ang = unitSelect('units-angle', 'Small angles', ANGLE_UNITS, units().angle, (v) => setUnits({ angle: v as AngleUnit }));
+  onUnitsChange((u) => {
+    len.s.value = u.length;
+    ang.s.value = u.angle;
+    scheduleSave();
+  });
+
+  const button = (id: string, text: string, onClick: () => void, title?: string) => {
+    const b = el('button', { type: 'button', id, class: 'tool' }, text);
+    if (title) b.title = title;
+    b.addEventListener('click', onClick);
+    return b;
+  };
+  const linkOut = el('input', { id: 'share-link', class: 'share-link', readonly: '', 'aria-label': 'Link to this view' });
+  linkOut.hidden = true;
+  const copy = button('copy-link', 'Copy link', async () => {
+    await saveNow();
+    linkOut.value = location.href;
+    linkOut.hidden = false;
+    linkOut.select();
+    try {
+      await navigator.clipboard.writeText(location.href);
+      copy.textContent = 'Link copied';
+    } catch {
+      copy.textContent = 'Copy the link shown';
+    }
+    setTimeout(() => (copy.textContent = 'Copy link'), 2500);
+  }, 'A link that opens this exact view (inputs, units, panel). It is made here and sent nowhere.');
+  const reset = button('reset', 'Reset to defaults', () => {
+    const p = panels.find((x) => x.id === active);
+    if (p) state.resetPanel(p.prefix);
+    scheduleSave();
+  }, 'Restore the default inputs of this panel');
+  const print = button('print', 'Print report', () => window.print(), 'Inputs, key numbers and plots of this panel, for print or PDF');
+
+  bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), print, linkOut);
+}
+
+function casesMenu(): HTMLElement {
+  const details = el('details', { class: 'cases tool' });
+  const summary = el('summary', {}, 'Saved cases');
+  const name = el('input', { id: 'case-name', placeholder: 'Case name', 'aria-label': 'Case name', maxlength: '80' });
+  const save = el('button', { type: 'button', id: 'case-save' }, 'Save');
+  const list = el('ul', { id: 'case-list' });
+  const msg = el('p', { class: 'field-hint', 'aria-live': 'polite' });
+  const exp = el('button', { type: 'button', id: 'case-export' }, 'Export all (JSON)');
+  const impLabel = el('label', { class: 'import', for: 'case-import' }, 'Import JSON ');
+  const imp = el('input', { id: 'case-import', type: 'file', accept: 'application/json,.json' });
+  impLabel.append(imp);
+
+  const render = () => {
+    list.replaceChildren();
+    const cases = state.loadCases();
+    const names = Object.keys(cases).sort((a, b) => a.localeCompare(b));
+    if (!names.length) list.append(el('li', { class: 'field-hint' }, 'No saved cases yet.'));
+    for (const n of names) {
+      const li = el('li');
+      const load = el('button', { type: 'button', 'aria-label': `Load case ${n}` }, 'Load');
+      const del = el('button', { type: 'button', 'aria-label': `Delete case ${n}` }, 'Delete');
+      load.addEventListener('click', async () => {
+        await restore(cases[n]);
+        msg.textContent = `Loaded “${n}”.`;
+      });
+      del.addEventListener('click', () => {
+        const all = state.loadCases();
+        delete all[n];
+        state.storeCases(all);
+        render();
+        msg.textContent = `Deleted “${n}”.`;
+      });
+      li.append(el('span', { class: 'case-name' }, n), load, del);
+      list.append(li);
+    }
+  };
+  save.addEventListener('click', () => {
+    const n = name.value.trim();
+    if (!n) return void (msg.textContent = 'Give the case a name first.');
+    const all = state.loadCases();
+    all[n] = state.capture(active);
+    try {
+      state.storeCases(all);
+      msg.textContent = `Saved “${n}” in this browser.`;
+    } catch {
+      msg.textContent = 'This browser refused to store the case (storage full or disabled).';
+    }
+    render();
+  });
+  exp.addEventListener('click', () => download('fiveaxis-cases.json', JSON.stringify(state.loadCases(), null, 2), 'application/json'));
+  imp.addEventListener('change', async () => {
+    const file = imp.files?.[0];
+    if (!file) return;
+    try {
+      const incoming = state.parseCases(await file.text());
+      state.storeCases({ ...state.loadCases(), ...incoming });
+      msg.textContent = `Imported ${Object.keys(incoming).length} case(s).`;
+      render();
+    } catch (e) {
+      msg.textContent = `Could not import ${file.name}: the file ${e instanceof Error ? e.message : String(e)}.`;
+    }
+    imp.value = '';
+  });
+  details.addEventListener('toggle', render);
+  details.append(summary, el('div', { class: 'cases-body' }));
+  details.lastElementChild!.append(name, save, list, exp, impLabel, msg);
+  return details;
+}
+
+async function restore(s: state.PageState) {
+  restoring = true;
+  try {
+    state.apply(s);
+    await show(panels.some((p) => p.id === s.p) ? s.p : panels[0].id);
+  } finally {
+    restoring = false;
+  }
+  await saveNow();
+}
+
+async function start() {
+  tabs();
+  toolbar();
+  document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
+  // Any edit anywhere in a panel is saved (URL and local storage).
+  document.getElementById('panels')!.addEventListener('input', scheduleSave);
+
+  let initial: state.PageState | null = null;
+  try {
+    initial = await state.decode(location.hash);
+  } catch (e) {
+    banner(`This link was ${e instanceof Error ? e.message : String(e)}, so the calculator opened with its defaults.`);
+    history.replaceState(null, '', location.pathname + location.search);
+    state.clearLocal();
+    await show(panels[0].id);
+    return;
+  }
+  initial ??= state.loadLocal();
+  if (initial) await restore(initial);
+  else await show(panels[0].id);
 }
 
 // The same engine on the main thread, for the browser console: `fiveaxis.nonlinearMove({...})`.
@@ -67,4 +244,11 @@ import('@engine').then(async (engine) => {
   (window as unknown as { fiveaxis: typeof engine }).fiveaxis = engine;
 });
 
-setup();
+void start();
+
+// Offline use after the first visit (the built page only; the dev server has no sw.js).
+if ('serviceWorker' in navigator && import.meta.env.PROD) {
+  window.addEventListener('load', () => {
+    navigator.serviceWorker.register('./sw.js').catch((err) => banner(`Offline use is unavailable: ${String(err)}`));
+  });
+}

@@ -4,7 +4,12 @@ import type { NonlinearMoveResult, RotaryTypeInfo, MachineLayout, InverseResult 
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { el, listField, numberField, selectField, type NumberField } from '../ui/fields';
 import { axis, draw, note } from '../ui/plot';
+import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
+import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
+
+/** A length from the engine (mm) in the unit shown now. */
+const D = (mm: number) => toDisplay('errLength', mm);
 import type { Panel } from './panel';
 
 const ANGLE = 3600; // largest accepted angle, degrees (the engine's limit)
@@ -17,6 +22,7 @@ const MACHINES = [
 
 export const nonlinearPanel: Panel = {
   id: 'nonlinear',
+  prefix: 'nl',
   title: 'Nonlinear error',
   mount,
 };
@@ -50,13 +56,13 @@ async function mount(root: HTMLElement) {
   const rtype = selectField('nl-type', 'Rotary-axis type (KMH)', typeOptions, 'CAZ');
   const roles = el('p', { class: 'roles', id: 'nl-roles' });
   const length = numberField({
-    id: 'nl-length', label: 'Tool length / pivot distance L', unit: 'mm', value: 100, min: 0, max: 100000, positive: true,
+    id: 'nl-length', label: 'Tool length / pivot distance L', quantity: 'length', value: 100, min: 0, max: 100000, positive: true,
     hint: 'Head: pivot to tool point. Table: rotary centre to tool point.',
   });
-  const k0 = numberField({ id: 'nl-k0', label: 'Start θk', unit: '°', value: 0, min: -ANGLE, max: ANGLE });
-  const m0 = numberField({ id: 'nl-m0', label: 'Start θm', unit: '°', value: 10, min: -ANGLE, max: ANGLE });
-  const k1 = numberField({ id: 'nl-k1', label: 'End θk', unit: '°', value: 30, min: -ANGLE, max: ANGLE });
-  const m1 = numberField({ id: 'nl-m1', label: 'End θm', unit: '°', value: 25, min: -ANGLE, max: ANGLE });
+  const k0 = numberField({ id: 'nl-k0', quantity: 'angle', label: 'Start θk', value: 0, min: -ANGLE, max: ANGLE });
+  const m0 = numberField({ id: 'nl-m0', quantity: 'angle', label: 'Start θm', value: 10, min: -ANGLE, max: ANGLE });
+  const k1 = numberField({ id: 'nl-k1', quantity: 'angle', label: 'End θk', value: 30, min: -ANGLE, max: ANGLE });
+  const m1 = numberField({ id: 'nl-m1', quantity: 'angle', label: 'End θm', value: 25, min: -ANGLE, max: ANGLE });
   const ratios = listField('nl-ratios', 'Increment ratios K = Δθk/Δθm (Fig 7)', [0.5, 2, 3, 5], -100, 100, 'Comma separated.');
   const grid = numberField({
     id: 'nl-grid', label: 'Grid points per side (maps)', value: 61, min: 5, max: 361, integer: true,
@@ -64,7 +70,7 @@ async function mount(root: HTMLElement) {
   });
 
   const machineSet = el('fieldset', {}, '');
-  machineSet.append(el('legend', {}, 'Machine'), machine.root, rtype.root, roles);
+  machineSet.append(el('legend', {}, 'Machine'), presetPicker('nonlinear', 'nl'), machine.root, rtype.root, roles);
   const moveSet = el('fieldset');
   const pair = (a: NumberField, b: NumberField) => {
     const d = el('div', { class: 'pair' });
@@ -164,8 +170,8 @@ async function mount(root: HTMLElement) {
       if (r === SUPERSEDED) return;
       note(sweepK.p, null);
       draw(sweepK.p, `δ against the start angle θk (Fig 4)<br>Δθk = ${fmt.num(dK)}°, Δθm = ${fmt.num(dM)}°, θm = ${fmt.num(b0)}°`, [
-        { x: Array.from(r.k), y: Array.from(r.max), type: 'scatter', mode: 'lines+markers', name: 'exact δ', marker: { size: 4 } },
-      ], { xaxis: axis('start angle θk (°)', { dtick: 60 }), yaxis: axis('δ (mm)', { rangemode: 'tozero' }) }, 'nonlinear-fig4');
+        { x: Array.from(r.k), y: Array.from(r.max, D), type: 'scatter', mode: 'lines+markers', name: 'exact δ', marker: { size: 4 } },
+      ], { xaxis: axis('start angle θk (°)', { dtick: 60 }), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }) }, 'nonlinear-fig4');
     }, (e) => engineError(e, sweepK.p));
 
     if (ratioList && dM !== 0) {
@@ -177,11 +183,11 @@ async function mount(root: HTMLElement) {
         r.curves.forEach((c, i) => {
           const color = colors[i % colors.length];
           const group = `K${i}`;
-          data.push({ x: Array.from(r.m), y: Array.from(c.exact), type: 'scatter', mode: 'lines', name: `K = ${c.ratio}`, legendgroup: group, line: { color } });
-          data.push({ x: Array.from(r.m), y: c.approx, type: 'scatter', mode: 'lines', name: `K = ${c.ratio}, u = 0.5`, legendgroup: group, showlegend: false, line: { color, dash: 'dot' } });
+          data.push({ x: Array.from(r.m), y: Array.from(c.exact, D), type: 'scatter', mode: 'lines', name: `K = ${c.ratio}`, legendgroup: group, line: { color } });
+          data.push({ x: Array.from(r.m), y: c.approx.map((v) => (v === null ? null : D(v))), type: 'scatter', mode: 'lines', name: `K = ${c.ratio}, u = 0.5`, legendgroup: group, showlegend: false, line: { color, dash: 'dot' } });
         });
         draw(sweepM.p, `δ against the start angle θm (Fig 7)<br>Δθm = ${fmt.num(dM)}°, Δθk = K·Δθm (dotted: u = 0.5)`, data,
-          { xaxis: axis('start angle θm (°)', { dtick: 45 }), yaxis: axis('δ (mm)', { rangemode: 'tozero' }) }, 'nonlinear-fig7');
+          { xaxis: axis('start angle θm (°)', { dtick: 45 }), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }) }, 'nonlinear-fig7');
       }, (e) => engineError(e, sweepM.p));
     } else if (ratioList) {
       note(sweepM.p, 'Δθm = 0: the ratio Δθk/Δθm is undefined, so this sweep needs a move of M.');
@@ -191,8 +197,8 @@ async function mount(root: HTMLElement) {
       runGrid({ type: t, length: L, thetaM: b0, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: n, ny: n }).then((g) => {
         if (g === SUPERSEDED) return;
         draw(mapMax.p, `Maximum δ over the increments (Fig 5)<br>moves from θm = ${fmt.num(b0)}°`, [{
-          type: 'heatmap', x: Array.from(g.dK), y: Array.from(g.dM), z: rows(g.max, g.nx, g.ny), colorscale: 'Viridis',
-          colorbar: { title: { text: 'δ (mm)' } }, hovertemplate: 'Δθk %{x}°<br>Δθm %{y}°<br>δ %{z:.4g} mm<extra></extra>',
+          type: 'heatmap', x: Array.from(g.dK), y: Array.from(g.dM), z: rows(Array.from(g.max, D), g.nx, g.ny), colorscale: 'Viridis',
+          colorbar: { title: { text: titled('δ', 'errLength') } }, hovertemplate: `Δθk %{x}°<br>Δθm %{y}°<br>δ %{z:.4g} ${unitDef('errLength').label}<extra></extra>`,
         }], { xaxis: axis('Δθk (°)'), yaxis: axis('Δθm (°)') }, 'nonlinear-fig5');
       }, (e) => engineError(e, mapMax.p));
       runGridU({ type: t, length: L, thetaM: b0, dK: { from: 1, to: 90 }, dM: { from: 1, to: 90 }, nx: n, ny: n }).then((g) => {
@@ -212,11 +218,11 @@ async function mount(root: HTMLElement) {
       if (rowsOut === SUPERSEDED) return;
       const colors = rowsOut.map((r) => (r.type === t ? '#d62728' : r.group === 'I' ? '#1f77b4' : '#7fb3d5'));
       draw(compare.p, `The same move of K and M on all 12 types (selected: ${t})`, [{
-        type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => r.max), marker: { color: colors },
-        customdata: rowsOut.map((r) => [fmt.num(r.uAtMax), r.approx === null ? 'undefined' : fmt.length(r.approx), r.group]),
-        hovertemplate: '%{x} (Group %{customdata[2]})<br>δ %{y:.4g} mm at u = %{customdata[0]}<br>u = 0.5 approximation %{customdata[1]}<extra></extra>',
+        type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => D(r.max)), marker: { color: colors },
+        customdata: rowsOut.map((r) => [fmt.num(r.uAtMax), r.approx === null ? 'undefined' : show('errLength', r.approx), r.group]),
+        hovertemplate: '%{x} (Group %{customdata[2]})<br>δ %{y:.4g} at u = %{customdata[0]}<br>u = 0.5 approximation %{customdata[1]}<extra></extra>',
         name: 'exact δ',
-      }], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis('δ (mm)', { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
+      }], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
     }, (e) => engineError(e, compare.p));
 
     updateIk(start);
@@ -251,12 +257,12 @@ async function mount(root: HTMLElement) {
     const group = types.find((x: RotaryTypeInfo) => x.name === t)?.group ?? 'I';
     const eq = group === 'I' ? 'eq 25' : 'eq 30';
     const items: [string, string, string][] = [
-      ['nl-max', 'Exact maximum δ', `${fmt.length(r.max)} at u = ${fmt.num(r.uAtMax, 5)}`],
-      ['nl-approx', `u = 0.5 approximation (${eq})`, r.approx === null ? 'undefined (no unique plane)' : fmt.length(r.approx)],
-      ['nl-shortfall', 'Approximation falls short by', r.approxShortfall === null ? '—' : `${fmt.percent(r.approxShortfall)} (${fmt.length(r.max - (r.approx ?? 0))})`],
+      ['nl-max', 'Exact maximum δ', `${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax, 5)}`],
+      ['nl-approx', `u = 0.5 approximation (${eq})`, r.approx === null ? 'undefined (no unique plane)' : show('errLength', r.approx)],
+      ['nl-shortfall', 'Approximation falls short by', r.approxShortfall === null ? '—' : `${fmt.percent(r.approxShortfall)} (${show('errLength', r.max - (r.approx ?? 0))})`],
       ['nl-eq26', 'Closed form at the pole (eq 26)', r.closedForm === null
         ? `not applicable: the move does not start at θm = ${group === 'I' ? '0°' : '±90°'}`
-        : fmt.length(r.closedForm)],
+        : show('errLength', r.closedForm)],
       ['nl-sweep', 'Angle between start and end tool', fmt.degrees(r.sweepAngle, 5)],
       ['nl-ref', 'Reference', referenceText(r)],
       ['nl-v0', 'Start tool vector V0', fmt.vector(r.startVector)],
@@ -267,21 +273,22 @@ async function mount(root: HTMLElement) {
       summary.append(el('dt', {}, k), el('dd', { id }, v));
     }
     const data: Data[] = [
-      { x: Array.from(r.u), y: Array.from(r.delta), type: 'scatter', mode: 'lines', name: 'δ(u)', line: { color: '#1f77b4', width: 2 } },
-      { x: [r.uAtMax], y: [r.max], type: 'scatter', mode: 'markers', name: `maximum ${fmt.length(r.max)} at u = ${fmt.num(r.uAtMax)}`, marker: { color: '#d62728', size: 10, symbol: 'diamond' } },
+      { x: Array.from(r.u), y: Array.from(r.delta, D), type: 'scatter', mode: 'lines', name: 'δ(u)', line: { color: '#1f77b4', width: 2 } },
+      { x: [r.uAtMax], y: [D(r.max)], type: 'scatter', mode: 'markers', name: `maximum ${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax)}`, marker: { color: '#d62728', size: 10, symbol: 'diamond' } },
     ];
     if (r.approx !== null) {
-      data.push({ x: [0.5], y: [r.approx], type: 'scatter', mode: 'markers', name: `u = 0.5 approximation (${eq})`, marker: { color: '#ff7f0e', size: 9, symbol: 'circle-open', line: { width: 2 } } });
+      data.push({ x: [0.5], y: [D(r.approx)], type: 'scatter', mode: 'markers', name: `u = 0.5 approximation (${eq})`, marker: { color: '#ff7f0e', size: 9, symbol: 'circle-open', line: { width: 2 } } });
     }
     if (r.closedForm !== null) {
-      data.push({ x: [0.5], y: [r.closedForm], type: 'scatter', mode: 'markers', name: 'eq 26', marker: { color: '#2ca02c', size: 7, symbol: 'x' } });
+      data.push({ x: [0.5], y: [D(r.closedForm)], type: 'scatter', mode: 'markers', name: 'eq 26', marker: { color: '#2ca02c', size: 7, symbol: 'x' } });
     }
     draw(curve.p, `δ(u) along the move: ${t}, L = ${fmt.num(L)} mm, (θk, θm) from (${fmt.num(start.k)}°, ${fmt.num(start.m)}°) to (${fmt.num(end.k)}°, ${fmt.num(end.m)}°)`, data,
-      { xaxis: axis('interpolation parameter u', { range: [0, 1] }), yaxis: axis('δ (mm)', { rangemode: 'tozero' }) }, 'nonlinear-curve');
+      { xaxis: axis('interpolation parameter u', { range: [0, 1] }), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }) }, 'nonlinear-curve');
   };
 
   // 'input' fires on every edit of a text field and on every choice in a select.
   for (const input of form.querySelectorAll('input, select')) input.addEventListener('input', update);
+  onUnitsChange(update);
   update();
 }
 

@@ -1,28 +1,56 @@
 // Labelled form fields that validate what the user typed and show the reason next to the field.
+//
+// Every field registers itself by id in `fields`, so that the page state (share links, saved
+// inputs, named cases, presets, reset) works for every panel without per-panel code. A field's
+// value in the state is its text as shown, together with the unit preferences; presets give
+// values in base units (mm, degrees) and are converted to what is shown.
+import { fromDisplay, numberText, onUnitsChange, toDisplay, unitDef, type Quantity } from './units';
+
+/** What the page state needs to know of a field. */
+export interface FieldHandle {
+  readonly id: string;
+  readonly control: HTMLInputElement | HTMLSelectElement | HTMLTextAreaElement;
+  /** The text as shown (what the state stores). */
+  text(): string;
+  /** The default text in the units shown now. */
+  defaultText(): string;
+  /** Sets the text and tells the panel (an 'input' event). */
+  setText(text: string): void;
+  /** Sets a value given in base units (mm, degrees); for presets. */
+  setBase(value: number | string): void;
+}
+
+/** Every field on the page, by id. */
+export const fields = new Map<string, FieldHandle>();
 
 let uid = 0;
 
-function el<K extends keyof HTMLElementTagNameMap>(tag: K, attrs: Record<string, string> = {}, text?: string) {
+export function el<K extends keyof HTMLElementTagNameMap>(tag: K, attrs: Record<string, string> = {}, text?: string) {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
   if (text !== undefined) e.textContent = text;
   return e;
 }
-export { el };
+
+function fire(control: HTMLElement) {
+  control.dispatchEvent(new Event('input', { bubbles: true }));
+}
 
 export interface NumberFieldOptions {
-  /** Element id of the input (stable: tests and links use it). */
+  /** Element id of the input (stable: links, saved cases and tests use it). */
   id: string;
   label: string;
-  /** Unit shown after the field, e.g. "mm" or "°". */
+  /** What the number is; its unit follows the unit preferences (see units.ts). */
+  quantity?: Quantity;
+  /** Unit text for quantity 'none' (e.g. "" for ratios and counts). */
   unit?: string;
+  /** Default, minimum and maximum in base units (mm, degrees). */
   value: number;
   min: number;
   max: number;
-  /** Reject 0 (for lengths that must be positive). */
+  /** Reject 0 and negative values (lengths that must be positive). */
   positive?: boolean;
   integer?: boolean;
-  step?: string;
   hint?: string;
 }
 
@@ -30,14 +58,13 @@ export interface NumberField {
   readonly root: HTMLElement;
   readonly input: HTMLInputElement;
   readonly label: HTMLElement;
-  /** The value, or null after showing why the text is not acceptable. */
+  /** The value in base units, or null after showing why the text is not acceptable. */
   read(): number | null;
   /** Shows (or clears, with null) a message at the field. */
   setError(message: string | null): void;
-  set(value: number): void;
 }
 
-/** Parses a number the way a user types it: "1.5", "-0.00017", "1e-3"; a comma decimal too. */
+/** Parses a number the way a user types it: "1.5", "-0.00017", "1e-3", "2,5". */
 export function parseNumber(text: string): number | null {
   const t = text.trim().replace(/^\+/, '').replace(/^(-?\d*),(\d+)$/, '$1.$2');
   if (t === '' || !/^-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t)) return null;
@@ -45,9 +72,29 @@ export function parseNumber(text: string): number | null {
   return Number.isFinite(v) ? v : null;
 }
 
-export function numberField(o: NumberFieldOptions): NumberField {
+function fieldShell(id: string, labelText: string, hint?: string) {
   const root = el('div', { class: 'field' });
-  const label = el('label', { for: o.id }, o.label);
+  const label = el('label', { for: id }, labelText);
+  const msg = el('div', { class: 'field-msg', id: `msg-${id}-${++uid}`, 'aria-live': 'polite' });
+  root.append(label);
+  const finish = (control: HTMLElement, row: HTMLElement = control) => {
+    control.setAttribute('aria-describedby', msg.id);
+    root.append(row);
+    if (hint) root.append(el('div', { class: 'field-hint' }, hint));
+    root.append(msg);
+  };
+  const setError = (control: HTMLElement, message: string | null) => {
+    msg.textContent = message ?? '';
+    root.classList.toggle('invalid', !!message);
+    if (message) control.setAttribute('aria-invalid', 'true');
+    else control.removeAttribute('aria-invalid');
+  };
+  return { root, label, finish, setError };
+}
+
+export function numberField(o: NumberFieldOptions): NumberField {
+  const q: Quantity = o.quantity ?? 'none';
+  const shell = fieldShell(o.id, o.label, o.hint);
   const row = el('div', { class: 'field-row' });
   const input = el('input', {
     id: o.id,
@@ -56,36 +103,53 @@ export function numberField(o: NumberFieldOptions): NumberField {
     inputmode: 'decimal',
     autocomplete: 'off',
     spellcheck: 'false',
-    value: String(o.value),
   });
-  const msgId = `msg-${o.id}-${++uid}`;
-  input.setAttribute('aria-describedby', msgId);
-  row.append(input);
-  if (o.unit) row.append(el('span', { class: 'unit' }, o.unit));
-  const msg = el('div', { class: 'field-msg', id: msgId, 'aria-live': 'polite' });
-  root.append(label, row);
-  if (o.hint) root.append(el('div', { class: 'field-hint' }, o.hint));
-  root.append(msg);
+  const unitEl = el('span', { class: 'unit' });
+  row.append(input, unitEl);
+  shell.finish(input, row);
 
-  const setError = (message: string | null) => {
-    msg.textContent = message ?? '';
-    root.classList.toggle('invalid', !!message);
-    if (message) input.setAttribute('aria-invalid', 'true');
-    else input.removeAttribute('aria-invalid');
+  let factor = unitDef(q).factor; // the factor the text is written in
+  const showUnit = () => {
+    const d = unitDef(q);
+    unitEl.textContent = q === 'none' ? (o.unit ?? '') : d.label;
+    unitEl.title = d.name;
   };
-  const unit = o.unit ? ` ${o.unit}` : '';
+  const defaultText = () => numberText(toDisplay(q, o.value));
+  input.value = defaultText();
+  input.defaultValue = input.value;
+  showUnit();
+  onUnitsChange(() => {
+    const v = parseNumber(input.value);
+    const next = unitDef(q).factor;
+    if (v !== null && next !== factor) input.value = numberText((v / factor) * next);
+    factor = next;
+    input.defaultValue = defaultText();
+    showUnit();
+  });
+
+  const setError = (m: string | null) => shell.setError(input, m);
+  const limit = (base: number) => `${numberText(toDisplay(q, base))}${unitEl.textContent ? ` ${unitEl.textContent}` : ''}`;
   const read = (): number | null => {
     const text = input.value;
     if (text.trim() === '') return setError('Enter a value.'), null;
-    const v = parseNumber(text);
-    if (v === null) return setError(`"${text.trim()}" is not a number.`), null;
-    if (o.integer && !Number.isInteger(v)) return setError('Enter a whole number.'), null;
-    if (o.positive && v <= 0) return setError(`Must be greater than 0${unit}.`), null;
-    if (v < o.min || v > o.max) return setError(`Must be between ${o.min} and ${o.max}${unit}.`), null;
+    const shown = parseNumber(text);
+    if (shown === null) return setError(`"${text.trim()}" is not a number.`), null;
+    if (o.integer && !Number.isInteger(shown)) return setError('Enter a whole number.'), null;
+    const v = fromDisplay(q, shown);
+    if (o.positive && v <= 0) return setError('Must be greater than 0.'), null;
+    if (v < o.min || v > o.max) return setError(`Must be between ${limit(o.min)} and ${limit(o.max)}.`), null;
     setError(null);
     return v;
   };
-  return { root, input, label, read, setError, set: (v) => ((input.value = String(v)), setError(null)) };
+  fields.set(o.id, {
+    id: o.id,
+    control: input,
+    text: () => input.value,
+    defaultText,
+    setText: (t) => ((input.value = t), fire(input)),
+    setBase: (v) => ((input.value = typeof v === 'number' ? numberText(toDisplay(q, v)) : v), fire(input)),
+  });
+  return { root: shell.root, input, label: shell.label, read, setError };
 }
 
 export interface SelectOption {
@@ -94,13 +158,13 @@ export interface SelectOption {
   group?: string;
 }
 
-export function selectField(id: string, labelText: string, options: SelectOption[], value: string) {
-  const root = el('div', { class: 'field' });
-  const label = el('label', { for: id }, labelText);
+export function selectField(id: string, labelText: string, options: SelectOption[], value: string, hint?: string) {
+  const shell = fieldShell(id, labelText, hint);
   const select = el('select', { id, name: id });
   const groups = new Map<string, HTMLOptGroupElement>();
   for (const opt of options) {
     const option = el('option', { value: opt.value }, opt.label);
+    option.defaultSelected = opt.value === value;
     if (opt.group) {
       let g = groups.get(opt.group);
       if (!g) {
@@ -112,28 +176,91 @@ export function selectField(id: string, labelText: string, options: SelectOption
     } else select.append(option);
   }
   select.value = value;
-  root.append(label, select);
-  return { root, select, label };
+  shell.finish(select);
+  const valid = (v: string) => options.some((o) => o.value === v);
+  fields.set(id, {
+    id,
+    control: select,
+    text: () => select.value,
+    defaultText: () => value,
+    setText: (t) => {
+      if (valid(t)) (select.value = t), fire(select);
+    },
+    setBase: (v) => {
+      if (valid(String(v))) (select.value = String(v)), fire(select);
+    },
+  });
+  return { root: shell.root, select, label: shell.label };
 }
 
-/** A list of numbers typed as "0.5, 2, 3, 5". */
+/** A checkbox (its state text is "1" or "0"). */
+export function checkField(id: string, labelText: string, checked: boolean, hint?: string) {
+  const root = el('div', { class: 'field check' });
+  const input = el('input', { id, name: id, type: 'checkbox' });
+  input.checked = checked;
+  input.defaultChecked = checked;
+  const label = el('label', { for: id }, labelText);
+  root.append(input, label);
+  if (hint) root.append(el('div', { class: 'field-hint' }, hint));
+  const set = (t: string) => ((input.checked = t === '1' || t === 'true'), fire(input));
+  fields.set(id, {
+    id,
+    control: input,
+    text: () => (input.checked ? '1' : '0'),
+    defaultText: () => (checked ? '1' : '0'),
+    setText: set,
+    setBase: (v) => set(String(v)),
+  });
+  return { root, input, label };
+}
+
+/** A list of numbers typed as "0.5, 2, 3, 5" (quantity none). */
 export function listField(id: string, labelText: string, value: number[], min: number, max: number, hint?: string) {
-  const f = numberField({ id, label: labelText, value: 0, min, max, hint });
-  f.input.value = value.join(', ');
-  f.input.setAttribute('inputmode', 'text');
+  const shell = fieldShell(id, labelText, hint);
+  const input = el('input', { id, name: id, type: 'text', autocomplete: 'off', spellcheck: 'false' });
+  input.value = value.join(', ');
+  input.defaultValue = input.value;
+  shell.finish(input);
+  const setError = (m: string | null) => shell.setError(input, m);
   const read = (): number[] | null => {
-    const parts = f.input.value.split(/[,;\s]+/).filter((p) => p !== '');
-    if (parts.length === 0) return f.setError('Enter at least one value.'), null;
-    if (parts.length > 8) return f.setError('At most 8 values.'), null;
+    const parts = input.value.split(/[,;\s]+/).filter((p) => p !== '');
+    if (parts.length === 0) return setError('Enter at least one value.'), null;
+    if (parts.length > 8) return setError('At most 8 values.'), null;
     const out: number[] = [];
     for (const p of parts) {
       const v = parseNumber(p);
-      if (v === null) return f.setError(`"${p}" is not a number.`), null;
-      if (v < min || v > max || v === 0) return f.setError(`Each value must be non-zero, between ${min} and ${max}.`), null;
+      if (v === null) return setError(`"${p}" is not a number.`), null;
+      if (v < min || v > max || v === 0) return setError(`Each value must be non-zero, between ${min} and ${max}.`), null;
       out.push(v);
     }
-    f.setError(null);
+    setError(null);
     return out;
   };
-  return { root: f.root, input: f.input, read, setError: f.setError };
+  fields.set(id, {
+    id,
+    control: input,
+    text: () => input.value,
+    defaultText: () => value.join(', '),
+    setText: (t) => ((input.value = t), fire(input)),
+    setBase: (v) => ((input.value = String(v)), fire(input)),
+  });
+  return { root: shell.root, input, read, setError };
+}
+
+/** A multi-line text field (pasted data such as a CSV file). */
+export function textField(id: string, labelText: string, value: string, rows = 6, hint?: string) {
+  const shell = fieldShell(id, labelText, hint);
+  const area = el('textarea', { id, name: id, rows: String(rows), spellcheck: 'false', autocomplete: 'off' });
+  area.value = value;
+  area.defaultValue = value;
+  shell.finish(area);
+  fields.set(id, {
+    id,
+    control: area,
+    text: () => area.value,
+    defaultText: () => value,
+    setText: (t) => ((area.value = t), fire(area)),
+    setBase: (v) => ((area.value = String(v)), fire(area)),
+  });
+  return { root: shell.root, area, label: shell.label, setError: (m: string | null) => shell.setError(area, m) };
 }

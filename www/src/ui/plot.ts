@@ -1,5 +1,6 @@
 // Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
 import type { Config, Data, Layout } from 'plotly.js';
+import { download, graphCsv } from './export';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
@@ -34,10 +35,36 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   };
   el.setAttribute('role', 'img');
   el.setAttribute('aria-label', title);
-  // title.automargin (plotly.js >= 2.13) is missing from @types/plotly.js.
-  const titleLayout = { text: title, font: { size: 13 }, automargin: true, yref: 'paper' } as Partial<Layout['title']>;
-  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout }, config);
+  // The title sits in the top margin, which grows with its number of lines.
+  const lines = title.split('<br>').length;
+  const titleLayout: Partial<Layout['title']> = { text: title, font: { size: 13 }, yref: 'container', y: 0.985, yanchor: 'top' };
+  const margin = { ...baseLayout.margin, t: 20 + 17 * lines, ...layout.margin };
+  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
+  toolbar(el, title, filename);
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
+}
+
+/** PNG and CSV buttons under a plot (added once). */
+function toolbar(el: HTMLElement, title: string, filename: string) {
+  const plainTitle = title.replace(/<br>/g, ' ');
+  let bar = el.parentElement?.querySelector<HTMLElement>(':scope > .plot-tools');
+  if (!bar) {
+    bar = document.createElement('div');
+    bar.className = 'plot-tools';
+    const png = Object.assign(document.createElement('button'), { type: 'button', textContent: 'PNG' });
+    png.dataset.export = 'png';
+    png.addEventListener('click', async () => {
+      const P = await loadPlotly();
+      await P.downloadImage(el, { format: 'png', filename: bar?.dataset.filename ?? 'plot', width: el.clientWidth, height: el.clientHeight, scale: 2 } as Parameters<typeof P.downloadImage>[1]);
+    });
+    const csv = Object.assign(document.createElement('button'), { type: 'button', textContent: 'CSV' });
+    csv.dataset.export = 'csv';
+    csv.addEventListener('click', () => download(`${bar?.dataset.filename ?? 'plot'}.csv`, graphCsv(el), 'text/csv'));
+    bar.append(png, csv);
+    el.after(bar);
+  }
+  bar.dataset.filename = filename;
+  for (const b of bar.querySelectorAll('button')) b.setAttribute('aria-label', `Download “${plainTitle}” as ${b.textContent}`);
 }
 
 /** Shows a note over a plot's area without removing the last good plot. */

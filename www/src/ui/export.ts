@@ -1,0 +1,77 @@
+// Export of what a plot shows: CSV of its data (columns with units, from the axis titles) and
+// PNG through Plotly. Nothing leaves the browser: files are made from Blobs and downloaded.
+
+interface Trace {
+  type?: string;
+  name?: string;
+  x?: ArrayLike<unknown>;
+  y?: ArrayLike<unknown>;
+  z?: ArrayLike<ArrayLike<unknown>>;
+  showlegend?: boolean;
+}
+interface Graph extends HTMLElement {
+  data?: Trace[];
+  layout?: { xaxis?: { title?: { text?: string } }; yaxis?: { title?: { text?: string } }; title?: { text?: string } };
+}
+
+function cell(v: unknown): string {
+  if (v === null || v === undefined) return '';
+  if (typeof v === 'number') return Number.isFinite(v) ? String(v) : '';
+  const s = String(v);
+  return /[",\n]/.test(s) ? `"${s.replace(/"/g, '""')}"` : s;
+}
+
+const plain = (t: string | undefined, fallback: string) => (t ?? fallback).replace(/<br>/g, ' ').replace(/<[^>]+>/g, '');
+
+/**
+ * CSV of a Plotly graph's data. Line and bar traces: one x column, then one column per trace
+ * (traces sharing the same x), or long form (trace, x, y) when their x differ. Heat maps: the
+ * first row holds the x values, each further row a y value then z along x.
+ */
+export function graphCsv(gd: Graph): string {
+  const data = gd.data ?? [];
+  const xt = plain(gd.layout?.xaxis?.title?.text, 'x');
+  const yt = plain(gd.layout?.yaxis?.title?.text, 'y');
+  const lines: string[] = [];
+  const heat = data.find((t) => t.type === 'heatmap' || t.type === 'surface');
+  if (heat && heat.z) {
+    const name = plain(heat.name, 'z');
+    lines.push(`# ${name}; rows: ${yt}; columns: ${xt}`);
+    const xs = Array.from(heat.x ?? []);
+    lines.push([`${yt} \\ ${xt}`, ...xs].map(cell).join(','));
+    const ys = Array.from(heat.y ?? []);
+    Array.from(heat.z).forEach((row, i) => lines.push([ys[i], ...Array.from(row)].map(cell).join(',')));
+    return lines.join('\n') + '\n';
+  }
+  const series = data.filter((t) => t.y);
+  const sameX =
+    series.length > 0 &&
+    series.every((t) => {
+      const a = Array.from(t.x ?? []);
+      const b = Array.from(series[0].x ?? []);
+      return a.length === b.length && a.every((v, i) => v === b[i]);
+    });
+  if (sameX) {
+    lines.push([xt, ...series.map((t, i) => `${plain(t.name, `trace ${i + 1}`)} [${yt}]`)].map(cell).join(','));
+    const xs = Array.from(series[0].x ?? []);
+    xs.forEach((x, i) => lines.push([x, ...series.map((t) => Array.from(t.y ?? [])[i])].map(cell).join(',')));
+  } else {
+    lines.push(['trace', xt, yt].map(cell).join(','));
+    for (const [i, t] of series.entries()) {
+      const xs = Array.from(t.x ?? []);
+      Array.from(t.y ?? []).forEach((y, j) => lines.push([plain(t.name, `trace ${i + 1}`), xs[j], y].map(cell).join(',')));
+    }
+  }
+  return lines.join('\n') + '\n';
+}
+
+export function download(filename: string, content: BlobPart, type: string) {
+  const url = URL.createObjectURL(new Blob([content], { type }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = filename;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
