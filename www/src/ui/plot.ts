@@ -33,7 +33,7 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
     toImageButtonOptions: { format: 'png', filename, scale: 2 },
     modeBarButtonsToRemove: ['select2d', 'lasso2d'],
   };
-  el.setAttribute('role', 'img');
+  el.setAttribute('role', 'figure');
   el.setAttribute('aria-label', title);
   // The title sits in the top margin, which grows with its number of lines.
   const lines = title.split('<br>').length;
