@@ -4,17 +4,14 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { ARTIFACTS, guardedPage, startBrowser, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, waitPlotted, withPage } from './harness.mjs';
 
 const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
 const TABS = ['nonlinear'];
 
 test('accessibility: no serious or critical axe violations on any panel; tabs work by keyboard', async () => {
-  const b = await startBrowser();
-  try {
-    const ctx = await b.browser.newContext({ viewport: { width: 1300, height: 1000 } });
-    const { page, assertClean } = await guardedPage(ctx, b.url);
-    await page.goto(b.url);
+  await withPage({ viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
+    await page.goto(url);
     await waitPlotted(page, 'nl-curve');
     for (const tab of TABS) {
       await page.click(`#tab-${tab}`);
@@ -35,18 +32,12 @@ test('accessibility: no serious or critical axe violations on any panel; tabs wo
     await page.keyboard.press('ArrowRight');
     const selected = await page.$eval('[role=tab][aria-selected=true]', (e) => e.id);
     assert.equal(selected, `tab-${TABS[1 % TABS.length]}`);
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });
 
 test('named cases: save, list, load, delete, export and import', async () => {
-  const b = await startBrowser();
-  try {
-    const ctx = await b.browser.newContext({ acceptDownloads: true });
-    const { page, assertClean } = await guardedPage(ctx, b.url);
-    await page.goto(b.url);
+  await withPage({ acceptDownloads: true }, async ({ page, url }) => {
+    await page.goto(url);
     await waitPlotted(page, 'nl-curve');
     await page.click('details.cases summary');
     await page.fill('#nl-length', '321');
@@ -73,8 +64,5 @@ test('named cases: save, list, load, delete, export and import', async () => {
     writeFileSync(`${ARTIFACTS}not-cases.json`, '[1, 2]');
     await page.setInputFiles('#case-import', `${ARTIFACTS}not-cases.json`);
     await page.waitForFunction(() => /Could not import/.test(document.querySelector('.cases-body')?.textContent ?? ''));
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });

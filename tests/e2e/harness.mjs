@@ -79,3 +79,20 @@ export async function waitPlotted(page, id, count = 0) {
   );
   return page.evaluate((id) => Number(document.getElementById(id)?.dataset.plotted ?? 0), id);
 }
+
+/**
+ * Runs `fn({ page, assertClean, problems, context, url, browser })` on a fresh guarded page of a
+ * fresh browser (the served dist/), and closes everything afterwards. `assertClean()` is called
+ * at the end: any console error, page error or foreign request fails the test.
+ */
+export async function withPage(contextOptions, fn) {
+  const b = await startBrowser();
+  try {
+    const context = await b.browser.newContext(contextOptions);
+    const guarded = await guardedPage(context, b.url);
+    await fn({ ...guarded, context, url: b.url, browser: b.browser });
+    guarded.assertClean();
+  } finally {
+    await b.close();
+  }
+}

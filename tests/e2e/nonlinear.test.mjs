@@ -2,14 +2,11 @@
 // the last good plot while a field shows why its text is not acceptable.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ARTIFACTS, guardedPage, startBrowser, traceY, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, traceY, waitPlotted, withPage } from './harness.mjs';
 
 test('nonlinear panel: type and angle changes replot, bad input shows a message', async () => {
-  const b = await startBrowser();
-  try {
-    const context = await b.browser.newContext({ viewport: { width: 1400, height: 1800 } });
-    const { page, assertClean } = await guardedPage(context, b.url);
-    await page.goto(b.url);
+  await withPage({ viewport: { width: 1400, height: 1800 } }, async ({ page, url }) => {
+    await page.goto(url);
     const ids = ['nl-curve', 'nl-sweep-k', 'nl-sweep-m', 'nl-map-max', 'nl-map-u', 'nl-compare'];
     for (const id of ids) await waitPlotted(page, id);
 
@@ -75,8 +72,5 @@ test('nonlinear panel: type and angle changes replot, bad input shows a message'
     assert.ok(Math.abs(fromConsole - Math.sin((20 * Math.PI) / 180) ** 2) < 1e-9);
 
     await page.screenshot({ path: `${ARTIFACTS}nonlinear.png`, fullPage: true });
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });

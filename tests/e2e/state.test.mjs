@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../crate/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, startBrowser, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, guardedPage, startBrowser, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../crate/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -101,36 +101,27 @@ test('share link, reload, reset, units', async () => {
 });
 
 test('a link from another version opens with a message and the defaults', async () => {
-  const b = await startBrowser();
-  try {
-    const ctx = await b.browser.newContext();
-    const { page, assertClean } = await guardedPage(ctx, b.url);
-    await page.goto(`${b.url}#v=99&p=nonlinear&nl-length=5`);
+  await withPage({}, async ({ page, url }) => {
+    await page.goto(`${url}#v=99&p=nonlinear&nl-length=5`);
     await page.waitForSelector('#banner:not([hidden])');
     assert.match(await page.textContent('#banner'), /different version/);
     await waitPlotted(page, 'nl-curve');
     assert.equal(await page.inputValue('#nl-length'), '100');
-    await page.goto(`${b.url}#v=1&z=not-deflate-data`);
+    await page.goto(`${url}#v=1&z=not-deflate-data`);
     await page.reload();
     await page.waitForSelector('#banner:not([hidden])');
     assert.match(await page.textContent('#banner'), /damaged/);
-    await page.goto(`${b.url}#v=1&p=nonlinear&nl-length=7&nl-removed-field=3`);
+    await page.goto(`${url}#v=1&p=nonlinear&nl-length=7&nl-removed-field=3`);
     await page.reload();
     await page.waitForSelector('#banner:not([hidden])');
     assert.match(await page.textContent('#banner'), /nl-removed-field/);
     assert.equal(await page.inputValue('#nl-length'), '7');
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });
 
 test('export: CSV and PNG of a plot, numbers as the engine gives them', async () => {
-  const b = await startBrowser();
-  try {
-    const ctx = await b.browser.newContext({ acceptDownloads: true, viewport: { width: 1300, height: 1000 } });
-    const { page, assertClean } = await guardedPage(ctx, b.url);
-    await page.goto(b.url);
+  await withPage({ acceptDownloads: true, viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
+    await page.goto(url);
     await page.selectOption('#units-length', 'mm');
     await waitPlotted(page, 'nl-curve');
     await settle(page, ['nl-curve', 'nl-sweep-k']);
@@ -152,25 +143,19 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
     const bytes = readFileSync(await png.path());
     assert.deepEqual([...bytes.subarray(0, 8)], [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a], 'a PNG file');
     assert.ok(bytes.length > 10_000);
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });
 
 test('works offline after the first visit', async () => {
-  const b = await startBrowser();
-  try {
-    const ctx = await b.browser.newContext();
-    const { page, assertClean, problems } = await guardedPage(ctx, b.url);
-    await page.goto(b.url);
+  await withPage({}, async ({ page, url, context, problems }) => {
+    await page.goto(url);
     await waitPlotted(page, 'nl-curve');
     await page.evaluate(async () => {
       const reg = await navigator.serviceWorker.ready;
       while (!navigator.serviceWorker.controller) await new Promise((r) => setTimeout(r, 50));
       return reg.active?.state;
     });
-    await ctx.setOffline(true);
+    await context.setOffline(true);
     await page.reload();
     await waitPlotted(page, 'nl-curve');
     await page.fill('#nl-k1', '50');
@@ -178,8 +163,5 @@ test('works offline after the first visit', async () => {
     await page.screenshot({ path: `${ARTIFACTS}offline.png` });
     // Failed network requests while offline would show up as console errors: there are none.
     assert.deepEqual(problems, []);
-    assertClean();
-  } finally {
-    await b.close();
-  }
+  });
 });
