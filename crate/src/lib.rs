@@ -4,9 +4,11 @@
 //! [`wasm`]. Inside the engine lengths are in mm and angles in radians; the binding converts
 //! angles from and to degrees at the JavaScript edge.
 //!
-//! Studies, one module each, all built on [`geometry`] and [`rotary`]:
+//! Studies, one module each, all built on [`geometry`], [`rotary`] and the kinematic chain with
+//! geometric errors, [`chain`]:
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
 
+pub mod chain;
 pub mod error;
 pub mod geometry;
 pub mod nonlinear;

@@ -1,0 +1,355 @@
+//! The shared kinematic chain, checked against references written independently of it: the
+//! cubic-test paper's explicit 4×4 matrices (Li et al. 2021, eqs 2–12), central finite
+//! differences of the exact chain, the nonlinear-error study's tool-vector formula, and round
+//! trips of the inverse kinematics.
+
+#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+mod common;
+
+use common::{close, deg, Rng};
+use fiveaxis::chain::{Chain, ErrorKind, Link, RigidError, Setup};
+use fiveaxis::geometry::Axis;
+use fiveaxis::rotary::{Pose, RotaryType};
+use nalgebra::{Matrix4, Vector3, Vector4};
+
+/// The B/C tilting-rotary table of the cubic-test paper: B about Y on the bed, C about Z on B,
+/// both through the origin; X, Y, Z carry the tool. Chain order: B, C, X, Y, Z.
+fn bc_table() -> Chain {
+    Chain {
+        work: vec![
+            Link::rotary("B", Axis::Y).on_table(),
+            Link::rotary("C", Axis::Z).on_table(),
+        ],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Y", Axis::Y),
+            Link::linear("Z", Axis::Z),
+        ],
+        work_origin: Vector3::zeros(),
+        tool_tip: Vector3::zeros(),
+        tool_axis: Axis::Z,
+    }
+}
+
+/// A head-B / table-C machine like the S-shape paper's (Y carries the table, X-Z-B the head),
+/// with non-zero offsets so that no lever arm is accidentally zero. Chain order: Y, C, X, Z, B.
+fn head_table() -> Chain {
+    Chain {
+        work: vec![
+            Link::linear("Y", Axis::Y).on_table(),
+            Link::rotary("C", Axis::Z)
+                .on_table()
+                .at(Vector3::new(3.0, -2.0, 40.0)),
+        ],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Z", Axis::Z).at(Vector3::new(0.0, 5.0, 0.0)),
+            Link::rotary("B", Axis::Y).at(Vector3::new(1.0, 0.0, 300.0)),
+        ],
+        work_origin: Vector3::new(10.0, 20.0, 30.0),
+        tool_tip: Vector3::new(0.0, 0.0, -250.0),
+        tool_axis: Axis::Z,
+    }
+}
+
+/// A fork head: C on the ram, A on C, spindle along Z. Chain order: X, Y, Z, C, A.
+fn head_head() -> Chain {
+    Chain {
+        work: vec![],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Y", Axis::Y),
+            Link::linear("Z", Axis::Z),
+            Link::rotary("C", Axis::Z).at(Vector3::new(0.0, 0.0, 500.0)),
+            Link::rotary("A", Axis::X).at(Vector3::new(0.0, 0.0, -100.0)),
+        ],
+        work_origin: Vector3::zeros(),
+        tool_tip: Vector3::new(0.0, 0.0, -150.0),
+        tool_axis: Axis::Z,
+    }
+}
+
+fn rx(a: f64) -> Matrix4<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix4::new(
+        1.0, 0.0, 0.0, 0.0, 0.0, c, -s, 0.0, 0.0, s, c, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn ry(a: f64) -> Matrix4<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix4::new(
+        c, 0.0, s, 0.0, 0.0, 1.0, 0.0, 0.0, -s, 0.0, c, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn rz(a: f64) -> Matrix4<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix4::new(
+        c, -s, 0.0, 0.0, s, c, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+fn tr(x: f64, y: f64, z: f64) -> Matrix4<f64> {
+    Matrix4::new(
+        1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z, 0.0, 0.0, 0.0, 1.0,
+    )
+}
+
+/// The paper's eight errors, with the chain's location errors they map onto:
+/// `E_?0B = -(δ?BY, α/β/γBY)`, `E_X0C = -δxCB`, `E_A0C = -αCB` (see chain.rs / cubic docs).
+struct PaperErrors {
+    dx: f64,
+    dy: f64,
+    dz: f64,
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    alpha_cb: f64,
+    dx_cb: f64,
+}
+
+impl PaperErrors {
+    fn apply(&self, chain: &mut Chain) {
+        chain.work[0].location = RigidError {
+            x: -self.dx,
+            y: -self.dy,
+            z: -self.dz,
+            a: -self.alpha,
+            b: -self.beta,
+            c: -self.gamma,
+        };
+        chain.work[1].location = RigidError {
+            x: -self.dx_cb,
+            a: -self.alpha_cb,
+            ..Default::default()
+        };
+    }
+    /// Eq (2)'s error matrices: the B-Y group and the C-B group.
+    fn e_by(&self) -> Matrix4<f64> {
+        rz(self.gamma) * ry(self.beta) * rx(self.alpha) * tr(self.dx, self.dy, self.dz)
+    }
+    fn e_cb(&self) -> Matrix4<f64> {
+        rx(self.alpha_cb) * tr(self.dx_cb, 0.0, 0.0)
+    }
+}
+
+#[test]
+fn the_chain_reproduces_eqs_2_and_10_to_12_of_the_cubic_paper_exactly() {
+    let mut rng = Rng::new(11);
+    for _ in 0..200 {
+        let e = PaperErrors {
+            dx: rng.range(-0.5, 0.5),
+            dy: rng.range(-0.5, 0.5),
+            dz: rng.range(-0.5, 0.5),
+            alpha: rng.range(-0.01, 0.01),
+            beta: rng.range(-0.01, 0.01),
+            gamma: rng.range(-0.01, 0.01),
+            alpha_cb: rng.range(-0.01, 0.01),
+            dx_cb: rng.range(-0.5, 0.5),
+        };
+        let mut chain = bc_table();
+        e.apply(&mut chain);
+        let (b, c) = (rng.range(-2.0, 2.0), rng.range(-4.0, 4.0));
+        let pm = Vector3::new(
+            rng.range(-100.0, 100.0),
+            rng.range(-100.0, 100.0),
+            rng.range(-50.0, 150.0),
+        );
+        let q = [b, c, pm.x, pm.y, pm.z];
+        let pm4 = Vector4::new(pm.x, pm.y, pm.z, 1.0);
+        // Eq (2): P_T = M_C · M_αCB · M_δxCB · M_B · M_γBY · M_βBY · M_αBY · M_δBY · P_M.
+        let pt = rz(c) * e.e_cb() * ry(b) * e.e_by() * pm4;
+        let got = chain.tool_pose(&q, true, &Setup::None).unwrap().tip;
+        for k in 0..3 {
+            close(got[k], pt[k], 1e-10, "eq 2");
+        }
+        // Eqs (10)-(12): P_W = M_WC · (eq 2), M_WC = (M_αCB M_δxCB M_γBY M_βBY M_αBY M_δBY)⁻¹.
+        let m_wc = (e.e_cb() * e.e_by()).try_inverse().unwrap();
+        let pw = m_wc * pt;
+        let got = chain
+            .tool_pose(&q, true, &Setup::AtPose(vec![0.0; 5]))
+            .unwrap()
+            .tip;
+        for k in 0..3 {
+            close(got[k], pw[k], 1e-10, "eq 10");
+        }
+    }
+}
+
+#[test]
+fn without_errors_the_chain_gives_the_nonlinear_studys_tool_vector_for_all_machine_types() {
+    // Table-table B/C (type CBZ), head-table C/B (CBZ), head-head C/A (CAZ): V = R_K(θk) R_M(θm) e_H.
+    let cases: [(Chain, &str, &str, &str); 3] = [
+        (bc_table(), "CBZ", "C", "B"),
+        (head_table(), "CBZ", "C", "B"),
+        (head_head(), "CAZ", "C", "A"),
+    ];
+    let mut rng = Rng::new(5);
+    for (chain, name, k, m) in cases {
+        let t = RotaryType::parse(name).unwrap();
+        let layout = chain.rotary_type().unwrap();
+        assert_eq!(layout.rtype, t, "{name}");
+        let (ik, im) = (chain.index_of(k).unwrap(), chain.index_of(m).unwrap());
+        for _ in 0..50 {
+            let q: Vec<f64> = (0..5).map(|_| rng.range(-3.0, 3.0) * 50.0).collect();
+            let mut q = q;
+            q[ik] = rng.range(-3.0, 3.0);
+            q[im] = rng.range(-3.0, 3.0);
+            let v = t.tool_vector(Pose::new(q[ik], q[im]));
+            let got = chain.tool_pose(&q, false, &Setup::None).unwrap().axis;
+            assert!((got - v).norm() < 1e-12, "{name}: {got:?} vs {v:?}");
+        }
+    }
+}
+
+#[test]
+fn linear_axes_move_the_tool_positively_relative_to_the_workpiece_on_either_branch() {
+    // ISO 841: +Y on the table (head_table) and +X on the head both move the tool by +1 mm.
+    let chain = head_table();
+    let q0 = [0.0; 5];
+    let p0 = chain.tool_pose(&q0, false, &Setup::None).unwrap().tip;
+    for (name, dir) in [
+        ("Y", Vector3::y()),
+        ("X", Vector3::x()),
+        ("Z", Vector3::z()),
+    ] {
+        let mut q = q0;
+        q[chain.index_of(name).unwrap()] = 1.0;
+        let p = chain.tool_pose(&q, false, &Setup::None).unwrap().tip;
+        assert!((p - p0 - dir).norm() < 1e-12, "{name}");
+    }
+}
+
+/// Central difference of the exact chain with respect to one error component.
+fn finite_difference(
+    chain: &Chain,
+    link: usize,
+    kind: ErrorKind,
+    k: usize,
+    q: &[f64],
+    setup: &Setup,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let h = 1e-6;
+    let eval = |v: f64| {
+        let mut c = chain.clone();
+        match kind {
+            ErrorKind::Location => c.link_mut(link).location.set(k, v),
+            ErrorKind::Motion => {
+                // The error-motion value at the current position only (the set-up pose sees
+                // the value at its own position, here zero).
+                let mut e = RigidError::default();
+                e.set(k, v);
+                let here = q[link];
+                c.link_mut(link).motion = Some(std::sync::Arc::new(move |p| {
+                    if p == here {
+                        e
+                    } else {
+                        RigidError::default()
+                    }
+                }));
+            }
+        }
+        c.tool_pose(q, true, setup).unwrap()
+    };
+    let (p, m) = (eval(h), eval(-h));
+    ((p.tip - m.tip) / (2.0 * h), (p.axis - m.axis) / (2.0 * h))
+}
+
+#[test]
+fn the_analytic_jacobian_matches_finite_differences_of_the_exact_chain() {
+    let mut rng = Rng::new(99);
+    for chain in [bc_table(), head_table(), head_head()] {
+        for trial in 0..6 {
+            let q: Vec<f64> = chain
+                .links()
+                .map(|(_, l)| match l.joint {
+                    fiveaxis::chain::Joint::Linear(_) => rng.range(-200.0, 200.0),
+                    fiveaxis::chain::Joint::Rotary(_) => rng.range(-3.0, 3.0),
+                })
+                .collect();
+            let setup = if trial % 2 == 0 {
+                Setup::None
+            } else {
+                Setup::AtPose((0..chain.len()).map(|_| rng.range(-1.0, 1.0)).collect())
+            };
+            let jac = chain.jacobian(&q, &setup).unwrap();
+            assert_eq!(jac.len(), 12 * chain.len());
+            for s in &jac {
+                let (ft, fa) = finite_difference(&chain, s.link, s.kind, s.component, &q, &setup);
+                let scale = 1.0 + ft.norm();
+                assert!(
+                    (s.tip - ft).norm() < 1e-6 * scale,
+                    "{} tip: {:?} vs {:?}",
+                    s.name,
+                    s.tip,
+                    ft
+                );
+                assert!(
+                    (s.axis - fa).norm() < 1e-7,
+                    "{} axis: {:?} vs {:?}",
+                    s.name,
+                    s.axis,
+                    fa
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn with_the_workpiece_set_up_at_a_pose_every_workpiece_branch_error_vanishes_there() {
+    let mut rng = Rng::new(3);
+    let mut chain = head_table();
+    for i in 0..2 {
+        chain.link_mut(i).location =
+            RigidError::from_array([0.0; 6].map(|_| rng.range(-0.1, 0.1) * 1e-1));
+    }
+    let q0: Vec<f64> = vec![12.0, deg(20.0), -30.0, 40.0, deg(-15.0)];
+    let nominal = chain.tool_pose(&q0, false, &Setup::None).unwrap();
+    let set = chain
+        .tool_pose(&q0, true, &Setup::AtPose(q0.clone()))
+        .unwrap();
+    assert!((nominal.tip - set.tip).norm() < 1e-12 && (nominal.axis - set.axis).norm() < 1e-14);
+    // Without the set-up the errors show at q0.
+    let conventional = chain.tool_pose(&q0, true, &Setup::None).unwrap();
+    assert!((nominal.tip - conventional.tip).norm() > 1e-4);
+}
+
+#[test]
+fn inverse_kinematics_round_trips_on_every_machine_type() {
+    let mut rng = Rng::new(17);
+    for chain in [bc_table(), head_table(), head_head()] {
+        let layout = chain.rotary_type().unwrap();
+        for _ in 0..200 {
+            let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
+            q[layout.k] = rng.range(-3.0, 3.0);
+            q[layout.m] = rng.range(-1.5, 1.5);
+            let pose = chain.tool_pose(&q, false, &Setup::None).unwrap();
+            let (back, singular) = chain.inverse(&pose.tip, &pose.axis, Some(&q)).unwrap();
+            assert!(!singular);
+            for (a, b) in q.iter().zip(&back) {
+                close(*a, *b, 1e-8, "round trip continuing from the same pose");
+            }
+            // Without a previous pose some solution is found that gives the same tool pose.
+            let (other, _) = chain.inverse(&pose.tip, &pose.axis, None).unwrap();
+            let again = chain.tool_pose(&other, false, &Setup::None).unwrap();
+            assert!(
+                (again.tip - pose.tip).norm() < 1e-8 && (again.axis - pose.axis).norm() < 1e-12
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_positions_are_reported_not_panicked() {
+    let chain = bc_table();
+    assert!(chain
+        .tool_pose(&[0.0; 4], false, &Setup::None)
+        .unwrap_err()
+        .message
+        .contains("expected 5"));
+    assert!(chain
+        .tool_pose(&[0.0, f64::NAN, 0.0, 0.0, 0.0], false, &Setup::None)
+        .is_err());
+    assert!(chain
+        .jacobian(&[0.0; 5], &Setup::AtPose(vec![0.0; 3]))
+        .is_err());
+}
