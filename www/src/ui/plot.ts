@@ -35,10 +35,10 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   };
   el.setAttribute('role', 'figure');
   el.setAttribute('aria-label', title);
-  // The title sits in the top margin, which grows with its number of lines.
-  const lines = title.split('<br>').length;
-  const titleLayout: Partial<Layout['title']> = { text: title, font: { size: 13 }, yref: 'container', y: 0.985, yanchor: 'top' };
-  const margin = { ...baseLayout.margin, t: 20 + 17 * lines, ...layout.margin };
+  // The title sits just above the plot area and the top margin grows to fit all its lines
+  // (anchored to the container's top, Plotly cuts the first line of a two-line title).
+  const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', automargin: true, pad: { b: 8 } } as Partial<Layout['title']>;
+  const margin = { ...baseLayout.margin, t: 20, ...layout.margin };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
