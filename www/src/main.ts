@@ -7,6 +7,7 @@ import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
+import { printReport, setupPrint } from './ui/print';
 
 const panels: Panel[] = [nonlinearPanel];
 
@@ -130,7 +131,7 @@ function toolbar() {
     if (p) state.resetPanel(p.prefix);
     scheduleSave();
   }, 'Restore the default inputs of this panel');
-  const print = button('print', 'Print report', () => window.print(), 'Inputs, key numbers and plots of this panel, for print or PDF');
+  const print = button('print', 'Print report', () => void printReport(activeSection), 'Inputs, key numbers and plots of this panel, for print or PDF');
 
   bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), print, linkOut);
 }
@@ -215,8 +216,16 @@ async function restore(s: state.PageState) {
   await saveNow();
 }
 
+/** The open panel's section and field prefix (for the printed report). */
+function activeSection() {
+  const section = mounted.get(active);
+  const panel = panels.find((p) => p.id === active);
+  return section && panel ? { section, prefix: panel.prefix } : null;
+}
+
 async function start() {
   tabs();
+  setupPrint(activeSection);
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
   // Any edit anywhere in a panel is saved (URL and local storage).

@@ -1,0 +1,50 @@
+// The printed report of every panel (print media, as "Save as PDF" does): a table of the inputs
+// instead of the form, the plots redrawn to fit the page width, and the screen layout back
+// afterwards. Tabs are found on the page, so a new panel is covered without editing this file.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { ARTIFACTS, withPage } from './harness.mjs';
+
+/** Widths of the drawn plots (their SVG) in the open panel, CSS pixels. */
+const plotWidths = (page) =>
+  page.$$eval('.panel:not([hidden]) .js-plotly-plot', (gs) => gs.map((g) => g.querySelector('svg.main-svg')?.getBoundingClientRect().width ?? 0));
+
+test('print report: inputs, key numbers and plots that fit the page, for every panel', async () => {
+  await withPage({ viewport: { width: 1400, height: 1000 } }, async ({ page, url }) => {
+    await page.goto(url);
+    const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
+    assert.ok(tabs.length >= 1);
+    for (const tab of tabs) {
+      await page.click(`#tab-${tab}`);
+      await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
+      // Wait until every plot of the panel has been drawn and the drawing has settled.
+      await page.waitForFunction(
+        (tab) => {
+          const gs = [...document.querySelectorAll(`#panel-${tab} .plot`)];
+          return gs.length > 0 && gs.every((g) => Number(g.dataset.plotted ?? 0) > 0);
+        },
+        tab,
+        { timeout: 60_000 },
+      );
+      await page.waitForTimeout(500);
+      const screen = await plotWidths(page);
+      assert.ok(screen.some((w) => w > 700), `${tab}: some plot is wider than a page on screen (${screen})`);
+
+      await page.emulateMedia({ media: 'print' });
+      await page.waitForSelector(`#panel-${tab} .print-inputs`, { state: 'attached' });
+      await page.waitForFunction(
+        (tab) => [...document.querySelectorAll(`#panel-${tab} .js-plotly-plot`)].every((g) => (g.querySelector('svg.main-svg')?.getBoundingClientRect().width ?? 0) <= 700),
+        tab,
+      );
+      const rows = await page.$$eval(`#panel-${tab} .print-inputs dt`, (d) => d.length);
+      const controls = await page.$$eval(`#panel-${tab} form.inputs :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
+      assert.ok(rows >= 3 && rows <= controls, `${tab}: ${rows} input rows printed for ${controls} controls`);
+      assert.equal(await page.$eval(`#panel-${tab} form.inputs`, (f) => getComputedStyle(f).display), 'none');
+      await page.pdf({ path: `${ARTIFACTS}report-${tab}.pdf`, format: 'A4', printBackground: true });
+
+      await page.emulateMedia({ media: 'screen' });
+      await page.waitForSelector(`#panel-${tab} .print-inputs`, { state: 'detached' });
+      await page.waitForFunction((tab) => [...document.querySelectorAll(`#panel-${tab} .js-plotly-plot`)].some((g) => (g.querySelector('svg.main-svg')?.getBoundingClientRect().width ?? 0) > 700), tab);
+    }
+  });
+});
