@@ -35,10 +35,15 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   };
   el.setAttribute('role', 'figure');
   el.setAttribute('aria-label', title);
-  // The title sits in the top margin, which grows with its number of lines.
+  // The title sits in the top margin, which grows with its number of lines. It is anchored by
+  // its middle in the middle of that margin: Plotly lifts a multi-line title anchored by its top
+  // out of the figure (its first line was cut off).
   const lines = title.split('<br>').length;
-  const titleLayout: Partial<Layout['title']> = { text: title, font: { size: 13 }, yref: 'container', y: 0.985, yanchor: 'top' };
   const margin = { ...baseLayout.margin, t: 20 + 17 * lines, ...layout.margin };
+  const height = el.clientHeight || 450;
+  const titleLayout: Partial<Layout['title']> = {
+    text: title, font: { size: 13 }, yref: 'container', y: 1 - (margin.t ?? 0) / 2 / height, yanchor: 'middle',
+  };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
