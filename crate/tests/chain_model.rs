@@ -313,15 +313,22 @@ fn with_the_workpiece_set_up_at_a_pose_every_workpiece_branch_error_vanishes_the
     assert!((nominal.tip - conventional.tip).norm() > 1e-4);
 }
 
+/// Random axis positions away from the singular orientations: linear ±150 mm, K ±3 rad,
+/// M ±1.5 rad.
+fn random_positions(chain: &Chain, rng: &mut Rng) -> Vec<f64> {
+    let layout = chain.rotary_type().unwrap();
+    let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
+    q[layout.k] = rng.range(-3.0, 3.0);
+    q[layout.m] = rng.range(-1.5, 1.5);
+    q
+}
+
 #[test]
 fn inverse_kinematics_round_trips_on_every_machine_type() {
     let mut rng = Rng::new(17);
     for chain in [bc_table(), head_table(), head_head()] {
-        let layout = chain.rotary_type().unwrap();
         for _ in 0..200 {
-            let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
-            q[layout.k] = rng.range(-3.0, 3.0);
-            q[layout.m] = rng.range(-1.5, 1.5);
+            let q = random_positions(&chain, &mut rng);
             let pose = chain.tool_pose(&q, false, &Setup::None).unwrap();
             let (back, singular) = chain.inverse(&pose.tip, &pose.axis, Some(&q)).unwrap();
             assert!(!singular);
@@ -360,9 +367,7 @@ fn inverse_all_gives_every_branch_and_each_reproduces_the_tool_pose() {
     for chain in [bc_table(), head_table(), head_head()] {
         let layout = chain.rotary_type().unwrap();
         for _ in 0..100 {
-            let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
-            q[layout.k] = rng.range(-3.0, 3.0);
-            q[layout.m] = rng.range(-1.5, 1.5);
+            let q = random_positions(&chain, &mut rng);
             let pose = chain.tool_pose(&q, false, &Setup::None).unwrap();
             let (all, singular) = chain.inverse_all(&pose.tip, &pose.axis).unwrap();
             assert!(!singular);

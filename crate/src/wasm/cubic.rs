@@ -308,16 +308,10 @@ pub fn cubic_test(
 pub fn cubic_height_map(
     #[wasm_bindgen(unchecked_param_type = "CubicMapInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    // The fields of CaseIn spelled out (serde's flatten would lose the paths in messages).
+    // The same object read twice: the case (CaseIn asks only for its own properties) and the
+    // grid, so that messages keep their paths (serde's flatten would lose them).
     #[derive(Deserialize)]
-    struct In {
-        errors: BTreeMap<String, f64>,
-        #[serde(default)]
-        setup: Option<BTreeMap<String, f64>>,
-        #[serde(default)]
-        transform: Option<bool>,
-        #[serde(default)]
-        reference: Reference,
+    struct Grid {
         nx: usize,
         ny: usize,
     }
@@ -340,15 +334,10 @@ pub fn cubic_height_map(
         passes: usize,
         evaluations: usize,
     }
-    let i: In = input(value)?;
-    let case = CaseIn {
-        errors: i.errors,
-        setup: i.setup,
-        transform: i.transform,
-        reference: i.reference,
-    };
+    let case: CaseIn = input(value.clone())?;
+    let grid: Grid = input(value)?;
     let (setup, errors, options) = case.engine()?;
-    let m = cubic::height_map(&setup, &errors, &options, i.nx, i.ny).map_err(js_error)?;
+    let m = cubic::height_map(&setup, &errors, &options, grid.nx, grid.ny).map_err(js_error)?;
     let min = m.height.iter().copied().fold(f64::INFINITY, f64::min);
     let max = m.height.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     output(&Out {

@@ -8,7 +8,7 @@ import { axis, draw, note } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import type { Panel } from './panel';
+import { panelShell, type Panel } from './panel';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -33,23 +33,14 @@ export const cubicPanel: Panel = {
 
 async function mount(root: HTMLElement) {
   const infos: CubicErrorInfo[] = await call('cubicErrors');
-  root.append(
-    el('h2', {}, 'Cubic-machining test: 3 × 3 zone heights on a B/C tilting-rotary table'),
-    el(
-      'p',
-      { class: 'lead' },
-      'A ball-end mill (Ø6 mm) cuts the nine 16 × 16 mm zones of a 48 × 48 mm face with the rotary axes standing still: ' +
-        'ZONE I with the tool vertical, the others tilted 30° towards the centre (Tables 1, 2). The eight geometric errors ' +
-        'of the rotary axes (Table 3) make each zone come out higher (material left, positive) or lower than nominal. ' +
-        'Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), eqs 1–15.',
-    ),
+  const { form, results } = panelShell(
+    root,
+    'Cubic-machining test: 3 × 3 zone heights on a B/C tilting-rotary table',
+    'A ball-end mill (Ø6 mm) cuts the nine 16 × 16 mm zones of a 48 × 48 mm face with the rotary axes standing still: ' +
+      'ZONE I with the tool vertical, the others tilted 30° towards the centre (Tables 1, 2). The eight geometric errors ' +
+      'of the rotary axes (Table 3) make each zone come out higher (material left, positive) or lower than nominal. ' +
+      'Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), eqs 1–15.',
   );
-  const layout = el('div', { class: 'panel-grid' });
-  const form = el('form', { class: 'inputs', novalidate: '' });
-  form.addEventListener('submit', (e) => e.preventDefault());
-  const results = el('div', { class: 'results' });
-  layout.append(form, results);
-  root.append(layout);
 
   // ---- inputs
   const errorFields: NumberField[] = infos.map((i) =>
