@@ -88,8 +88,8 @@ async function mount(root: HTMLElement) {
   const pick = L('cb-pick', 'Pick feed p', 0.1, 0.001, 200);
   const stock = numberField({ id: 'cb-stock', label: 'Stock above the face', quantity: 'errLength', value: 0.1, min: 0, max: 50, positive: true,
     hint: 'Depth of cut: what stays where no pass reaches.' });
-  const grid = numberField({ id: 'cb-grid', label: 'Height-map points per side', value: 385, min: 4, max: 2001, integer: true,
-    hint: '385 gives 0.125 mm steps over 48 mm.' });
+  const grid = numberField({ id: 'cb-grid', label: 'Height-map points along X', value: 193, min: 4, max: 2001, integer: true,
+    hint: '193 gives 0.25 mm steps over 48 mm. Along Y (across the passes) the map takes 4 points per pass step, so that the scallops are sampled evenly.' });
   const range = numberField({ id: 'cb-range', label: 'Colour scale ± (0: automatic)', quantity: 'errLength', value: 0, min: 0, max: 50,
     hint: 'Fig 16 uses ±0.01 mm.' });
   const pieceSet = el('fieldset');
@@ -161,7 +161,10 @@ async function mount(root: HTMLElement) {
       if (lastMap) showMap(lastMap);
     }, (e) => engineError(e, zonesPlot.p));
     if (n !== null) {
-      runMap({ ...input, nx: n, ny: n }).then((m) => {
+      // Rows at a quarter of the actual pass step, aligned with the passes (the face starts on
+      // a pass): whole scallop periods can then be averaged for display without aliasing.
+      const ny = Math.min(12 * Math.ceil(zs / pk - 1e-9) + 1, 4001, Math.floor(4e6 / n));
+      runMap({ ...input, nx: n, ny }).then((m) => {
         if (m === SUPERSEDED) return;
         lastMap = m;
         showMap(m);
@@ -244,7 +247,8 @@ async function mount(root: HTMLElement) {
   const showMap = (m: CubicMapResult) => {
     note(mapPlot.p, null);
     const R = D(colourRange());
-    const small = downsample(m, DISPLAY_SIDE);
+    const passAligned = (m.ny - 1) % 12 === 0 && Math.abs((m.y[1] - m.y[0]) * 4 - m.step) < 1e-9 * m.step;
+    const small = downsample(m, DISPLAY_SIDE, passAligned ? 4 : 1);
     const zs = (m.x[m.nx - 1] - m.x[0]) / 3;
     const zoneNames = ['I', 'II-1', 'II-2', 'II-3', 'II-4', 'III-1', 'III-2', 'III-3', 'III-4'];
     const place = [[0, 0], [-1, 0], [0, -1], [1, 0], [0, 1], [-1, -1], [1, -1], [1, 1], [-1, 1]];
@@ -257,7 +261,7 @@ async function mount(root: HTMLElement) {
       { type: 'line', x0: t * zs, x1: t * zs, y0: -1.5 * zs, y1: 1.5 * zs, line: { color: '#555', width: 1, dash: 'dot' } },
       { type: 'line', y0: t * zs, y1: t * zs, x0: -1.5 * zs, x1: 1.5 * zs, line: { color: '#555', width: 1, dash: 'dot' } },
     ]);
-    draw(mapPlot.p, `Simulated machined face and zone averages (Fig 16(b))<br>${m.nx} × ${m.ny} points; scallops ${show('errLength', m.scallop, 3)} high`, [{
+    draw(mapPlot.p, `Simulated machined face, zone averages (Fig 16(b))<br>${m.nx} × ${m.ny} points (shown ${small.x.length} × ${small.y.length}); scallops ${show('errLength', m.scallop, 3)}`, [{
       type: 'heatmap', x: small.x, y: small.y, z: small.z.map((row) => row.map(D)), colorscale: 'RdBu',
       zmin: -R, zmax: R, name: 'height', colorbar: { title: { text: titled('height', 'errLength') } },
       hovertemplate: `X %{x:.2f} mm, Y %{y:.2f} mm<br>height %{z:.4g} ${unitDef('errLength').label}<extra></extra>`,
@@ -286,12 +290,17 @@ function shortDescription(i: CubicErrorInfo): string {
     .replace(/ \(.*\)$/, '');
 }
 
-/** The map as rows for Plotly, averaged over blocks so that neither side exceeds `max`. */
-function downsample(m: CubicMapResult, max: number): { x: number[]; y: number[]; z: number[][] } {
-  const s = Math.max(1, Math.ceil(Math.max(m.nx, m.ny) / max));
-  const blocks = (n: number) => Array.from({ length: Math.ceil(n / s) }, (_, b) => [b * s, Math.min(n, (b + 1) * s)]);
-  const bx = blocks(m.nx);
-  const by = blocks(m.ny);
+/**
+ * The map as rows for Plotly, averaged over blocks so that neither side exceeds `max`; the
+ * rows in blocks of a multiple of `period` (rows per scallop period, so whole periods are
+ * averaged).
+ */
+function downsample(m: CubicMapResult, max: number, period: number): { x: number[]; y: number[]; z: number[][] } {
+  const sx = Math.max(1, Math.ceil(m.nx / max));
+  const sy = period * Math.max(1, Math.ceil(m.ny / (period * max)));
+  const blocks = (n: number, s: number) => Array.from({ length: Math.ceil(n / s) }, (_, b) => [b * s, Math.min(n, (b + 1) * s)]);
+  const bx = blocks(m.nx, sx);
+  const by = blocks(m.ny, sy);
   const mean = (v: ArrayLike<number>, [a, b]: number[]) => {
     let t = 0;
     for (let i = a; i < b; i++) t += v[i];
