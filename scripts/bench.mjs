@@ -43,6 +43,9 @@ wasm['nonlinear: 361x361 increment grid'] = time(
   (g) => total(g.max),
 );
 
+const table5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
+wasm['cubic: height map 961x961 (Table 5)'] = time(3, () => fa.cubicHeightMap({ errors: table5, nx: 961, ny: 961 }), (m) => total(m.height));
+
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
 const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));

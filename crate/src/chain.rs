@@ -630,6 +630,43 @@ impl Chain {
         direction: &Vector3<f64>,
         previous: Option<&[f64]>,
     ) -> Result<(Vec<f64>, bool)> {
+        let layout = self.inverse_layout(previous)?;
+        let prev_pose = previous
+            .map(|p| Pose::new(layout.k_factor * p[layout.k], layout.m_factor * p[layout.m]));
+        let sol = layout.rtype.inverse(direction, prev_pose)?;
+        let mut q = previous.map_or_else(|| vec![0.0; self.len()], <[f64]>::to_vec);
+        q[layout.k] = sol.chosen.k / layout.k_factor;
+        q[layout.m] = sol.chosen.m / layout.m_factor;
+        self.place_linear(&mut q, tip)?;
+        Ok((q, sol.singular))
+    }
+
+    /// Every nominal inverse-kinematics solution for a tool tip and direction in workpiece
+    /// coordinates: one position vector (chain order) per rotary solution of
+    /// [`RotaryType::inverse`], i.e. two, or one at a singular orientation (then K is 0). Rotary
+    /// commands are in `(-π, π]` (add whole turns as the machine needs); the linear positions
+    /// are solved as in [`Chain::inverse`]. A study picks the branch its machine uses (a travel
+    /// range, a sign of the tilt) from these. Returns the solutions and the singular flag.
+    pub fn inverse_all(
+        &self,
+        tip: &Vector3<f64>,
+        direction: &Vector3<f64>,
+    ) -> Result<(Vec<Vec<f64>>, bool)> {
+        let layout = self.inverse_layout(None)?;
+        let sol = layout.rtype.inverse(direction, None)?;
+        let mut out = Vec::with_capacity(sol.solutions.len());
+        for pose in &sol.solutions {
+            let mut q = vec![0.0; self.len()];
+            q[layout.k] = pose.k / layout.k_factor;
+            q[layout.m] = pose.m / layout.m_factor;
+            self.place_linear(&mut q, tip)?;
+            out.push(q);
+        }
+        Ok((out, sol.singular))
+    }
+
+    /// The rotary layout, after checking `previous` and the axis offsets (inverse kinematics).
+    fn inverse_layout(&self, previous: Option<&[f64]>) -> Result<RotaryLayout> {
         let layout = self.rotary_type()?;
         if let Some(p) = previous {
             self.check_positions(p)?;
@@ -640,12 +677,12 @@ impl Chain {
         {
             return Err(Error::field("machine", "axis offsets must be finite"));
         }
-        let prev_pose = previous
-            .map(|p| Pose::new(layout.k_factor * p[layout.k], layout.m_factor * p[layout.m]));
-        let sol = layout.rtype.inverse(direction, prev_pose)?;
-        let mut q = previous.map_or_else(|| vec![0.0; self.len()], <[f64]>::to_vec);
-        q[layout.k] = sol.chosen.k / layout.k_factor;
-        q[layout.m] = sol.chosen.m / layout.m_factor;
+        Ok(layout)
+    }
+
+    /// Sets the three linear positions of `q` (rotary positions already set) so that the nominal
+    /// tip is at `tip`: the tip is affine in them, so one 3×3 solve does it.
+    fn place_linear(&self, q: &mut [f64], tip: &Vector3<f64>) -> Result<()> {
         let linear: Vec<usize> = (0..self.len())
             .filter(|&i| matches!(self.link(i).joint, Joint::Linear(_)))
             .collect();
@@ -663,10 +700,10 @@ impl Chain {
         }
         let tip_at =
             |q: &[f64]| -> Result<Vector3<f64>> { Ok(self.tool_pose(q, false, &Setup::None)?.tip) };
-        let c = tip_at(&q)?;
+        let c = tip_at(q)?;
         let mut m = Matrix3::zeros();
         for (col, &i) in linear.iter().enumerate() {
-            let mut qi = q.clone();
+            let mut qi = q.to_vec();
             qi[i] = 1.0;
             m.set_column(col, &(tip_at(&qi)? - c));
         }
@@ -676,7 +713,7 @@ impl Chain {
         for (col, &i) in linear.iter().enumerate() {
             q[i] = x[col];
         }
-        Ok((q, sol.singular))
+        Ok(())
     }
 }
 

@@ -7,8 +7,11 @@
 //! Studies, one module each, all built on [`geometry`], [`rotary`] and the kinematic chain with
 //! geometric errors, [`chain`]:
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
+//! * [`cubic`]: the cubic-machining test, 3 × 3 zone heights on a B/C tilting-rotary table
+//!   (Li, Sato, Shirase & Sakamoto 2021).
 
 pub mod chain;
+pub mod cubic;
 pub mod error;
 pub mod geometry;
 pub mod nonlinear;

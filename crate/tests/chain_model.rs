@@ -313,15 +313,22 @@ fn with_the_workpiece_set_up_at_a_pose_every_workpiece_branch_error_vanishes_the
     assert!((nominal.tip - conventional.tip).norm() > 1e-4);
 }
 
+/// Random axis positions away from the singular orientations: linear ±150 mm, K ±3 rad,
+/// M ±1.5 rad.
+fn random_positions(chain: &Chain, rng: &mut Rng) -> Vec<f64> {
+    let layout = chain.rotary_type().unwrap();
+    let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
+    q[layout.k] = rng.range(-3.0, 3.0);
+    q[layout.m] = rng.range(-1.5, 1.5);
+    q
+}
+
 #[test]
 fn inverse_kinematics_round_trips_on_every_machine_type() {
     let mut rng = Rng::new(17);
     for chain in [bc_table(), head_table(), head_head()] {
-        let layout = chain.rotary_type().unwrap();
         for _ in 0..200 {
-            let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
-            q[layout.k] = rng.range(-3.0, 3.0);
-            q[layout.m] = rng.range(-1.5, 1.5);
+            let q = random_positions(&chain, &mut rng);
             let pose = chain.tool_pose(&q, false, &Setup::None).unwrap();
             let (back, singular) = chain.inverse(&pose.tip, &pose.axis, Some(&q)).unwrap();
             assert!(!singular);
@@ -352,4 +359,54 @@ fn bad_positions_are_reported_not_panicked() {
     assert!(chain
         .jacobian(&[0.0; 5], &Setup::AtPose(vec![0.0; 3]))
         .is_err());
+}
+
+#[test]
+fn inverse_all_gives_every_branch_and_each_reproduces_the_tool_pose() {
+    let mut rng = Rng::new(23);
+    for chain in [bc_table(), head_table(), head_head()] {
+        let layout = chain.rotary_type().unwrap();
+        for _ in 0..100 {
+            let q = random_positions(&chain, &mut rng);
+            let pose = chain.tool_pose(&q, false, &Setup::None).unwrap();
+            let (all, singular) = chain.inverse_all(&pose.tip, &pose.axis).unwrap();
+            assert!(!singular);
+            assert_eq!(all.len(), 2);
+            for s in &all {
+                let again = chain.tool_pose(s, false, &Setup::None).unwrap();
+                assert!(
+                    (again.tip - pose.tip).norm() < 1e-8 && (again.axis - pose.axis).norm() < 1e-12
+                );
+            }
+            // The two branches differ (M of opposite sign for these tool-along-K types), and
+            // one of them is the pose we started from, up to whole turns.
+            let turns = |a: f64, b: f64| {
+                let d = (a - b) / std::f64::consts::TAU;
+                (d - d.round()).abs() < 1e-9
+            };
+            assert!(all
+                .iter()
+                .any(|s| turns(s[layout.k], q[layout.k]) && turns(s[layout.m], q[layout.m])));
+        }
+    }
+    // B/C table, tool vector (-1/2, 0, √3/2): B = 30°, C = 180° or B = -30°, C = 0°.
+    let chain = bc_table();
+    let v = Vector3::new(-0.5, 0.0, 3f64.sqrt() / 2.0);
+    let (all, _) = chain.inverse_all(&Vector3::zeros(), &v).unwrap();
+    let mut got: Vec<(i64, i64)> = all
+        .iter()
+        .map(|s| {
+            (
+                s[0].to_degrees().round() as i64,
+                s[1].to_degrees().round() as i64,
+            )
+        })
+        .collect();
+    got.sort();
+    assert_eq!(got, vec![(-30, 0), (30, 180)]);
+    // Along the C axis: singular, one solution.
+    let (all, singular) = chain
+        .inverse_all(&Vector3::new(1.0, 2.0, 3.0), &Vector3::z())
+        .unwrap();
+    assert!(singular && all.len() == 1 && all[0][0] == 0.0);
 }

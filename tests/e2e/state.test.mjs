@@ -15,6 +15,11 @@ const PANELS = [
     set: { 'nl-type': 'BCX', 'nl-machine': 'head-head', 'nl-length': '250', 'nl-k0': '5', 'nl-m0': '-20', 'nl-k1': '47.5', 'nl-m1': '33', 'nl-ratios': '1, 4', 'nl-grid': '21' },
     plots: ['nl-curve', 'nl-sweep-k', 'nl-sweep-m', 'nl-map-max', 'nl-map-u', 'nl-compare'],
   },
+  {
+    tab: 'cubic',
+    set: { 'cb-dzBY': '-14.2', 'cb-betaBY': '0.0029', 'cb-transform': '0', 'cb-reference': 'zone1-plane', 'cb-coffset': '12', 'cb-grid': '97', 'cb-range': '10' },
+    plots: ['cb-zones', 'cb-sens', 'cb-map'],
+  },
 ];
 
 async function setField(page, id, value) {

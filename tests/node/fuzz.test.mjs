@@ -30,6 +30,14 @@ const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'B
 const angle = (r) => (r() - 0.5) * 720;
 const small = (lo, hi) => (r) => Math.round(lo + r() * (hi - lo));
 const pose = { k: angle, m: angle };
+// The cubic test: errors up to ±1 mm / ±1° (the engine accepts ±5), a set-up, the switches.
+const err = (r) => (r() - 0.5) * 2;
+const cubicCase = {
+  errors: { dxBY: err, dyBY: err, dzBY: err, alphaBY: err, betaBY: err, gammaBY: err, alphaCB: err, dxCB: err },
+  setup: { tableAboveB: (r) => (r() - 0.5) * 200, workpieceHeight: (r) => r() * 100, cOffset: (r) => (r() - 0.5) * 100, zoneSize: (r) => 2 + r() * 20, pick: (r) => 0.3 + r() * 2, stock: (r) => r() },
+  transform: (r) => r() < 0.5,
+  reference: (r) => ['workpiece', 'zone1-height', 'zone1-plane'][Math.floor(r() * 3)],
+};
 export const SPECS = {
   rotaryTypes: { args: [] },
   machineLayout: { args: [(r) => TYPES[Math.floor(r() * 12)], (r) => ['table-table', 'head-head', 'head-table'][Math.floor(r() * 3)]] },
@@ -41,6 +49,9 @@ export const SPECS = {
   nonlinearGrid: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], length: (r) => r() * 500, thetaM: angle, dK: { from: angle, to: angle }, dM: { from: angle, to: angle }, nx: small(2, 12), ny: small(2, 12) }] },
   nonlinearCompareTypes: { args: [{ length: (r) => r() * 500, start: pose, end: pose }] },
   nonlinearMaxErrors: { args: [(r) => TYPES[Math.floor(r() * 12)], (r) => r() * 500, (r) => new Float64Array(Array.from({ length: 4 * small(0, 5)(r) }, () => angle(r)))] },
+  cubicErrors: { args: [] },
+  cubicTest: { args: [cubicCase] },
+  cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: small(4, 24) }] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];
