@@ -90,10 +90,16 @@ export function titled(text: string, q: Quantity): string {
   return l ? `${text} (${l})` : text;
 }
 
-/** A value as text in the unit shown now, with the unit: "12.35 µm". */
+/**
+ * Below this magnitude (mm or degrees, the base units) a computed value is round-off, not a
+ * result: a deviation of 1e-12 mm is a femtometre. It is shown as 0.
+ */
+export const ROUND_OFF = 1e-12;
+
+/** A value as text in the unit shown now, with the unit: "12.35 µm" (round-off shown as 0). */
 export function show(q: Quantity, base: number | null | undefined, digits = 4): string {
   if (base === null || base === undefined || !Number.isFinite(base)) return '—';
-  const v = toDisplay(q, base);
+  const v = Math.abs(base) < ROUND_OFF && (q === 'errLength' || q === 'errAngle') ? 0 : toDisplay(q, base);
   const d = unitDef(q);
   const text = v === 0 ? '0' : Number(v.toPrecision(digits)).toString();
   return d.label === '°' || d.label === '″' ? `${text}${d.label}` : `${text} ${d.label}`;
