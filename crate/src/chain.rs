@@ -646,6 +646,21 @@ impl Chain {
         let mut q = previous.map_or_else(|| vec![0.0; self.len()], <[f64]>::to_vec);
         q[layout.k] = sol.chosen.k / layout.k_factor;
         q[layout.m] = sol.chosen.m / layout.m_factor;
+        let q = self.solve_linear(tip, &q)?;
+        Ok((q, sol.singular))
+    }
+
+    /// Nominal inverse kinematics for given rotary positions: `q` (chain order) with its rotary
+    /// entries kept and its three linear entries replaced by those that put the tool tip at `tip`
+    /// (workpiece coordinates, mm). The tip is affine in the linear positions once the rotary
+    /// axes are fixed, so one 3×3 solve is exact. Used by [`Chain::inverse`] and by studies that
+    /// choose the rotary angles themselves (e.g. a paper's own branch of the two solutions).
+    pub fn solve_linear(&self, tip: &Vector3<f64>, q: &[f64]) -> Result<Vec<f64>> {
+        self.check_positions(q)?;
+        if !tip.iter().all(|v| v.is_finite()) {
+            return Err(Error::field("tip", "must be finite"));
+        }
+        let mut q = q.to_vec();
         let linear: Vec<usize> = (0..self.len())
             .filter(|&i| matches!(self.link(i).joint, Joint::Linear(_)))
             .collect();
@@ -676,7 +691,7 @@ impl Chain {
         for (col, &i) in linear.iter().enumerate() {
             q[i] = x[col];
         }
-        Ok((q, sol.singular))
+        Ok(q)
     }
 }
 
