@@ -7,12 +7,14 @@
 //! Studies, one module each, all built on [`geometry`], [`rotary`] and the kinematic chain with
 //! geometric errors, [`chain`]:
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
+//! * [`sshape`]: the S-shape test piece of ISO 10791-7 (Chanal, Duc & Chevalier 2022).
 
 pub mod chain;
 pub mod error;
 pub mod geometry;
 pub mod nonlinear;
 pub mod rotary;
+pub mod sshape;
 pub mod wasm;
 
 pub use error::{Error, Result};
