@@ -27,10 +27,15 @@
 //! numerical rank `r` counts the singular values above `rtol·σ_max` (default `rtol = 10⁻²`,
 //! i.e. a condition number of 100 for the column-equilibrated matrix, a common limit for
 //! identifiability in machine and robot calibration). The directions of the other singular
-//! vectors are **not identifiable**: a parameter with a component in them cannot be separated
-//! from the others sharing those directions. Such parameters are grouped (two parameters are in
-//! one group when a weak direction involves both), and for each group the combinations that are
-//! identifiable (orthogonal to the weak directions) are reported with their values.
+//! vectors are **not identifiable**. With `P0` the projector onto those weak directions (unique,
+//! unlike the singular vectors themselves), a parameter whose `P0` diagonal exceeds 0.01 (a
+//! component above 0.1 in the weak directions) cannot be separated from the others; such
+//! parameters are grouped by the couplings of `P0`, and for each group the eigenvectors of its
+//! block of `P0` give the weak directions (eigenvalue near 1, their number is the group's
+//! deficiency) and the **identifiable combinations** (eigenvalue near 0), reported in original
+//! units with their values and standard errors. Nothing about the S-shape is built in: the
+//! pairs E_A0Z/E_A0C and E_B0Z/E_B0C come out of the sensitivities when they are (nearly)
+//! dependent.
 //!
 //! Values: the minimum-norm solution in the scaled parameters (the truncated-SVD solution),
 //! which for two opposite columns of equal norm is the paper's `x1 = E_A0C = −E_A0Z`; it is given
@@ -45,8 +50,10 @@ use super::part::{index_of, parse_curve, Curve, N_POINTS, POINTS_PER_CURVE};
 
 /// Default relative singular-value threshold of the rank decision.
 pub const DEFAULT_RTOL: f64 = 1e-2;
-/// A parameter belongs to a weak direction when its squared component there exceeds this.
-const GROUP_WEIGHT: f64 = 1e-3;
+/// A parameter is not identifiable when its squared length in the weak directions (the diagonal
+/// of their projector) exceeds this, i.e. a component above 0.1; two such parameters are in one
+/// group when the projector couples them by more than this.
+const GROUP_WEIGHT: f64 = 1e-2;
 
 /// Parses the measurement CSV into 100 deviations (mm) in list order (TOP 1..50, BOTTOM 1..50).
 pub fn parse_measurements(text: &str) -> Result<Vec<f64>> {
@@ -333,87 +340,80 @@ pub fn fit(a: &DMatrix<f64>, names: &[String], d: &[f64], rtol: f64) -> Result<F
             * sigma
             * sigma
     };
-    // Weight of each parameter in the weak directions.
-    let weight = |j: usize| -> f64 { weak.iter().map(|&i| v_t[(i, j)].powi(2)).sum() };
-    // Groups: union of parameters sharing a weak direction.
-    let mut parent: Vec<usize> = (0..p).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    // The projector onto the weak directions, P0 = V0·V0ᵀ: unlike the singular vectors
+    // themselves (any rotation of them within a repeated or tiny singular value is as good), it
+    // is unique, and block-diagonal when the weak directions split into separate groups.
+    let mut p0 = DMatrix::<f64>::zeros(p, p);
     for &i in &weak {
-        let members: Vec<usize> = (0..p)
-            .filter(|&j| v_t[(i, j)].powi(2) > GROUP_WEIGHT)
-            .collect();
-        for w in members.windows(2) {
-            let (a1, b1) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
-            parent[a1] = b1;
-        }
+        let v = v_t.row(i).transpose();
+        p0 += &v * v.transpose();
     }
+    let weak_param = |j: usize| p0[(j, j)] > GROUP_WEIGHT || scale[j] == 0.0;
+    // Groups: connected components of the weak parameters linked by P0.
     let mut group_of: Vec<Option<usize>> = vec![None; p];
     let mut group_members: Vec<Vec<usize>> = Vec::new();
-    let mut root_to_group = std::collections::BTreeMap::new();
-    for j in 0..p {
-        if weight(j) > GROUP_WEIGHT || scale[j] == 0.0 {
-            let r = root(&mut parent, j);
-            let g = *root_to_group.entry(r).or_insert_with(|| {
-                group_members.push(Vec::new());
-                group_members.len() - 1
-            });
-            group_members[g].push(j);
-            group_of[j] = Some(g);
+    for j0 in 0..p {
+        if !weak_param(j0) || group_of[j0].is_some() {
+            continue;
         }
+        let g = group_members.len();
+        let mut members = vec![j0];
+        group_of[j0] = Some(g);
+        let mut k = 0;
+        while k < members.len() {
+            let i = members[k];
+            for j in 0..p {
+                if group_of[j].is_none() && weak_param(j) && p0[(i, j)].abs() > GROUP_WEIGHT {
+                    group_of[j] = Some(g);
+                    members.push(j);
+                }
+            }
+            k += 1;
+        }
+        members.sort_unstable();
+        group_members.push(members);
     }
     let mut groups = Vec::with_capacity(group_members.len());
     for members in &group_members {
-        // Weak directions restricted to the group, and the complement within the group.
+        // Within the group, P0's eigenvectors with eigenvalue near 1 are the weak directions,
+        // those near 0 the identifiable combinations.
         let k = members.len();
-        let mut proj = DMatrix::<f64>::identity(k, k);
-        let mut deficiency = 0;
-        for &i in &weak {
-            let w = DVector::from_iterator(k, members.iter().map(|&j| v_t[(i, j)]));
-            let wn = w.norm();
-            if wn * wn > GROUP_WEIGHT {
-                deficiency += 1;
-                let w = w / wn;
-                proj -= &w * w.transpose();
-            }
-        }
+        let block = DMatrix::from_fn(k, k, |a1, b1| p0[(members[a1], members[b1])]);
+        let eig = block.symmetric_eigen();
+        let deficiency = eig.eigenvalues.iter().filter(|e| **e > 0.5).count();
         let mut combinations = Vec::new();
-        let psvd = proj.svd(true, false);
-        if let (true, Some(pu)) = (k > deficiency, psvd.u.as_ref()) {
-            let mut idx: Vec<usize> = (0..k).collect();
-            idx.sort_by(|&a1, &b1| psvd.singular_values[b1].total_cmp(&psvd.singular_values[a1]));
-            for &c in idx.iter().take(k - deficiency) {
-                let w_local = pu.column(c);
-                let mut w = DVector::zeros(p);
-                for (li, &j) in members.iter().enumerate() {
-                    w[j] = w_local[li];
-                }
-                // In original units: coefficient_j = w_j·scale_j; normalise the first to 1.
-                let lead = members
-                    .iter()
-                    .map(|&j| w[j] * scale[j])
-                    .find(|c| c.abs() > 1e-12 * scale.iter().cloned().fold(0.0, f64::max))
-                    .unwrap_or(1.0);
-                let terms: Vec<(String, f64)> = members
-                    .iter()
-                    .map(|&j| (names[j].clone(), w[j] * scale[j] / lead))
-                    .filter(|(_, c)| c.abs() > 1e-9)
-                    .collect();
-                let value: f64 =
-                    members.iter().map(|&j| w[j] * scale[j] * x[j]).sum::<f64>() / lead;
-                let std_error = cov(&w).sqrt() / lead.abs();
-                combinations.push(Combination {
-                    text: combination_text(&terms),
-                    terms,
-                    value,
-                    std_error,
-                });
+        for c in 0..k {
+            if eig.eigenvalues[c] > 0.5 {
+                continue;
             }
+            let w_local = eig.eigenvectors.column(c);
+            let mut w = DVector::zeros(p);
+            for (li, &j) in members.iter().enumerate() {
+                w[j] = w_local[li];
+            }
+            // In original units: coefficient_j = w_j·scale_j; the first one normalised to 1.
+            let big = members
+                .iter()
+                .map(|&j| (w[j] * scale[j]).abs())
+                .fold(0.0, f64::max);
+            let lead = members
+                .iter()
+                .map(|&j| w[j] * scale[j])
+                .find(|c| c.abs() > 1e-6 * big)
+                .unwrap_or(1.0);
+            let terms: Vec<(String, f64)> = members
+                .iter()
+                .map(|&j| (names[j].clone(), w[j] * scale[j] / lead))
+                .filter(|(_, c)| c.abs() > 1e-9)
+                .collect();
+            let value: f64 = members.iter().map(|&j| w[j] * scale[j] * x[j]).sum::<f64>() / lead;
+            let std_error = cov(&w).sqrt() / lead.abs();
+            combinations.push(Combination {
+                text: combination_text(&terms),
+                terms,
+                value,
+                std_error,
+            });
         }
         groups.push(Group {
             members: members.iter().map(|&j| names[j].clone()).collect(),
