@@ -451,7 +451,8 @@ pub fn fit(a: &DMatrix<f64>, names: &[String], d: &[f64], rtol: f64) -> Result<F
     })
 }
 
-fn combination_text(terms: &[(String, f64)]) -> String {
+/// `E_A0Z − 1.0187·E_A0C`: a combination as text (the first coefficient is taken as 1).
+pub fn combination_text(terms: &[(String, f64)]) -> String {
     let mut s = String::new();
     for (k, (name, c)) in terms.iter().enumerate() {
         if k == 0 {

@@ -66,8 +66,9 @@ pub const ERROR_NAMES: [&str; 8] = [
 pub const IS_LENGTH: [bool; 8] = [false, false, false, false, false, true, false, false];
 /// Tilt (rad) below which the tool axis counts as vertical and C as undefined.
 pub const SINGULAR_TILT: f64 = 1e-9;
-/// Tool positions per unit of u used to carry C along the path through the singular part.
-const PATH_STEPS: usize = 2600;
+/// Tool positions per unit of u used to carry C along the path (C turns by at most about 2° per
+/// step on the standard's surfaces) and through the singular part.
+const PATH_STEPS: usize = 520;
 
 /// The 8 errors, mm (`E_X0B`) and rad (the others), in the order of [`ERROR_NAMES`].
 pub type Errors = [f64; 8];

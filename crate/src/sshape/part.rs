@@ -37,6 +37,7 @@ use super::bspline::{BSpline, CurvePoint};
 use crate::error::{Error, Result};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
+use std::sync::OnceLock;
 
 /// Degree of the four curves.
 pub const DEGREE: usize = 3;
@@ -441,6 +442,15 @@ impl Part {
             SurfaceId::A => &self.a,
             SurfaceId::B => &self.b,
         }
+    }
+
+    /// The standard part's 100 measurement points, computed once per process.
+    pub fn standard_points() -> Result<&'static [MeasurementPoint]> {
+        static POINTS: OnceLock<Result<Vec<MeasurementPoint>>> = OnceLock::new();
+        POINTS
+            .get_or_init(|| Ok(Part::standard()?.measurement_points()))
+            .as_deref()
+            .map_err(Clone::clone)
     }
 
     /// The 100 measurement points in list order (see the module documentation).

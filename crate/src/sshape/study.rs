@@ -40,8 +40,8 @@ impl Design {
     pub fn new(l0: f64, path: ToolPath, model: DefectModel) -> Result<Self> {
         let part = Part::standard()?;
         let machine = Machine::new(l0)?;
-        let points = part.measurement_points();
-        let poses = measurement_poses(&machine, &path, &part, &points, model.branch)?;
+        let points = Part::standard_points()?;
+        let poses = measurement_poses(&machine, &path, &part, points, model.branch)?;
         let rows = defect_matrix(&machine, &poses, &model)?;
         let radius = poses
             .iter()
