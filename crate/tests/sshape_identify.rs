@@ -296,3 +296,31 @@ fn csv_errors_name_the_line() {
     close(d[0], 0.001, 1e-15, "top 1 in µm");
     close(d[99], 0.050, 1e-15, "bottom 50");
 }
+
+#[test]
+fn the_standard_errors_match_the_scatter_over_repeated_noise_draws() {
+    // 300 noise draws of 2 µm on the Table 4 part: the empirical spread of each estimate around
+    // its true value agrees with the reported standard error within 15 %, and the estimates are
+    // unbiased (mean error below 3 standard errors of the mean).
+    let design = Design::new(PAPER_L0, ToolPath::paper(), DefectModel::default()).unwrap();
+    let clean = design.simulate(&TABLE4, SAMPLE_DR).unwrap();
+    let truth = [TABLE4.to_vec(), vec![SAMPLE_DR]].concat();
+    let mut rng = Rng::new(99);
+    let n = 300;
+    let (mut sum, mut sum2, mut se) = ([0.0; 9], [0.0; 9], [0.0; 9]);
+    for _ in 0..n {
+        let d: Vec<f64> = clean.iter().map(|v| v + SAMPLE_NOISE * gauss(&mut rng)).collect();
+        let f = design.identify(&d, true, DEFAULT_RTOL).unwrap();
+        for k in 0..9 {
+            let e = f.estimates[k].value.unwrap() - truth[k];
+            sum[k] += e;
+            sum2[k] += e * e;
+            se[k] += f.estimates[k].std_error.unwrap() / n as f64;
+        }
+    }
+    for k in 0..9 {
+        let sd = (sum2[k] / n as f64).sqrt();
+        assert!((sd / se[k] - 1.0).abs() < 0.15, "parameter {k}: spread {sd:e}, standard error {:e}", se[k]);
+        assert!((sum[k] / n as f64).abs() < 3.0 * se[k] / (n as f64).sqrt(), "parameter {k} biased");
+    }
+}

@@ -15,6 +15,11 @@ const PANELS = [
     set: { 'nl-type': 'BCX', 'nl-machine': 'head-head', 'nl-length': '250', 'nl-k0': '5', 'nl-m0': '-20', 'nl-k1': '47.5', 'nl-m1': '33', 'nl-ratios': '1, 4', 'nl-grid': '21' },
     plots: ['nl-curve', 'nl-sweep-k', 'nl-sweep-m', 'nl-map-max', 'nl-map-u', 'nl-compare'],
   },
+  {
+    tab: 'sshape',
+    set: { 'ss-l0': '520', 'ss-branch': 'continuous', 'ss-reference': 'axesZero', 'ss-point': 'contact', 'ss-ea0c': '0.001', 'ss-ex0b': '0.01', 'ss-dr': '0.005', 'ss-nu': '131', 'ss-nv': '5', 'ss-radius': '0' },
+    plots: ['ss-defects', 'ss-overcut-a', 'ss-overcut-b'],
+  },
 ];
 
 async function setField(page, id, value) {

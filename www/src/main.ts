@@ -3,12 +3,13 @@
 import './style.css';
 import type { Panel } from './panels/panel';
 import { nonlinearPanel } from './panels/nonlinear';
+import { sshapePanel } from './panels/sshape';
 import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
 
-const panels: Panel[] = [nonlinearPanel];
+const panels: Panel[] = [nonlinearPanel, sshapePanel];
 
 const mounted = new Map<string, HTMLElement>();
 let active = panels[0].id;

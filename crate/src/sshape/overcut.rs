@@ -187,7 +187,7 @@ impl ToolPath {
                 x2 = a + g * (b - a);
                 f2 = f(x2);
             }
-            if b - a < 1e-13 {
+            if b - a < 1e-11 {
                 break;
             }
         }

@@ -211,7 +211,7 @@ fn design(m: &MachineIn) -> Result<Rc<Design>, JsError> {
     let d = Rc::new(Design::new(m.l0, path, model).map_err(js_error)?);
     DESIGNS.with(|c| {
         let mut c = c.borrow_mut();
-        if c.len() >= 8 {
+        if c.len() >= 16 {
             c.remove(0);
         }
         c.push((key, d.clone()));

@@ -37,7 +37,9 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   el.setAttribute('aria-label', title);
   // The title sits in the top margin, which grows with its number of lines.
   const lines = title.split('<br>').length;
-  const titleLayout: Partial<Layout['title']> = { text: title, font: { size: 13 }, yref: 'container', y: 0.985, yanchor: 'top' };
+  // automargin (missing from @types/plotly.js) and a top pad: without them Plotly places a
+  // title of several lines partly above the graph.
+  const titleLayout = { text: title, font: { size: 13 }, yref: 'container', y: 0.985, yanchor: 'top', automargin: true, pad: { t: 8 } } as Partial<Layout['title']>;
   const margin = { ...baseLayout.margin, t: 20 + 17 * lines, ...layout.margin };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
@@ -81,4 +83,11 @@ export function note(el: HTMLElement, text: string | null) {
     el.before(n);
   }
   n.textContent = text;
+}
+
+/** Row-major flat data (`[iy·nx + ix]`) to the rows Plotly's heat maps and surfaces expect. */
+export function rows<T>(flat: ArrayLike<T>, nx: number, ny: number): T[][] {
+  const out: T[][] = [];
+  for (let iy = 0; iy < ny; iy++) out.push(Array.from({ length: nx }, (_, ix) => flat[iy * nx + ix]));
+  return out;
 }
