@@ -43,6 +43,23 @@ wasm['nonlinear: 361x361 increment grid'] = time(
   (g) => total(g.max),
 );
 
+// S-shape: the same inputs as crate/examples/bench.rs.
+const ssMachine = (l0) => ({ l0, rTool: 10, lTool: 35 });
+wasm['sshape: overcut maps of A and B (eq 6 + exact), 261 x 16'] = time(
+  3,
+  () => fa.sshapeOvercut({ rTool: 10, lTool: 35, nu: 261, nv: 16 }),
+  (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
+);
+let ssRun = 0;
+wasm['sshape: eq 14 model (IK along both paths) + defects'] = time(
+  3,
+  () => fa.sshapeDefects({ machine: ssMachine(499.889 + 0.001 * ++ssRun), errors: { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI } }),
+  (d) => total(d.total),
+);
+const ssCsv = readFileSync(new URL('../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
+fa.sshapeDefects({ machine: ssMachine(499.889), errors: {} }); // builds the model once, as the page does
+wasm['sshape: identification of the 100-point sample (parse + SVD fit)'] = time(3, () => fa.sshapeIdentify({ machine: ssMachine(499.889), csv: ssCsv }), (f) => f.rms);
+
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
 const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
