@@ -13,6 +13,7 @@ pub mod chain;
 pub mod error;
 pub mod geometry;
 pub mod nonlinear;
+mod numeric;
 pub mod rotary;
 pub mod sshape;
 pub mod wasm;

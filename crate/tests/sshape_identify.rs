@@ -309,7 +309,10 @@ fn the_standard_errors_match_the_scatter_over_repeated_noise_draws() {
     let n = 300;
     let (mut sum, mut sum2, mut se) = ([0.0; 9], [0.0; 9], [0.0; 9]);
     for _ in 0..n {
-        let d: Vec<f64> = clean.iter().map(|v| v + SAMPLE_NOISE * gauss(&mut rng)).collect();
+        let d: Vec<f64> = clean
+            .iter()
+            .map(|v| v + SAMPLE_NOISE * gauss(&mut rng))
+            .collect();
         let f = design.identify(&d, true, DEFAULT_RTOL).unwrap();
         for k in 0..9 {
             let e = f.estimates[k].value.unwrap() - truth[k];
@@ -320,7 +323,14 @@ fn the_standard_errors_match_the_scatter_over_repeated_noise_draws() {
     }
     for k in 0..9 {
         let sd = (sum2[k] / n as f64).sqrt();
-        assert!((sd / se[k] - 1.0).abs() < 0.15, "parameter {k}: spread {sd:e}, standard error {:e}", se[k]);
-        assert!((sum[k] / n as f64).abs() < 3.0 * se[k] / (n as f64).sqrt(), "parameter {k} biased");
+        assert!(
+            (sd / se[k] - 1.0).abs() < 0.15,
+            "parameter {k}: spread {sd:e}, standard error {:e}",
+            se[k]
+        );
+        assert!(
+            (sum[k] / n as f64).abs() < 3.0 * se[k] / (n as f64).sqrt(),
+            "parameter {k} biased"
+        );
     }
 }

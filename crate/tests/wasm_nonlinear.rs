@@ -3,21 +3,13 @@
 //! structs before asserting, and bad input must come back as a JavaScript `Error` with a message.
 #![cfg(target_arch = "wasm32")]
 
+mod common;
+
+use common::wasm::{error_message, js};
 use fiveaxis::wasm;
 use serde::Deserialize;
 use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test;
-
-fn js(json: &str) -> JsValue {
-    js_sys::JSON::parse(json).expect("valid JSON in the test")
-}
-
-/// The message of the JavaScript `Error` an export threw.
-fn error_message(result: Result<JsValue, wasm_bindgen::JsError>) -> String {
-    let err: JsValue = result.expect_err("the call must fail").into();
-    let err: js_sys::Error = err.dyn_into().expect("a JavaScript Error");
-    String::from(err.message())
-}
 
 #[derive(Deserialize)]
 #[serde(rename_all = "camelCase")]

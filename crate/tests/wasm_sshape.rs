@@ -4,23 +4,16 @@
 //! line).
 #![cfg(target_arch = "wasm32")]
 
+mod common;
+
+use common::wasm::{error_message, js};
 use fiveaxis::wasm;
 use serde::Deserialize;
-use wasm_bindgen::{JsCast, JsValue};
+use wasm_bindgen::JsValue;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 const SAMPLE: &str = include_str!("../../public/samples/sshape-measured.csv");
 const MACHINE: &str = r#"{"l0":499.889,"rTool":10,"lTool":35}"#;
-
-fn js(json: &str) -> JsValue {
-    js_sys::JSON::parse(json).expect("valid JSON in the test")
-}
-
-fn error_message(result: Result<JsValue, wasm_bindgen::JsError>) -> String {
-    let err: JsValue = result.expect_err("the call must fail").into();
-    let err: js_sys::Error = err.dyn_into().expect("a JavaScript Error");
-    String::from(err.message())
-}
 
 #[derive(Deserialize)]
 struct Point {

@@ -150,7 +150,7 @@ impl ToolPath {
 
     /// The exact deviation `δ(u, v)` (mm; negative = gouge) and the tool position `u'` where
     /// the minimum is reached, searching `u' ∈ [lo, hi]` (a scan of `scan + 1` positions, then
-    /// golden-section refinement around the best one).
+    /// golden-section refinement to 1e-13 around the best one).
     pub fn deviation_in(
         &self,
         surface: &Surface,
@@ -169,32 +169,11 @@ impl ToolPath {
                 best = (y, x);
             }
         }
-        let (mut a, mut b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
-        let (mut f1, mut f2) = (f(x1), f(x2));
-        for _ in 0..80 {
-            if f1 < f2 {
-                b = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = b - g * (b - a);
-                f1 = f(x1);
-            } else {
-                a = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = a + g * (b - a);
-                f2 = f(x2);
-            }
-            if b - a < 1e-11 {
-                break;
-            }
-        }
-        for (y, x) in [(f1, x1), (f2, x2)] {
-            if y < best.0 {
-                best = (y, x);
-            }
+        let (a, b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
+        let x = crate::numeric::golden_max(|x| -f(x), a, b);
+        let y = f(x);
+        if y < best.0 {
+            best = (y, x);
         }
         best
     }

@@ -10,7 +10,7 @@ import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
-import type { Panel } from './panel';
+import { panelShell, type Panel } from './panel';
 
 const ANGLE = 3600; // largest accepted angle, degrees (the engine's limit)
 
@@ -29,22 +29,13 @@ export const nonlinearPanel: Panel = {
 
 async function mount(root: HTMLElement) {
   const types = await call('rotaryTypes');
-  root.append(
-    el('h2', {}, 'Nonlinear error of rotary-axis interpolation'),
-    el(
-      'p',
-      { class: 'lead' },
-      'When both rotary axes move together with linearly interpolated angles, the tool does not stay in the plane ' +
-        'through its start and end orientations. δ is the largest distance of the tool point (at length L from the ' +
-        'pivot) from that plane. Geng, Wu & Qiu, Math. Problems in Engineering 2018, eqs 4–31.',
-    ),
+  const { form, results } = panelShell(
+    root,
+    'Nonlinear error of rotary-axis interpolation',
+    'When both rotary axes move together with linearly interpolated angles, the tool does not stay in the plane ' +
+      'through its start and end orientations. δ is the largest distance of the tool point (at length L from the ' +
+      'pivot) from that plane. Geng, Wu & Qiu, Math. Problems in Engineering 2018, eqs 4–31.',
   );
-  const layout = el('div', { class: 'panel-grid' });
-  const form = el('form', { class: 'inputs', novalidate: '' });
-  form.addEventListener('submit', (e) => e.preventDefault());
-  const results = el('div', { class: 'results' });
-  layout.append(form, results);
-  root.append(layout);
 
   // ---- inputs
   const machine = selectField('nl-machine', 'Machine type', MACHINES, 'table-table');

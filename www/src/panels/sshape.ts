@@ -10,7 +10,7 @@ import { axis, draw, note, rows } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import type { Panel } from './panel';
+import { panelShell, type Panel } from './panel';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -38,23 +38,14 @@ const COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b'
 const fieldId = (name: string) => `ss-${name.toLowerCase().replace('_', '')}`;
 
 async function mount(root: HTMLElement) {
-  root.append(
-    el('h2', {}, 'S-shape test piece (ISO 10791-7)'),
-    el(
-      'p',
-      { class: 'lead' },
-      'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill. ' +
-        'How much of the 0.12 mm tolerance the geometry itself takes (overcut of a non-developable ruled surface), what ' +
-        'eight location errors of a head-B / table-C machine do at the 100 measurement points, and which of them a ' +
-        'measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, Table 4.',
-    ),
+  const { form, results } = panelShell(
+    root,
+    'S-shape test piece (ISO 10791-7)',
+    'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill. ' +
+      'How much of the 0.12 mm tolerance the geometry itself takes (overcut of a non-developable ruled surface), what ' +
+      'eight location errors of a head-B / table-C machine do at the 100 measurement points, and which of them a ' +
+      'measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, Table 4.',
   );
-  const layout = el('div', { class: 'panel-grid' });
-  const form = el('form', { class: 'inputs', novalidate: '' });
-  form.addEventListener('submit', (e) => e.preventDefault());
-  const results = el('div', { class: 'results' });
-  layout.append(form, results);
-  root.append(layout);
 
   // ---- inputs
   const l0 = numberField({ id: 'ss-l0', label: 'Pivot to tool tip L0', quantity: 'length', value: 499.889, min: 1, max: 5000, positive: true, hint: 'Distance from the B axis to the tool centre point (paper: 499.889 mm).' });
