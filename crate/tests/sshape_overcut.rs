@@ -212,8 +212,8 @@ fn overcut_maxima_eq6_and_exact_against_the_papers_0_0387_and_0_0125_mm() {
         b_exact < 0.8 * b_perp && b_exact > 0.6 * b_perp,
         "B exact {b_exact}"
     );
-    // Along the top curve the tool touches C1 (δ = 0 there at its own position) and never
-    // leaves material: δ ≤ 0 everywhere (no undercut with this path).
+    // The tool at u contains the ruling u (axis parallel to R(u) at distance R_tool), so δ ≤ 0
+    // everywhere (no undercut with this path); the gouge along the top curve stays small.
     for id in SurfaceId::BOTH {
         let m = overcut_map(&path, part.surface(id), 131, 7).unwrap();
         assert!(m.exact.iter().all(|d| *d <= 1e-12));

@@ -28,6 +28,9 @@
 //! material left (undercut), measured radially to the nearest tool position. The minimum is
 //! searched over `u' ∈ [u − 0.02, u + 0.02]` (about ±12 mm of path; a coarse scan, then
 //! golden-section refinement); the tests check it against a search over the whole path.
+//! The tool at `u` contains the whole ruling `u` (its axis is parallel to `R(u)`, at distance
+//! `R_tool` along `N(u, 1) ⊥ R(u)`), so `δ ≤ 0` everywhere: any gouge is made by neighbouring
+//! tool positions, and this path leaves no undercut.
 //!
 //! # Tool-radius defect (Section 3.2)
 //! A real radius `R' = R_tool + ΔR` cut along the same path moves the machined surface inwards
