@@ -45,6 +45,22 @@ wasm['nonlinear: 361x361 increment grid'] = time(
 
 const table5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
 wasm['cubic: height map 961x961 (Table 5)'] = time(3, () => fa.cubicHeightMap({ errors: table5, nx: 961, ny: 961 }), (m) => total(m.height));
+// S-shape: the same inputs as crate/examples/bench.rs.
+const ssMachine = (l0) => ({ l0, rTool: 10, lTool: 35 });
+wasm['sshape: overcut maps of A and B (eq 6 + exact), 261 x 16'] = time(
+  3,
+  () => fa.sshapeOvercut({ rTool: 10, lTool: 35, nu: 261, nv: 16 }),
+  (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
+);
+let ssRun = 0;
+wasm['sshape: eq 14 model (IK along both paths) + defects'] = time(
+  3,
+  () => fa.sshapeDefects({ machine: ssMachine(499.889 + 0.001 * ++ssRun), errors: { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI } }),
+  (d) => total(d.total),
+);
+const ssCsv = readFileSync(new URL('../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
+fa.sshapeDefects({ machine: ssMachine(499.889), errors: {} }); // builds the model once, as the page does
+wasm['sshape: identification of the 100-point sample (parse + SVD fit)'] = time(3, () => fa.sshapeIdentify({ machine: ssMachine(499.889), csv: ssCsv }), (f) => f.rms);
 
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });

@@ -5,6 +5,7 @@
 use fiveaxis::cubic::{self, CubicSetup, GeometricErrors, Options};
 use fiveaxis::nonlinear;
 use fiveaxis::rotary::RotaryType;
+use fiveaxis::sshape::{identify, machine, overcut::ToolPath, study};
 use std::time::Instant;
 
 /// The moves of the benchmark, degrees `[θk0, θm0, θk1, θm1]`, from the same formula as
@@ -89,6 +90,54 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 )
             },
             |m| m.as_ref().map_or(f64::NAN, |m| m.height.iter().sum()),
+        ),
+    );
+    // S-shape: the inputs of scripts/bench.mjs.
+    let tool = ToolPath::paper();
+    report(
+        "sshape: overcut maps of A and B (eq 6 + exact), 261 x 16",
+        time(
+            3,
+            || study::overcut(&tool, 261, 16),
+            |o| {
+                o.as_ref().map_or(f64::NAN, |o| {
+                    o.a.exact.iter().sum::<f64>() + o.b.exact.iter().sum::<f64>()
+                })
+            },
+        ),
+    );
+    // A new design per run (the wasm side has a cache, so each run uses another L0).
+    let mut run = 0;
+    report(
+        "sshape: eq 14 model (IK along both paths) + defects",
+        time(
+            3,
+            || {
+                run += 1;
+                let d = study::Design::new(
+                    499.889 + 0.001 * run as f64,
+                    tool,
+                    machine::DefectModel::default(),
+                )?;
+                d.simulate(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0294, 3.2419e-4, 0.0], 0.0)
+            },
+            |r| r.as_ref().map_or(f64::NAN, |v| v.iter().sum()),
+        ),
+    );
+    let csv = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../public/samples/sshape-measured.csv"
+    ))?;
+    let design = study::Design::new(machine::PAPER_L0, tool, machine::DefectModel::default())?;
+    report(
+        "sshape: identification of the 100-point sample (parse + SVD fit)",
+        time(
+            3,
+            || {
+                let d = identify::parse_measurements(&csv)?;
+                design.identify(&d, true, identify::DEFAULT_RTOL)
+            },
+            |f| f.as_ref().map_or(f64::NAN, |f| f.rms),
         ),
     );
     Ok(())

@@ -637,7 +637,7 @@ impl Chain {
         let mut q = previous.map_or_else(|| vec![0.0; self.len()], <[f64]>::to_vec);
         q[layout.k] = sol.chosen.k / layout.k_factor;
         q[layout.m] = sol.chosen.m / layout.m_factor;
-        self.place_linear(&mut q, tip)?;
+        let q = self.solve_linear(tip, &q)?;
         Ok((q, sol.singular))
     }
 
@@ -659,8 +659,7 @@ impl Chain {
             let mut q = vec![0.0; self.len()];
             q[layout.k] = pose.k / layout.k_factor;
             q[layout.m] = pose.m / layout.m_factor;
-            self.place_linear(&mut q, tip)?;
-            out.push(q);
+            out.push(self.solve_linear(tip, &q)?);
         }
         Ok((out, sol.singular))
     }
@@ -680,9 +679,18 @@ impl Chain {
         Ok(layout)
     }
 
-    /// Sets the three linear positions of `q` (rotary positions already set) so that the nominal
-    /// tip is at `tip`: the tip is affine in them, so one 3×3 solve does it.
-    fn place_linear(&self, q: &mut [f64], tip: &Vector3<f64>) -> Result<()> {
+    /// Nominal inverse kinematics for given rotary positions: `q` (chain order) with its rotary
+    /// entries kept and its three linear entries replaced by those that put the tool tip at `tip`
+    /// (workpiece coordinates, mm). The tip is affine in the linear positions once the rotary
+    /// axes are fixed, so one 3×3 solve is exact. Used by [`Chain::inverse`],
+    /// [`Chain::inverse_all`] and by studies that choose the rotary angles themselves (e.g. a
+    /// paper's own branch of the two solutions).
+    pub fn solve_linear(&self, tip: &Vector3<f64>, q: &[f64]) -> Result<Vec<f64>> {
+        self.check_positions(q)?;
+        if !tip.iter().all(|v| v.is_finite()) {
+            return Err(Error::field("tip", "must be finite"));
+        }
+        let mut q = q.to_vec();
         let linear: Vec<usize> = (0..self.len())
             .filter(|&i| matches!(self.link(i).joint, Joint::Linear(_)))
             .collect();
@@ -700,7 +708,7 @@ impl Chain {
         }
         let tip_at =
             |q: &[f64]| -> Result<Vector3<f64>> { Ok(self.tool_pose(q, false, &Setup::None)?.tip) };
-        let c = tip_at(q)?;
+        let c = tip_at(&q)?;
         let mut m = Matrix3::zeros();
         for (col, &i) in linear.iter().enumerate() {
             let mut qi = q.to_vec();
@@ -713,7 +721,7 @@ impl Chain {
         for (col, &i) in linear.iter().enumerate() {
             q[i] = x[col];
         }
-        Ok(())
+        Ok(q)
     }
 }
 

@@ -9,13 +9,16 @@
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
 //! * [`cubic`]: the cubic-machining test, 3 × 3 zone heights on a B/C tilting-rotary table
 //!   (Li, Sato, Shirase & Sakamoto 2021).
+//! * [`sshape`]: the S-shape test piece of ISO 10791-7 (Chanal, Duc & Chevalier 2022).
 
 pub mod chain;
 pub mod cubic;
 pub mod error;
 pub mod geometry;
 pub mod nonlinear;
+mod numeric;
 pub mod rotary;
+pub mod sshape;
 pub mod wasm;
 
 pub use error::{Error, Result};

@@ -410,3 +410,33 @@ fn inverse_all_gives_every_branch_and_each_reproduces_the_tool_pose() {
         .unwrap();
     assert!(singular && all.len() == 1 && all[0][0] == 0.0);
 }
+
+#[test]
+fn solve_linear_puts_the_tip_where_asked_for_any_rotary_positions() {
+    // Rotary angles chosen by the caller (not by the chain's own IK): the linear axes found
+    // must put the tip at the target, and keep the rotary positions untouched.
+    let mut rng = Rng::new(23);
+    for chain in [bc_table(), head_table(), head_head()] {
+        let layout = chain.rotary_type().unwrap();
+        for _ in 0..100 {
+            let mut q: Vec<f64> = (0..chain.len()).map(|_| rng.range(-150.0, 150.0)).collect();
+            q[layout.k] = rng.range(-6.0, 6.0);
+            q[layout.m] = rng.range(-3.0, 3.0);
+            let target = Vector3::new(
+                rng.range(-200.0, 200.0),
+                rng.range(-200.0, 200.0),
+                rng.range(-50.0, 300.0),
+            );
+            let got = chain.solve_linear(&target, &q).unwrap();
+            assert_eq!(got[layout.k], q[layout.k]);
+            assert_eq!(got[layout.m], q[layout.m]);
+            let tip = chain.tool_pose(&got, false, &Setup::None).unwrap().tip;
+            assert!((tip - target).norm() < 1e-9, "{tip:?} vs {target:?}");
+        }
+    }
+    let chain = bc_table();
+    assert!(chain
+        .solve_linear(&Vector3::new(f64::NAN, 0.0, 0.0), &[0.0; 5])
+        .is_err());
+    assert!(chain.solve_linear(&Vector3::zeros(), &[0.0; 4]).is_err());
+}

@@ -2,11 +2,10 @@
 //! (mm and degrees), results read back into typed structs, bad input as a JavaScript `Error`.
 #![cfg(target_arch = "wasm32")]
 
-#[path = "common/js.rs"]
-mod js_helpers;
+mod common;
 
+use common::wasm::{error_message, js};
 use fiveaxis::wasm;
-use js_helpers::{error_message, js};
 use serde::Deserialize;
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::wasm_bindgen_test;

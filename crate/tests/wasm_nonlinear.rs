@@ -3,11 +3,10 @@
 //! structs before asserting, and bad input must come back as a JavaScript `Error` with a message.
 #![cfg(target_arch = "wasm32")]
 
-#[path = "common/js.rs"]
-mod js_helpers;
+mod common;
 
+use common::wasm::{error_message, js};
 use fiveaxis::wasm;
-use js_helpers::{error_message, js};
 use serde::Deserialize;
 use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test;

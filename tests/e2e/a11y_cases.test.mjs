@@ -7,7 +7,7 @@ import { createRequire } from 'node:module';
 import { ARTIFACTS, waitPlotted, withPage } from './harness.mjs';
 
 const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
-const TABS = ['nonlinear', 'cubic'];
+const TABS = ['nonlinear', 'cubic', 'sshape'];
 
 test('accessibility: no serious or critical axe violations on any panel; tabs work by keyboard', async () => {
   await withPage({ viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
@@ -27,7 +27,8 @@ test('accessibility: no serious or critical axe violations on any panel; tabs wo
       const bad = result.filter((v) => v.impact === 'serious' || v.impact === 'critical');
       assert.deepEqual(bad, [], `${tab}: ${JSON.stringify(bad, null, 1)}`);
     }
-    // Keyboard: the selected tab is focusable and arrow keys move between tabs.
+    // Keyboard: the selected tab is focusable and arrow keys move between tabs (from the
+    // first tab, selected again: the loop above left the last one selected).
     await page.click(`#tab-${TABS[0]}`);
     await page.focus(`#tab-${TABS[0]}`);
     await page.keyboard.press('ArrowRight');

@@ -20,6 +20,11 @@ const PANELS = [
     set: { 'cb-dzBY': '-14.2', 'cb-betaBY': '0.0029', 'cb-transform': '0', 'cb-reference': 'zone1-plane', 'cb-coffset': '12', 'cb-grid': '97', 'cb-range': '10' },
     plots: ['cb-zones', 'cb-sens', 'cb-map'],
   },
+  {
+    tab: 'sshape',
+    set: { 'ss-l0': '520', 'ss-branch': 'continuous', 'ss-reference': 'axesZero', 'ss-point': 'contact', 'ss-ea0c': '0.001', 'ss-ex0b': '0.01', 'ss-dr': '0.005', 'ss-nu': '131', 'ss-nv': '5', 'ss-radius': '0' },
+    plots: ['ss-defects', 'ss-overcut-a', 'ss-overcut-b'],
+  },
 ];
 
 async function setField(page, id, value) {

@@ -38,6 +38,24 @@ const cubicCase = {
   transform: (r) => r() < 0.5,
   reference: (r) => ['workpiece', 'zone1-height', 'zone1-plane'][Math.floor(r() * 3)],
 };
+// The S-shape machine: a few values only, so that the engine's small cache of designs is used.
+const pick = (list) => (r) => list[Math.floor(r() * list.length)];
+const SSHAPE_MACHINE = {
+  l0: pick([499.889, 350]), rTool: pick([10, 8]), lTool: 35,
+  branch: pick(['paper', 'continuous']), reference: pick(['workOrigin', 'axesZero']), point: 'tip',
+};
+/** A measurement file of 100 rows, sometimes with one line damaged, dropped or repeated. */
+function sshapeCsv(r) {
+  const lines = ['curve,point,deviation_mm'];
+  for (const curve of ['top', 'bottom']) for (let k = 1; k <= 50; k++) lines.push(`${curve},${k},${((r() - 0.5) * 0.2).toFixed(4)}`);
+  const i = 1 + Math.floor(r() * 100);
+  const q = r();
+  if (q < 0.1) lines.splice(i, 1);
+  else if (q < 0.2) lines.push(lines[i]);
+  else if (q < 0.3) lines[i] = lines[i].replace(/,/, ';');
+  else if (q < 0.4) lines[i] = lines[i].replace(/\d$/, 'x');
+  return lines.join('\n');
+}
 export const SPECS = {
   rotaryTypes: { args: [] },
   machineLayout: { args: [(r) => TYPES[Math.floor(r() * 12)], (r) => ['table-table', 'head-head', 'head-table'][Math.floor(r() * 3)]] },
@@ -52,6 +70,10 @@ export const SPECS = {
   cubicErrors: { args: [] },
   cubicTest: { args: [cubicCase] },
   cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: small(4, 24) }] },
+  sshapePart: { args: [{ nu: small(2, 30), nv: small(2, 6) }] },
+  sshapeOvercut: { args: [{ rTool: (r) => 5 + 10 * r(), lTool: (r) => 31 + 30 * r(), nu: small(2, 6), nv: small(2, 3) }] },
+  sshapeDefects: { args: [{ machine: SSHAPE_MACHINE, errors: { E_X0B: (r) => (r() - 0.5) * 0.1, E_A0B: (r) => (r() - 0.5) * 0.05, E_A0Z: (r) => (r() - 0.5) * 0.05 }, dR: (r) => (r() - 0.5) * 0.04 }] },
+  sshapeIdentify: { args: [{ machine: SSHAPE_MACHINE, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()) }] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

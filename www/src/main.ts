@@ -4,13 +4,14 @@ import './style.css';
 import type { Panel } from './panels/panel';
 import { nonlinearPanel } from './panels/nonlinear';
 import { cubicPanel } from './panels/cubic';
+import { sshapePanel } from './panels/sshape';
 import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
 import { printReport, setupPrint } from './ui/print';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel];
+const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel];
 
 const mounted = new Map<string, HTMLElement>();
 let active = panels[0].id;

@@ -14,6 +14,8 @@ mod nonlinear;
 pub use self::nonlinear::*;
 mod cubic;
 pub use self::cubic::*;
+mod sshape;
+pub use self::sshape::*;
 
 use crate::error::{check_interval, check_range, Error};
 use crate::nonlinear::MAX_ANGLE_DEG;

@@ -1,6 +1,9 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+#[cfg(target_arch = "wasm32")]
+pub mod wasm;
+
 /// A small deterministic generator (xorshift64*), so tests need no extra crate and never flake.
 pub struct Rng(u64);
 

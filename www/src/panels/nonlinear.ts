@@ -3,7 +3,7 @@ import type { Data } from 'plotly.js';
 import type { NonlinearMoveResult, RotaryTypeInfo, MachineLayout, InverseResult } from '@engine';
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { el, listField, numberField, selectField, type NumberField } from '../ui/fields';
-import { axis, draw, note } from '../ui/plot';
+import { axis, draw, note, rows } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
@@ -294,11 +294,4 @@ function referenceText(r: NonlinearMoveResult): string {
         ? `plane of V0 and V1 (nearly parallel, |V0×V1| = ${fmt.num(r.planeSine, 3)}: the plane is ill-conditioned)`
         : 'plane of V0 and V1';
   }
-}
-
-/** Row-major flat data to the rows Plotly's heat map expects. */
-function rows<T>(flat: ArrayLike<T>, nx: number, ny: number): T[][] {
-  const out: T[][] = [];
-  for (let iy = 0; iy < ny; iy++) out.push(Array.from({ length: nx }, (_, ix) => flat[iy * nx + ix]));
-  return out;
 }

@@ -82,3 +82,10 @@ export function note(el: HTMLElement, text: string | null) {
   }
   n.textContent = text;
 }
+
+/** Row-major flat data (`[iy·nx + ix]`) to the rows Plotly's heat maps and surfaces expect. */
+export function rows<T>(flat: ArrayLike<T>, nx: number, ny: number): T[][] {
+  const out: T[][] = [];
+  for (let iy = 0; iy < ny; iy++) out.push(Array.from({ length: nx }, (_, ix) => flat[iy * nx + ix]));
+  return out;
+}

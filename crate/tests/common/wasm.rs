@@ -1,8 +1,4 @@
-//! Helpers shared by the wasm-bindgen tests (`wasm_*.rs`, included with `#[path]`): inputs
-//! written as JSON, as a script would pass them, and the message of the JavaScript `Error` an
-//! export threw.
-#![allow(dead_code)]
-#![allow(clippy::expect_used)] // test helpers: a failure should stop the test
+//! Helpers of the wasm-bindgen tests: JSON input and the message of a thrown `Error`.
 
 use wasm_bindgen::{JsCast, JsValue};
 

@@ -1,0 +1,379 @@
+// The "S-shape test piece" panel: ISO 10791-7:2020's five-axis test part after Chanal, Duc &
+// Chevalier (Precision Engineering 75, 2022): the part, the flank-milling overcut (eq 6 and the
+// exact gouge), the machining defect of a head-B / table-C machine's location errors (eq 14,
+// Fig 19) and their identification from measured deviations (Table 4, Fig 21).
+import type { Data, Layout } from 'plotly.js';
+import type { SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutResult, SShapeOvercutSurface, SShapePartResult } from '@engine';
+import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
+import { checkField, el, fields, numberField, selectField, textField, type NumberField } from '../ui/fields';
+import { axis, draw, note, rows } from '../ui/plot';
+import { presetPicker } from '../ui/presets';
+import * as fmt from '../ui/format';
+import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
+import { panelShell, type Panel } from './panel';
+
+export const sshapePanel: Panel = {
+  id: 'sshape',
+  prefix: 'ss',
+  title: 'S-shape test piece',
+  mount,
+};
+
+const SAMPLE = 'samples/sshape-measured.csv';
+const RAD = 180 / Math.PI;
+/** Largest accepted angular error: 0.01 rad, in degrees (the engine's limit). */
+const MAX_ANGLE = 0.01 * RAD;
+/** The 8 errors of Table 3: name, quantity, default (mm or degrees: Table 4's values for simulation). */
+const ERRORS: { name: string; q: 'errLength' | 'errAngle'; value: number; hint: string }[] = [
+  { name: 'E_C0Y', q: 'errAngle', value: 0, hint: 'Squareness of Y to X (about Z).' },
+  { name: 'E_A0Z', q: 'errAngle', value: 0, hint: 'Squareness of Z to Y (about X).' },
+  { name: 'E_B0Z', q: 'errAngle', value: 0, hint: 'Squareness of Z to X (about Y).' },
+  { name: 'E_A0C', q: 'errAngle', value: 0, hint: 'Tilt of the C axis about X.' },
+  { name: 'E_B0C', q: 'errAngle', value: 0, hint: 'Tilt of the C axis about Y.' },
+  { name: 'E_X0B', q: 'errLength', value: 0.0294, hint: 'Offset of the B axis along X.' },
+  { name: 'E_A0B', q: 'errAngle', value: 3.2419e-4 * RAD, hint: 'Tilt of the B axis about X.' },
+  { name: 'E_C0B', q: 'errAngle', value: 0, hint: 'Tilt of the B axis about Z.' },
+];
+const COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22'];
+const fieldId = (name: string) => `ss-${name.toLowerCase().replace('_', '')}`;
+
+async function mount(root: HTMLElement) {
+  const { form, results } = panelShell(
+    root,
+    'S-shape test piece (ISO 10791-7)',
+    'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill. ' +
+      'How much of the 0.12 mm tolerance the geometry itself takes (overcut of a non-developable ruled surface), what ' +
+      'eight location errors of a head-B / table-C machine do at the 100 measurement points, and which of them a ' +
+      'measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, Table 4.',
+  );
+
+  // ---- inputs
+  const l0 = numberField({ id: 'ss-l0', label: 'Pivot to tool tip L0', quantity: 'length', value: 499.889, min: 1, max: 5000, positive: true, hint: 'Distance from the B axis to the tool centre point (paper: 499.889 mm).' });
+  const rTool = numberField({ id: 'ss-rtool', label: 'Tool radius', quantity: 'length', value: 10, min: 0, max: 50, positive: true });
+  const lTool = numberField({ id: 'ss-ltool', label: 'Tool length to the top curve', quantity: 'length', value: 35, min: 30.000001, max: 500, hint: 'Tip to the tool section that touches the top curve (eq 2).' });
+  const branch = selectField('ss-branch', 'Inverse kinematics', [
+    { value: 'paper', label: 'B ≥ 0 (the paper’s tan B, tan C)' },
+    { value: 'continuous', label: 'Nearest the previous pose' },
+  ], 'paper', 'Where the tool is vertical (the middle of the S) C is undefined and kept from before.');
+  const reference = selectField('ss-reference', 'Defect subtracted (eq 14)', [
+    { value: 'workOrigin', label: 'Tool tip at the workpiece origin' },
+    { value: 'axesZero', label: 'All axes zero (eq 14 as printed)' },
+  ], 'workOrigin', 'The defect at this pose is subtracted: where the work offset was set.');
+  const point = selectField('ss-point', 'Tool point moved', [
+    { value: 'tip', label: 'Tool tip (eq 14)' },
+    { value: 'contact', label: 'Tool axis at the point’s height' },
+  ], 'tip');
+  const machineSet = el('fieldset');
+  machineSet.append(el('legend', {}, 'Machine and tool'), presetPicker('sshape', 'ss'), l0.root, rTool.root, lTool.root, branch.root, reference.root, point.root);
+
+  const errorFields: NumberField[] = ERRORS.map((e) =>
+    numberField({
+      id: fieldId(e.name), label: e.name, quantity: e.q, value: e.value,
+      min: e.q === 'errAngle' ? -MAX_ANGLE : -1, max: e.q === 'errAngle' ? MAX_ANGLE : 1, hint: e.hint,
+    }),
+  );
+  const dR = numberField({ id: 'ss-dr', label: 'Tool radius error R′ − R', quantity: 'errLength', value: 0, min: -1, max: 1, hint: 'Positive: the real tool is larger (the surface moves in).' });
+  const errorSet = el('fieldset');
+  const grid2 = el('div', { class: 'pair' });
+  for (const f of errorFields) grid2.append(f.root);
+  errorSet.append(el('legend', {}, 'Location errors (Table 3)'), grid2, dR.root);
+
+  const nu = numberField({ id: 'ss-nu', label: 'Overcut map: points along u', value: 261, min: 14, max: 1001, integer: true, hint: '261 puts every knot on the grid.' });
+  const nv = numberField({ id: 'ss-nv', label: 'Points over the height', value: 11, min: 2, max: 61, integer: true });
+  const mapSet = el('fieldset');
+  mapSet.append(el('legend', {}, 'Overcut map'), el('div', { class: 'pair' }));
+  mapSet.lastElementChild!.append(nu.root, nv.root);
+
+  const csv = textField('ss-csv', 'Measured deviations (CSV)', '', 6, 'Header curve,point,deviation_mm (or deviation_um); 100 rows: top/bottom, 1–50 (1–25 surface A, 26–50 B); positive = material left.');
+  csv.area.placeholder = 'curve,point,deviation_mm\ntop,1,0.0123\n…';
+  const sampleButton = el('button', { type: 'button', id: 'ss-load-sample' }, 'Load the sample file');
+  const fileLabel = el('label', { class: 'import', for: 'ss-file' }, 'Choose a file ');
+  const file = el('input', { id: 'ss-file', type: 'file', accept: '.csv,text/csv,text/plain' });
+  fileLabel.append(file);
+  const fileMsg = el('p', { class: 'field-hint', id: 'ss-file-msg', 'aria-live': 'polite' });
+  const radius = checkField('ss-radius', 'Fit a tool-radius error too', true);
+  const rtol = numberField({ id: 'ss-rtol', label: 'Rank threshold (relative singular value)', value: 0.01, min: 1e-12, max: 0.5, positive: true, hint: 'Directions below it count as not identifiable (0.01: condition number 100).' });
+  const identSet = el('fieldset');
+  const buttons = el('div', { class: 'file-row' });
+  buttons.append(sampleButton, fileLabel);
+  identSet.append(el('legend', {}, 'Identification'), buttons, fileMsg, csv.root, radius.root, rtol.root);
+  form.append(machineSet, errorSet, mapSet, identSet);
+
+  // ---- outputs
+  const summary = el('dl', { class: 'summary', id: 'ss-summary', 'aria-live': 'polite' });
+  const plot = (id: string, wide = false, tall = false) => {
+    const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
+    const p = el('div', { class: 'plot', id });
+    if (tall) p.style.height = '460px';
+    wrap.append(p);
+    return { wrap, p };
+  };
+  const part3d = plot('ss-part', true, true);
+  const mapA = plot('ss-overcut-a', true);
+  const mapB = plot('ss-overcut-b', true);
+  const defects = plot('ss-defects', true, true);
+  const fitPlot = plot('ss-fit', true);
+  const residualPlot = plot('ss-residuals', true);
+  const ident = el('div', { class: 'ident', id: 'ss-ident', 'aria-live': 'polite' });
+  const plots = el('div', { class: 'plots' });
+  plots.append(part3d.wrap, mapA.wrap, mapB.wrap, defects.wrap);
+  const identPlots = el('div', { class: 'plots' });
+  identPlots.append(fitPlot.wrap, residualPlot.wrap);
+  results.append(summary, plots, el('h3', {}, 'Identification from measured deviations'), ident, identPlots);
+
+  // ---- state shared between the outputs
+  const part = (await call('sshapePart', { nu: 131, nv: 7 })) as SShapePartResult;
+  const labels = part.points.map((p) => `${p.curve} ${p.number} (${p.surface})`);
+  let lastDefects: SShapeDefectsResult | null = null;
+  let lastOvercut: SShapeOvercutResult | null = null;
+  const summaryItems = new Map<string, [string, string]>();
+  const setSummary = (id: string, label: string, value: string) => {
+    summaryItems.set(id, [label, value]);
+    summary.replaceChildren();
+    for (const [key, [k, v]] of summaryItems) summary.append(el('dt', {}, k), el('dd', { id: key }, v));
+  };
+
+  const runOvercut = channel('sshapeOvercut');
+  const runDefects = channel('sshapeDefects');
+  const runIdentify = channel('sshapeIdentify');
+
+  const fieldsByPath: Record<string, { setError(m: string | null): void }> = {
+    'machine.l0': l0, 'machine.rTool': rTool, 'machine.lTool': lTool, rTool, lTool, nu, nv, dR, rtol, csv,
+  };
+  ERRORS.forEach((e, i) => (fieldsByPath[`errors.${e.name}`] = errorFields[i]));
+  const engineError = (err: unknown, target: HTMLElement) => {
+    const e = err instanceof EngineError ? err : new EngineError(String(err));
+    const f = fieldsByPath[e.field];
+    if (f) f.setError(e.message.slice(e.field.length + 2));
+    else note(target, e.message);
+  };
+
+  const machine = () => {
+    const v = [l0.read(), rTool.read(), lTool.read()];
+    if (v.some((x) => x === null)) return null;
+    return {
+      l0: v[0] as number, rTool: v[1] as number, lTool: v[2] as number,
+      branch: branch.select.value as 'paper' | 'continuous',
+      reference: reference.select.value as 'workOrigin' | 'axesZero',
+      point: point.select.value as 'tip' | 'contact',
+    };
+  };
+
+  const update = () => {
+    const m = machine();
+    const errs = errorFields.map((f) => f.read());
+    const dr = dR.read();
+    const n = [nu.read(), nv.read()];
+    if (m && n.every((x) => x !== null)) {
+      runOvercut({ rTool: m.rTool, lTool: m.lTool, nu: n[0] as number, nv: n[1] as number }).then((o) => {
+        if (o === SUPERSEDED) return;
+        lastOvercut = o;
+        showOvercut(o);
+      }, (e) => engineError(e, mapA.p));
+    }
+    if (m && errs.every((x) => x !== null) && dr !== null) {
+      const errors = Object.fromEntries(ERRORS.map((e, i) => [e.name, errs[i] as number]));
+      runDefects({ machine: m, errors, dR: dr }).then((d) => {
+        if (d === SUPERSEDED) return;
+        lastDefects = d;
+        showDefects(d);
+        showPart();
+      }, (e) => engineError(e, defects.p));
+    }
+    identify();
+  };
+
+  const identify = () => {
+    const m = machine();
+    const text = csv.area.value;
+    const r = rtol.read();
+    if (!m || r === null) return;
+    if (text.trim() === '') {
+      csv.setError(null);
+      ident.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated with Table 4’s errors) to identify the errors.'));
+      return;
+    }
+    runIdentify({ machine: m, csv: text, radiusTerm: radius.input.checked, rtol: r }).then((f) => {
+      if (f === SUPERSEDED) return;
+      csv.setError(null);
+      showIdentification(f);
+    }, (e) => engineError(e, fitPlot.p));
+  };
+
+  // ---- drawing
+  const D = (mm: number) => toDisplay('errLength', mm);
+  const lu = () => unitDef('errLength').label;
+
+  const showPart = () => {
+    const surface = (i: number, color: string): Data => {
+      const s = part.surfaces[i];
+      const grid = (a: Float64Array) => rows(Array.from(a), s.nu, s.nv);
+      return {
+        type: 'surface', x: grid(s.x), y: grid(s.y), z: grid(s.z), name: `surface ${s.id}`, showscale: false,
+        colorscale: [[0, color], [1, color]], opacity: 0.75, hoverinfo: 'name', showlegend: true,
+      } as Data;
+    };
+    const total = lastDefects ? Array.from(lastDefects.total, D) : null;
+    const pts: Data = {
+      type: 'scatter3d', mode: 'markers', name: 'measurement points',
+      x: part.points.map((p) => p.point[0]), y: part.points.map((p) => p.point[1]), z: part.points.map((p) => p.point[2]),
+      text: labels,
+      marker: total
+        ? { size: 4, color: total, colorscale: 'RdBu', cmid: 0, colorbar: { title: { text: titled('defect', 'errLength') }, len: 0.6 } }
+        : { size: 4, color: '#111' },
+      hovertemplate: total ? `%{text}<br>defect %{marker.color:.4g} ${lu()}<extra></extra>` : '%{text}<extra></extra>',
+    } as Data;
+    draw(part3d.p, 'The part: surfaces A and B (Fig 3) and the 100 measurement points, coloured by the defect of the entered errors', [surface(0, '#b8c7d6'), surface(1, '#d4d4c4'), pts], {
+      scene: {
+        xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } },
+        aspectmode: 'manual', aspectratio: { x: 1.3, y: 1, z: 0.45 }, camera: { eye: { x: -0.95, y: -1.65, z: 1.05 }, center: { x: 0, y: 0, z: -0.08 } },
+      },
+      margin: { l: 0, r: 0, b: 0 },
+      legend: { x: 0, y: 1, xanchor: 'left', bgcolor: 'rgba(255,255,255,0.7)' },
+    } as Partial<Layout>, 'sshape-part');
+  };
+
+  const showOvercut = (o: SShapeOvercutResult) => {
+    note(mapA.p, null);
+    const u = Array.from(o.u);
+    const z = Array.from(o.z);
+    const one = (s: SShapeOvercutSurface, target: HTMLElement) => {
+      const eq6 = rows(Array.from(s.eq6, D), o.nu, o.nv);
+      const gouge = rows(Array.from(s.exact, (d) => D(Math.max(0, -d))), o.nu, o.nv);
+      const hover = (what: string) => `u %{x:.4f}<br>z %{y:.2f} mm<br>${what} %{z:.4g} ${lu()}<extra></extra>`;
+      const data: Data[] = [
+        { type: 'heatmap', x: u, y: z, z: eq6, name: `eq 6 overcut, surface ${s.id}`, coloraxis: 'coloraxis', hovertemplate: hover('eq 6') } as Data,
+        { type: 'heatmap', x: u, y: z, z: gouge, xaxis: 'x2', yaxis: 'y2', name: `exact gouge, surface ${s.id}`, coloraxis: 'coloraxis', hovertemplate: hover('gouge') } as Data,
+      ];
+      draw(target, `Overcut on surface ${s.id}: eq 6 (left, max ${show('errLength', s.maxEq6)}) and the exact gouge (right, max ${show('errLength', s.maxGouge)})<br>paper: ${show('errLength', s.id === 'A' ? o.paper.a : o.paper.b)} by eq 6`, data, {
+        xaxis: axis('u (along the S, 0 at y = −95.5 mm)', { domain: [0, 0.45], range: [0, 1] }),
+        yaxis: axis('z (mm)', { range: [0, 30] }),
+        xaxis2: axis('u (along the S)', { domain: [0.55, 1], range: [0, 1] }),
+        yaxis2: axis('z (mm)', { anchor: 'x2', range: [0, 30] }),
+        coloraxis: { colorscale: 'Viridis', cmin: 0, colorbar: { title: { text: titled('overcut', 'errLength') } } },
+      } as Partial<Layout>, `sshape-overcut-${s.id}`);
+    };
+    one(o.surfaces[0], mapA.p);
+    one(o.surfaces[1], mapB.p);
+    const [a, b] = o.surfaces;
+    setSummary('ss-max-a', 'Overcut, surface A', `eq 6 ${show('errLength', a.maxEq6)} (paper’s T: ${show('errLength', a.maxEq6Paper)}); exact gouge ${show('errLength', a.maxGouge)}; paper ${show('errLength', o.paper.a)}`);
+    setSummary('ss-max-b', 'Overcut, surface B', `eq 6 ${show('errLength', b.maxEq6)} (paper’s T: ${show('errLength', b.maxEq6Paper)}); exact gouge ${show('errLength', b.maxGouge)}; paper ${show('errLength', o.paper.b)}`);
+    setSummary('ss-max-b-inner', 'Surface B with the paper’s N = R × T', `eq 6 ${show('errLength', o.bPaperSide[0])}: the tool on the side facing A reproduces the paper’s ${show('errLength', o.paper.b)}`);
+  };
+
+  const showDefects = (d: SShapeDefectsResult) => {
+    note(defects.p, null);
+    const x = part.points.map((_, i) => i + 1);
+    const data: Data[] = [];
+    d.names.forEach((name, j) => {
+      const y = Array.from({ length: 100 }, (_, k) => D(d.contributions[8 * k + j]));
+      if (y.every((v) => v === 0)) return;
+      data.push({ x, y, type: 'scatter', mode: 'lines', name, line: { color: COLORS[j], width: 1.5 }, text: labels, hovertemplate: `%{text}<br>${name}: %{y:.4g} ${lu()}<extra></extra>` });
+    });
+    if (Array.from(d.radius).some((v) => v !== 0)) {
+      data.push({ x, y: Array.from(d.radius, D), type: 'scatter', mode: 'lines', name: 'tool radius', line: { color: COLORS[8], width: 1.5, dash: 'dot' }, text: labels, hovertemplate: `%{text}<br>tool radius: %{y:.4g} ${lu()}<extra></extra>` });
+    }
+    data.push({ x, y: Array.from(d.total, D), type: 'scatter', mode: 'lines+markers', name: 'total', line: { color: '#111', width: 2.5 }, marker: { size: 4 }, text: labels, hovertemplate: `%{text}<br>total: %{y:.4g} ${lu()}<extra></extra>` });
+    const singular = d.poses.map((p, i) => (p.singular ? i : -1)).filter((i) => i >= 0);
+    if (singular.length) {
+      data.push({ x: singular.map((i) => i + 1), y: singular.map((i) => D(d.total[i])), type: 'scatter', mode: 'markers', name: 'tool vertical: C undefined, kept', marker: { symbol: 'x', size: 10, color: '#d62728' }, text: singular.map((i) => labels[i]), hovertemplate: '%{text}<br>tool vertical: C kept from before<extra></extra>' });
+    }
+    const band = (x0: number, x1: number, text: string) => ({ type: 'rect', xref: 'x', yref: 'paper', x0, x1, y0: 0, y1: 1, fillcolor: text.includes('B') ? '#f6f8fa' : 'rgba(0,0,0,0)', line: { width: 0 }, layer: 'below' });
+    draw(defects.p, `Machining defect at the measurement points (eq 14, Fig 19), one line per non-zero error<br>${referenceText(reference.select.value)}; ${point.select.value === 'tip' ? 'tool tip moved' : 'axis point at the measured height moved'}`, data, {
+      xaxis: pointAxis(' (shaded)'),
+      yaxis: axis(titled('deviation along the outward normal', 'errLength')),
+      shapes: [band(25.5, 50.5, 'B'), band(75.5, 100.5, 'B'), { type: 'line', xref: 'x', yref: 'paper', x0: 50.5, x1: 50.5, y0: 0, y1: 1, line: { color: '#8c959f', width: 1, dash: 'dot' } }],
+    } as Partial<Layout>, 'sshape-defects');
+    const [ca, cb] = d.pairCosines;
+    setSummary('ss-pairs', 'E_A0Z vs E_A0C, E_B0Z vs E_B0C', `cosines of their effects ${fmt.num(ca, 5)}, ${fmt.num(cb, 5)} (−1: alike but for sign, not separable)`);
+    setSummary('ss-singular', 'Tool vertical (C undefined)', `${singular.length} of 100 points: ${singular.map((i) => labels[i]).join(', ') || 'none'}`);
+    setSummary('ss-range', 'Defect of the entered errors', `${show('errLength', Math.min(...d.total))} to ${show('errLength', Math.max(...d.total))}`);
+  };
+
+  const showIdentification = (f: SShapeIdentifyResult) => {
+    note(fitPlot.p, null);
+    const quantity = (unit: string) => (unit === '°' ? 'errAngle' : 'errLength');
+    const table = el('table', { class: 'ident-table', id: 'ss-ident-table' });
+    const head = el('tr');
+    for (const h of ['parameter', 'identified value', 'standard error', '']) head.append(el('th', { scope: 'col' }, h));
+    table.append(el('thead'), el('tbody'));
+    table.tHead!.append(head);
+    for (const e of f.estimates) {
+      const tr = el('tr');
+      const q = quantity(e.unit);
+      const note = e.value === null
+        ? `not separable (group ${(e.group ?? 0) + 1}); minimum-norm split ${show(q, e.minNorm)}`
+        : e.stdError !== null && Math.abs(e.value) < 2 * e.stdError ? 'not significant (below 2 standard errors)' : '';
+      tr.append(el('th', { scope: 'row' }, e.name === 'dR' ? 'tool radius R′ − R' : e.name), el('td', {}, e.value === null ? '—' : show(q, e.value)), el('td', {}, e.stdError === null ? '—' : `± ${show(q, e.stdError, 2)}`), el('td', {}, note));
+      tr.dataset.name = e.name;
+      table.tBodies[0].append(tr);
+    }
+    const groupList = el('ul', { id: 'ss-groups' });
+    f.groups.forEach((g, i) => {
+      for (const c of g.combinations) {
+        const lead = f.estimates.find((e) => e.name === c.terms[0][0]);
+        const q = quantity(lead?.unit ?? 'mm');
+        groupList.append(el('li', {}, `Group ${i + 1} (${g.members.join(', ')}): only ${c.text} = ${show(q, c.value)} ± ${show(q, c.stdError, 2)} is identifiable`));
+      }
+    });
+    const svs = f.singularValues.map((s) => fmt.num(s, 2)).join(', ');
+    ident.replaceChildren(
+      el('p', {}, `Rank ${f.rank} of ${f.estimates.length} (relative singular values ${svs}; threshold ${fmt.num(f.rtol)}). Residuals: RMS ${show('errLength', f.rms)}, largest ${show('errLength', f.maxAbs)}.`),
+      table,
+    );
+    if (f.groups.length) ident.append(groupList);
+    const x = Array.from({ length: 100 }, (_, i) => i + 1);
+    const xaxis = pointAxis('');
+    draw(fitPlot.p, 'Measured and fitted deviation (Fig 21a)', [
+      { x, y: Array.from(f.measured, D), type: 'scatter', mode: 'markers', name: 'measured', marker: { size: 5, color: '#1f77b4' }, text: labels, hovertemplate: `%{text}<br>measured %{y:.4g} ${lu()}<extra></extra>` },
+      { x, y: Array.from(f.fitted, D), type: 'scatter', mode: 'lines', name: 'identified model', line: { color: '#d62728' }, text: labels, hovertemplate: `%{text}<br>model %{y:.4g} ${lu()}<extra></extra>` },
+    ], { xaxis, yaxis: axis(titled('deviation', 'errLength')) }, 'sshape-fit');
+    draw(residualPlot.p, `Residuals after the identification (Fig 21b): RMS ${show('errLength', f.rms)}`, [
+      { x, y: Array.from(f.residuals, D), type: 'bar', name: 'measured − model', marker: { color: '#6e7781' }, text: labels, hovertemplate: `%{text}<br>residual %{y:.4g} ${lu()}<extra></extra>` },
+    ], { xaxis, yaxis: axis(titled('residual', 'errLength')), showlegend: false }, 'sshape-residuals');
+  };
+
+  // ---- loading measurement files
+  sampleButton.addEventListener('click', async () => {
+    try {
+      const res = await fetch(SAMPLE);
+      if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
+      fields.get('ss-csv')?.setText(await res.text());
+      fileMsg.textContent = 'Loaded the sample file (simulated: Table 4’s E_X0B and E_A0B, a tool 0.02 mm small, 2 µm noise).';
+    } catch (e) {
+      fileMsg.textContent = `Could not load the sample file: ${String(e)}`;
+    }
+  });
+  file.addEventListener('change', async () => {
+    const f = file.files?.[0];
+    if (!f) return;
+    if (f.size > 1_000_000) {
+      fileMsg.textContent = `${f.name} is larger than 1 MB: not a measurement file of 100 points.`;
+      return;
+    }
+    fields.get('ss-csv')?.setText(await f.text());
+    fileMsg.textContent = `Loaded ${f.name}.`;
+    file.value = '';
+  });
+
+  for (const input of form.querySelectorAll('input:not([type=file]), select, textarea')) input.addEventListener('input', update);
+  onUnitsChange(() => {
+    update();
+    if (lastOvercut) showOvercut(lastOvercut);
+  });
+  showPart();
+  update();
+}
+
+/** The x axis of the per-point plots: list index 1..100, labelled with each curve's numbers. */
+function pointAxis(extra: string) {
+  const top = [1, 10, 20, 30, 40];
+  const bottom = [1, 10, 20, 30, 40, 50];
+  return axis(`point: T = TOP curve (z = 25 mm), B = BOTTOM (z = 11 mm); 1–25 on surface A, 26–50 on B${extra}`, {
+    range: [0.5, 100.5], tickvals: [...top, ...bottom.map((v) => v + 50)], ticktext: [...top.map((v) => `T${v}`), ...bottom.map((v) => `B${v}`)],
+  });
+}
+
+function referenceText(r: string): string {
+  return r === 'axesZero' ? 'defect at all axes zero subtracted (eq 14 as printed)' : 'defect with the tool tip at the workpiece origin subtracted';
+}
