@@ -17,16 +17,16 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
-      // Wait until every plot of the panel has been drawn and the drawing has settled.
-      await page.waitForFunction(
-        (tab) => {
-          const gs = [...document.querySelectorAll(`#panel-${tab} .plot`)];
-          return gs.length > 0 && gs.every((g) => Number(g.dataset.plotted ?? 0) > 0);
-        },
-        tab,
-        { timeout: 60_000 },
-      );
-      await page.waitForTimeout(500);
+      // Wait until the panel has drawn its plots and stopped redrawing (some plots, such as an
+      // identification's, stay empty until the user gives data).
+      await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
+      let last = '';
+      for (;;) {
+        const now = await page.$$eval(`#panel-${tab} .plot`, (gs) => gs.map((g) => g.dataset.plotted ?? '0').join());
+        if (now === last) break;
+        last = now;
+        await page.waitForTimeout(700);
+      }
       const screen = await plotWidths(page);
       assert.ok(screen.some((w) => w > 700), `${tab}: some plot is wider than a page on screen (${screen})`);
 
