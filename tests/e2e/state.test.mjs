@@ -91,17 +91,24 @@ test('share link, reload, reset, units', async () => {
     }
     other.assertClean();
 
-    // A reload keeps the inputs (local storage), and reset restores the defaults.
+    // A reload keeps the inputs of every panel (local storage), and reset restores the defaults
+    // of the open panel.
     await other.page.evaluate(() => history.replaceState(null, '', location.pathname));
     await other.page.reload();
-    const p0 = PANELS[0];
-    await other.page.click(`#tab-${p0.tab}`);
-    await settle(other.page, p0.plots);
-    for (const [id, v] of Object.entries(p0.set)) assert.equal(await fieldValue(other.page, id), v, `${id} after reload`);
-    await other.page.click('#reset');
-    for (const id of Object.keys(p0.set)) {
-      const def = await other.page.$eval(`#${id}`, (e) => (e.tagName === 'SELECT' ? [...e.options].find((o) => o.defaultSelected)?.value : e.defaultValue));
-      assert.equal(await fieldValue(other.page, id), def, `${id} reset`);
+    for (const p of PANELS) {
+      await other.page.click(`#tab-${p.tab}`);
+      await settle(other.page, p.plots);
+      for (const [id, v] of Object.entries(p.set)) assert.equal(await fieldValue(other.page, id), v, `${id} after reload`);
+    }
+    for (const p of PANELS) {
+      await other.page.click(`#tab-${p.tab}`);
+      await other.page.click('#reset');
+      for (const id of Object.keys(p.set)) {
+        const def = await other.page.$eval(`#${id}`, (e) =>
+          e.tagName === 'SELECT' ? [...e.options].find((o) => o.defaultSelected)?.value : e.type === 'checkbox' ? (e.defaultChecked ? '1' : '0') : e.defaultValue,
+        );
+        assert.equal(await fieldValue(other.page, id), def, `${id} reset`);
+      }
     }
     other.assertClean();
     await fresh.close();
@@ -156,6 +163,33 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
   });
 });
 
+test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gives them', async () => {
+  await withPage({ acceptDownloads: true, viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
+    await page.goto(url);
+    await page.selectOption('#units-length', 'mm');
+    await page.click('#tab-cubic');
+    await waitPlotted(page, 'cb-zones');
+    await page.selectOption('#cb-preset-menu', { label: "Table 5: the paper's machine (identified by ball bar)" });
+    await page.waitForFunction(() => document.getElementById('cb-dxBY')?.value === '0.0146');
+    await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
+    const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);
+    const lines = readFileSync(await csv.path(), 'utf8').trim().split('\n');
+    assert.match(lines[0], /^# .*rows: Y \(mm\); columns: X \(mm\)/);
+    const xs = lines[1].split(',').slice(1).map(Number);
+    const grid = lines.slice(2).map((l) => l.split(',').map(Number));
+    assert.deepEqual(xs, [-16, 0, 16]);
+    assert.equal(grid.length, 3);
+    // Independent of the page: the engine called directly with Table 5 (mm and degrees).
+    const r = fa.cubicTest({ errors: { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 } });
+    assert.equal(r.zones.length, 9);
+    for (const z of r.zones) {
+      const row = grid.find((g) => Math.abs(g[0] - z.y) < 1e-9);
+      const cell = row[1 + xs.findIndex((x) => Math.abs(x - z.x) < 1e-9)];
+      assert.ok(Math.abs(cell - z.height) < 1e-12, `ZONE ${z.name}: CSV ${cell} vs engine ${z.height} mm`);
+    }
+  });
+});
+
 test('works offline after the first visit', async () => {
   await withPage({}, async ({ page, url, context, problems }) => {
     await page.goto(url);
@@ -170,6 +204,15 @@ test('works offline after the first visit', async () => {
     await waitPlotted(page, 'nl-curve');
     await page.fill('#nl-k1', '50');
     await waitPlotted(page, 'nl-curve', 1);
+    // Every other panel loads (their code, presets and sample data come from the cache too).
+    for (const p of PANELS.slice(1)) {
+      await page.click(`#tab-${p.tab}`);
+      for (const id of p.plots) await waitPlotted(page, id);
+    }
+    await page.click('#tab-sshape');
+    await page.click('#ss-load-sample');
+    await page.waitForFunction(() => document.getElementById('ss-csv')?.value.split('\n').length > 100);
+    await waitPlotted(page, 'ss-residuals');
     await page.screenshot({ path: `${ARTIFACTS}offline.png` });
     // Failed network requests while offline would show up as console errors: there are none.
     assert.deepEqual(problems, []);
