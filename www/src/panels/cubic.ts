@@ -2,13 +2,13 @@
 // table cutting a 3 × 3-zone face. Which zones come out high or low for given geometric errors.
 import type { Annotations, Data, Layout, Shape } from 'plotly.js';
 import type { CubicErrorInfo, CubicInput, CubicMapResult, CubicReference, CubicResult } from '@engine';
-import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
+import { call, channel, SUPERSEDED } from '../engine/client';
 import { checkField, el, numberField, selectField, type NumberField } from '../ui/fields';
 import { axis, draw, note } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, type Panel } from './panel';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -121,12 +121,7 @@ async function mount(root: HTMLElement) {
   };
   infos.forEach((i, n) => (fieldsByPath[`errors.${i.key}`] = errorFields[n]));
   /** Shows an engine error at the field it names (or over the plot when it names none). */
-  const engineError = (err: unknown, target: HTMLElement) => {
-    const e = err instanceof EngineError ? err : new EngineError(String(err));
-    const f = fieldsByPath[e.field];
-    if (f) f.setError(e.message.slice(e.field.length + 2));
-    else note(target, e.message);
-  };
+  const engineError = engineErrors(fieldsByPath);
 
   let lastTest: { r: CubicResult; input: CubicInput } | null = null;
   let lastMap: CubicMapResult | null = null;

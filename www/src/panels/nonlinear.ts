@@ -10,7 +10,7 @@ import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
-import { panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, type Panel } from './panel';
 
 const ANGLE = 3600; // largest accepted angle, degrees (the engine's limit)
 
@@ -120,12 +120,7 @@ async function mount(root: HTMLElement) {
     length, 'start.k': k0, 'start.m': m0, 'end.k': k1, 'end.m': m1,
   };
   /** Shows an engine error at the field it names (or over the plot when it names none). */
-  const engineError = (err: unknown, target: HTMLElement) => {
-    const e = err instanceof EngineError ? err : new EngineError(String(err));
-    const f = fieldsByPath[e.field];
-    if (f) f.setError(e.message.slice(e.field.length + 2));
-    else note(target, e.message);
-  };
+  const engineError = engineErrors(fieldsByPath);
 
   const update = () => {
     const t = rtype.select.value;

@@ -1,4 +1,6 @@
+import { EngineError } from '../engine/client';
 import { el } from '../ui/fields';
+import { note } from '../ui/plot';
 
 // A study's panel: mounted once, the first time it is shown.
 export interface Panel {
@@ -24,4 +26,23 @@ export function panelShell(root: HTMLElement, heading: string, lead: string) {
   layout.append(form, results);
   root.append(layout);
   return { form, results };
+}
+
+/** A field that can show a message (every field kind of ui/fields.ts). */
+export interface ShowsError {
+  setError(message: string | null): void;
+}
+
+/**
+ * A handler for an engine error: the message goes to the field its path names (`"start.k: ..."`
+ * → the field registered under `"start.k"`, without the path), or over the plot `target` when it
+ * names no field of the panel. The last good plot stays either way.
+ */
+export function engineErrors(fieldsByPath: Record<string, ShowsError>) {
+  return (err: unknown, target: HTMLElement) => {
+    const e = err instanceof EngineError ? err : new EngineError(String(err));
+    const f = fieldsByPath[e.field];
+    if (f) f.setError(e.message.slice(e.field.length + 2));
+    else note(target, e.message);
+  };
 }

@@ -4,13 +4,13 @@
 // Fig 19) and their identification from measured deviations (Table 4, Fig 21).
 import type { Data, Layout } from 'plotly.js';
 import type { SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutResult, SShapeOvercutSurface, SShapePartResult } from '@engine';
-import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
+import { call, channel, SUPERSEDED } from '../engine/client';
 import { checkField, el, fields, numberField, selectField, textField, type NumberField } from '../ui/fields';
 import { axis, draw, note, rows } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, type Panel, type ShowsError } from './panel';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -137,16 +137,12 @@ async function mount(root: HTMLElement) {
   const runDefects = channel('sshapeDefects');
   const runIdentify = channel('sshapeIdentify');
 
-  const fieldsByPath: Record<string, { setError(m: string | null): void }> = {
+  const fieldsByPath: Record<string, ShowsError> = {
     'machine.l0': l0, 'machine.rTool': rTool, 'machine.lTool': lTool, rTool, lTool, nu, nv, dR, rtol, csv,
   };
   ERRORS.forEach((e, i) => (fieldsByPath[`errors.${e.name}`] = errorFields[i]));
-  const engineError = (err: unknown, target: HTMLElement) => {
-    const e = err instanceof EngineError ? err : new EngineError(String(err));
-    const f = fieldsByPath[e.field];
-    if (f) f.setError(e.message.slice(e.field.length + 2));
-    else note(target, e.message);
-  };
+  /** Shows an engine error at the field it names (or over the plot when it names none). */
+  const engineError = engineErrors(fieldsByPath);
 
   const machine = () => {
     const v = [l0.read(), rTool.read(), lTool.read()];
