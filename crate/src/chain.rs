@@ -60,7 +60,7 @@
 //! Units: mm and rad throughout. Nothing here knows about JavaScript.
 
 use crate::error::{Error, Result};
-use crate::geometry::Axis;
+use crate::geometry::{quaternion, Axis};
 use crate::rotary::{Pose, RotaryAxis, RotaryType};
 use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
@@ -125,9 +125,8 @@ impl RigidError {
 
     /// `D = T(x, y, z) · R_X(a) · R_Y(b) · R_Z(c)`.
     pub fn transform(&self) -> Isometry3<f64> {
-        let r = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), self.a)
-            * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), self.b)
-            * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.c);
+        let r =
+            quaternion(Axis::X, self.a) * quaternion(Axis::Y, self.b) * quaternion(Axis::Z, self.c);
         Isometry3::from_parts(Translation3::new(self.x, self.y, self.z), r)
     }
 }
@@ -156,10 +155,9 @@ impl Joint {
                 Translation3::from(a.unit() * amount),
                 UnitQuaternion::identity(),
             ),
-            Joint::Rotary(a) => Isometry3::from_parts(
-                Translation3::identity(),
-                UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_unchecked(a.unit()), amount),
-            ),
+            Joint::Rotary(a) => {
+                Isometry3::from_parts(Translation3::identity(), quaternion(a, amount))
+            }
         }
     }
 }
@@ -436,28 +434,41 @@ impl Chain {
         ))
     }
 
-    /// The workpiece frame actually used: `F_work(q)`, times the set-up transform.
-    fn work_frame(&self, q: &[f64], errors: bool, setup: &Setup) -> Result<Isometry3<f64>> {
-        let (fw, _) = self.frames(q, errors)?;
+    /// The set-up transform that multiplies `F_work(q)` on the right (module docs), or `None`
+    /// where there is none: without a set-up, or without errors (it is then the identity).
+    fn setup_transform(&self, errors: bool, setup: &Setup) -> Result<Option<Isometry3<f64>>> {
         match setup {
-            Setup::None => Ok(fw),
+            Setup::None => Ok(None),
             Setup::AtPose(q0) if errors => {
                 let (fw0, _) = self.frames(q0, true)?;
                 let (fn0, _) = self.frames(q0, false)?;
-                Ok(fw * fw0.inverse() * fn0)
+                Ok(Some(fw0.inverse() * fn0))
             }
             Setup::AtPose(q0) => {
                 self.check_positions(q0)?;
-                Ok(fw)
+                Ok(None)
             }
         }
+    }
+
+    /// The workpiece frame actually used, `F_work(q)` times the set-up transform, and `F_tool`.
+    fn used_frames(
+        &self,
+        q: &[f64],
+        errors: bool,
+        setup: &Setup,
+    ) -> Result<(Isometry3<f64>, Isometry3<f64>)> {
+        let (fw, ft) = self.frames(q, errors)?;
+        Ok(match self.setup_transform(errors, setup)? {
+            Some(m) => (fw * m, ft),
+            None => (fw, ft),
+        })
     }
 
     /// The tool in workpiece coordinates at positions `q`, with (`errors`) or without the
     /// chain's errors. The set-up only matters with errors.
     pub fn tool_pose(&self, q: &[f64], errors: bool, setup: &Setup) -> Result<ToolPose> {
-        let fw = self.work_frame(q, errors, setup)?;
-        let (_, ft) = self.frames(q, errors)?;
+        let (fw, ft) = self.used_frames(q, errors, setup)?;
         let g = fw.inverse() * ft;
         Ok(ToolPose {
             tip: (g * Point3::origin()).coords,
@@ -473,8 +484,14 @@ impl Chain {
         setup: &Setup,
         p: &Vector3<f64>,
     ) -> Result<Vector3<f64>> {
-        let fw = self.work_frame(q, errors, setup)?;
+        let (fw, _) = self.used_frames(q, errors, setup)?;
         Ok((fw * Point3::from(*p)).coords)
+    }
+
+    /// Where [`Chain::jacobian`] puts location error component `component` (0..6) of the link
+    /// with chain index `link`: location errors come first, 6 per link, links in chain order.
+    pub const fn location_index(link: usize, component: usize) -> usize {
+        6 * link + component
     }
 
     /// The first-order sensitivities of the tool tip and axis (workpiece coordinates) to every
@@ -491,9 +508,12 @@ impl Chain {
                 Some(q0.as_slice())
             }
         };
-        let nominal = self.tool_pose(q, false, &Setup::None)?;
-        let (tip_w, axis_w) = (nominal.tip, nominal.axis);
         let (fw, ft) = self.frames(q, false)?;
+        let g = fw.inverse() * ft;
+        let (tip_w, axis_w) = (
+            (g * Point3::origin()).coords,
+            g.rotation * self.tool_axis.unit(),
+        );
         let nw = self.work.len();
         let mut out = Vec::with_capacity(12 * self.len());
         for kind in [ErrorKind::Location, ErrorKind::Motion] {
@@ -516,6 +536,11 @@ impl Chain {
                     t * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity())
                 };
                 let b = rest(q);
+                // The same at the set-up pose, for the workpiece branch's location errors.
+                let b0 = match (q0, kind, on_work) {
+                    (Some(q0), ErrorKind::Location, true) => Some(rest(q0)),
+                    _ => None,
+                };
                 let link = self.link(i);
                 for k in 0..6 {
                     // ξ_k applied to a point y: e_k (translation) or e_(k-3) × y (rotation).
@@ -538,8 +563,7 @@ impl Chain {
                         let binv = b.rotation.inverse();
                         let mut dt = -(binv * xi(&(b * Point3::from(tip_w)).coords));
                         let mut da = -(binv * xi_dir(&(b.rotation * axis_w)));
-                        if let (Some(q0), ErrorKind::Location) = (q0, kind) {
-                            let b0 = rest(q0);
+                        if let Some(b0) = b0 {
                             let b0inv = b0.rotation.inverse();
                             dt += b0inv * xi(&(b0 * Point3::from(tip_w)).coords);
                             da += b0inv * xi_dir(&(b0.rotation * axis_w));

@@ -74,7 +74,7 @@
 //! [`analyze`] also gives the exact deviation of each error alone at its entered value, so that
 //! `E/ε` can be compared with `k`.
 
-use crate::chain::{Chain, ErrorKind, Link, RigidError, Sensitivity, Setup};
+use crate::chain::{Chain, Link, RigidError, Setup};
 use crate::error::{check_count, check_positive, check_range, Error, Result};
 use crate::geometry::Axis;
 use nalgebra::Vector3;
@@ -620,7 +620,7 @@ impl Test {
     /// Axis positions that cut the functional point `(x, y, 0)` in `zone` (same rotary pose).
     fn positions(&self, zone: &Zone, x: f64, y: f64) -> Result<Vec<f64>> {
         let tip = nominal_tip(x, y, &zone.dir, self.piece.tool_radius);
-        Ok(self.chain.inverse(&tip, &zone.dir, Some(&zone.q))?.0)
+        self.chain.solve_linear(&tip, &zone.q)
     }
 
     /// The actual tool centre (workpiece coordinates) when the NC program cuts `(x, y, 0)`.
@@ -673,14 +673,7 @@ impl Test {
             let jac = self.chain.jacobian(&q, &self.setup)?;
             for (e, def) in ERRORS.iter().enumerate() {
                 let link = link_index(&self.chain, def.axis)?;
-                let s: &Sensitivity = jac
-                    .iter()
-                    .find(|s| {
-                        s.link == link
-                            && s.kind == ErrorKind::Location
-                            && s.component == def.component
-                    })
-                    .ok_or_else(|| Error::field("machine", "missing sensitivity"))?;
+                let s = &jac[Chain::location_index(link, def.component)];
                 dz[j][e] = MAPPING_SIGN * (s.tip.z + r * s.axis.z);
             }
         }

@@ -5,7 +5,7 @@
 //! eqs (5)-(7) of Geng, Wu & Qiu (2018) and of eq (3) of Li et al. (2021).
 //! Angles are in radians inside the engine.
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Unit, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// A principal direction of the machine: X, Y or Z.
@@ -64,6 +64,12 @@ pub fn rotation(axis: Axis, angle: f64) -> Matrix3<f64> {
     }
 }
 
+/// The same rotation as [`rotation`] as a unit quaternion (for rigid transforms,
+/// `nalgebra::Isometry3`).
+pub fn quaternion(axis: Axis, angle: f64) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(&Unit::new_unchecked(axis.unit()), angle)
+}
+
 /// Rotates `v` by `angle` radians about `axis` without building a matrix:
 /// `rotation(axis, angle) * v`.
 pub fn rotate(axis: Axis, angle: f64, v: &Vector3<f64>) -> Vector3<f64> {
@@ -120,6 +126,16 @@ mod tests {
         assert!((rotate(Axis::Z, q, &Axis::X.unit()) - Axis::Y.unit()).norm() < 1e-15);
         assert!((rotate(Axis::X, q, &Axis::Y.unit()) - Axis::Z.unit()).norm() < 1e-15);
         assert!((rotate(Axis::Y, q, &Axis::Z.unit()) - Axis::X.unit()).norm() < 1e-15);
+    }
+
+    #[test]
+    fn quaternion_is_the_same_rotation_as_the_matrix() {
+        for axis in Axis::ALL {
+            for &a in &[0.0, 0.4, -2.0, 3.0] {
+                let d = quaternion(axis, a).to_rotation_matrix().into_inner() - rotation(axis, a);
+                assert!(d.norm() < 1e-15);
+            }
+        }
     }
 
     #[test]

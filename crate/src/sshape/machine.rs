@@ -278,8 +278,7 @@ impl Machine {
         let mut out = [(Vector3::zeros(), Vector3::zeros()); 8];
         for (k, o) in out.iter_mut().enumerate() {
             let (link, comp) = self.slot(k);
-            // Location errors come first in the chain's list: 6 per link.
-            let s = &jac[6 * link + comp];
+            let s = &jac[Chain::location_index(link, comp)];
             *o = (s.tip, s.axis);
         }
         Ok(out)

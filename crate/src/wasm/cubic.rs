@@ -7,12 +7,11 @@
 //! zone-major `9 × 8`: entry `[zone * 8 + error]`, zones and errors in the orders of
 //! `cubicTest(...).zones` and `cubicErrors()`.
 
-use super::{f64_array, input, js_error, output};
+use super::{error_value, f64_array, input, js_error, output, per_edge_unit};
 use crate::cubic::{
     self, CubicSetup, GeometricErrors, Options, Reference, ZonePlane, ERRORS, MAX_ANGLE_ERROR_DEG,
     MAX_POSITION_ERROR,
 };
-use crate::error::check_range;
 use js_sys::Float64Array;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -89,6 +88,8 @@ export interface CubicMapResult {
   height: Float64Array;
   /** Average height of each zone (order of cubicTest's zones), mm. */
   zoneAverage: number[];
+  /** The zones in the same order: name and nominal centre (workpiece frame, mm). */
+  zones: { name: string; x: number; y: number }[];
   /** Smallest and largest height, mm. */ min: number; max: number;
   /** Actual step between passes (≤ pick), mm, and its closed-form scallop height r − √(r² − (step/2)²), mm. */
   step: number; scallop: number;
@@ -127,15 +128,12 @@ impl ErrorsIn {
         ];
         let mut out = [0.0; 8];
         for ((def, v), o) in ERRORS.iter().zip(given).zip(out.iter_mut()) {
-            let field = format!("errors.{}", def.key);
-            *o = if def.angular {
-                let lim = MAX_ANGLE_ERROR_DEG;
-                check_range(&field, v, -lim, lim, "degrees").map_err(js_error)?;
-                v.to_radians()
+            let limit = if def.angular {
+                MAX_ANGLE_ERROR_DEG
             } else {
-                let lim = MAX_POSITION_ERROR;
-                check_range(&field, v, -lim, lim, "mm").map_err(js_error)?
+                MAX_POSITION_ERROR
             };
+            *o = error_value(&format!("errors.{}", def.key), v, def.angular, limit)?;
         }
         Ok(GeometricErrors(out))
     }
@@ -179,15 +177,6 @@ impl CaseIn {
                 reference: self.reference,
             },
         ))
-    }
-}
-
-/// Per unit of the error at this edge: mm, or degree (the engine's values are per rad).
-fn per_unit(k: f64, angular: bool) -> f64 {
-    if angular {
-        k.to_radians()
-    } else {
-        k
     }
 }
 
@@ -266,7 +255,7 @@ pub fn cubic_test(
             .flat_map(|row| {
                 row.iter()
                     .zip(ERRORS)
-                    .map(move |(k, def)| per_unit(f(k), def.angular))
+                    .map(move |(k, def)| per_edge_unit(f(k), def.angular))
             })
             .collect()
     };
@@ -327,12 +316,19 @@ pub fn cubic_height_map(
         #[serde(with = "serde_wasm_bindgen::preserve")]
         height: Float64Array,
         zone_average: Vec<f64>,
+        zones: Vec<ZoneAt>,
         min: f64,
         max: f64,
         step: f64,
         scallop: f64,
         passes: usize,
         evaluations: usize,
+    }
+    #[derive(Serialize)]
+    struct ZoneAt {
+        name: &'static str,
+        x: f64,
+        y: f64,
     }
     let case: CaseIn = input(value.clone())?;
     let grid: Grid = input(value)?;
@@ -347,6 +343,14 @@ pub fn cubic_height_map(
         y: f64_array(&m.y),
         height: f64_array(&m.height),
         zone_average: m.zone_average,
+        zones: cubic::ZONES
+            .iter()
+            .map(|z| ZoneAt {
+                name: z.name,
+                x: z.col as f64 * setup.zone_size,
+                y: z.row as f64 * setup.zone_size,
+            })
+            .collect(),
         min,
         max,
         step: m.step,

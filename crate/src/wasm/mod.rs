@@ -249,6 +249,27 @@ pub fn inverse_kinematics(
     })
 }
 
+/// A machine error as given at this edge, a position in mm or (`angular`) an angle in degrees,
+/// checked against `±limit` (mm or degrees) and returned in engine units (mm or rad).
+pub(crate) fn error_value(field: &str, v: f64, angular: bool, limit: f64) -> Result<f64, JsError> {
+    if angular {
+        check_range(field, v, -limit, limit, "degrees").map(f64::to_radians)
+    } else {
+        check_range(field, v, -limit, limit, "mm")
+    }
+    .map_err(js_error)
+}
+
+/// A sensitivity per unit of an error at this edge: per mm, or per degree for an angle (the
+/// engine's are per rad).
+pub(crate) fn per_edge_unit(k: f64, angular: bool) -> f64 {
+    if angular {
+        k.to_radians()
+    } else {
+        k
+    }
+}
+
 pub(crate) fn check_deg(field: &str, v: f64) -> Result<f64, JsError> {
     check_range(field, v, -MAX_ANGLE_DEG, MAX_ANGLE_DEG, "degrees")
         .map(f64::to_radians)

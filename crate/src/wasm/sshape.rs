@@ -1,7 +1,7 @@
 //! Exports of the S-shape study (see [`crate::sshape`]). Lengths in mm, angles in degrees (the
 //! machine's angular errors too), like every export; the engine works in radians inside.
 
-use super::{f64_array, input, js_error, output};
+use super::{error_value, f64_array, input, js_error, output, per_edge_unit};
 use crate::error::{check_count, check_range, Error};
 use crate::sshape::identify::{combination_text, parse_measurements, DEFAULT_RTOL};
 use crate::sshape::machine::{
@@ -150,15 +150,13 @@ impl ErrorsIn {
         ];
         let mut out = [0.0; 8];
         for (k, v) in given.iter().enumerate() {
-            let field = format!("errors.{}", ERROR_NAMES[k]);
-            out[k] = if IS_LENGTH[k] {
-                check_range(&field, *v, -MAX_ERROR[k], MAX_ERROR[k], "mm").map_err(js_error)?
+            let angular = !IS_LENGTH[k];
+            let limit = if angular {
+                MAX_ERROR[k].to_degrees()
             } else {
-                let lim = MAX_ERROR[k].to_degrees();
-                check_range(&field, *v, -lim, lim, "degrees")
-                    .map_err(js_error)?
-                    .to_radians()
+                MAX_ERROR[k]
             };
+            out[k] = error_value(&format!("errors.{}", ERROR_NAMES[k]), *v, angular, limit)?;
         }
         Ok(out)
     }
@@ -439,12 +437,7 @@ pub fn sshape_defects(
     for row in &d.rows {
         for k in 0..8 {
             contributions.push(row[k] * xi[k]);
-            // mm per rad → mm per degree for the angles.
-            sensitivity.push(if IS_LENGTH[k] {
-                row[k]
-            } else {
-                row[k].to_radians()
-            });
+            sensitivity.push(per_edge_unit(row[k], !IS_LENGTH[k]));
         }
     }
     let cos = |a: usize, b: usize| {

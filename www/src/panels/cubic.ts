@@ -245,11 +245,9 @@ async function mount(root: HTMLElement) {
     const passAligned = (m.ny - 1) % 12 === 0 && Math.abs((m.y[1] - m.y[0]) * 4 - m.step) < 1e-9 * m.step;
     const small = downsample(m, DISPLAY_SIDE, passAligned ? 4 : 1);
     const zs = (m.x[m.nx - 1] - m.x[0]) / 3;
-    const zoneNames = ['I', 'II-1', 'II-2', 'II-3', 'II-4', 'III-1', 'III-2', 'III-3', 'III-4'];
-    const place = [[0, 0], [-1, 0], [0, -1], [1, 0], [0, 1], [-1, -1], [1, -1], [1, 1], [-1, 1]];
     const annotations: Partial<Annotations>[] = m.zoneAverage.map((v, i) => ({
-      x: place[i][0] * zs, y: place[i][1] * zs, xref: 'x', yref: 'y', showarrow: false,
-      text: `${zoneNames[i]}: ${show('errLength', v, 3)}`, font: { size: 11, color: '#1f2328' },
+      x: m.zones[i].x, y: m.zones[i].y, xref: 'x', yref: 'y', showarrow: false,
+      text: `${m.zones[i].name}: ${show('errLength', v, 3)}`, font: { size: 11, color: '#1f2328' },
       bgcolor: 'rgba(255,255,255,0.8)', borderpad: 2,
     }));
     const shapes: Partial<Shape>[] = [-0.5, 0.5].flatMap((t) => [
