@@ -423,6 +423,30 @@ impl Chain {
         f * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity())
     }
 
+    /// The frame of every axis in bed coordinates at `q` (chain order): where the axis sits and
+    /// which way it points, before its own motion (`F_(i-1)·T(o_i)·D(l_i)`, the location error
+    /// with `errors`). For drawings of the machine.
+    pub fn axis_frames(&self, q: &[f64], errors: bool) -> Result<Vec<Isometry3<f64>>> {
+        self.check_positions(q)?;
+        let nw = self.work.len();
+        let mut out = Vec::with_capacity(self.len());
+        for (links, qs) in [(&self.work, &q[..nw]), (&self.tool, &q[nw..])] {
+            let mut f = Isometry3::identity();
+            for (l, &qi) in links.iter().zip(qs) {
+                let mut at = f * Isometry3::from_parts(
+                    Translation3::from(l.offset),
+                    UnitQuaternion::identity(),
+                );
+                if errors {
+                    at *= l.location.transform();
+                }
+                out.push(at);
+                f *= l.transform(qi, errors);
+            }
+        }
+        Ok(out)
+    }
+
     /// The workpiece frame and the tool frame in bed coordinates (`F_work`, `F_tool`), without
     /// the set-up transform.
     pub fn frames(&self, q: &[f64], errors: bool) -> Result<(Isometry3<f64>, Isometry3<f64>)> {

@@ -84,35 +84,6 @@ pub enum Group {
     II,
 }
 
-/// Which rotary axes carry the workpiece; see the module documentation for the mapping to K, M.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MachineType {
-    /// Both rotary axes on the table side.
-    TableTable,
-    /// Both rotary axes on the spindle side.
-    HeadHead,
-    /// K on the table, M on the head.
-    HeadTable,
-}
-
-impl MachineType {
-    /// Parses `"table-table"`, `"head-head"` or `"head-table"`.
-    pub fn parse(name: &str) -> Result<Self> {
-        match name.trim() {
-            "table-table" => Ok(MachineType::TableTable),
-            "head-head" => Ok(MachineType::HeadHead),
-            "head-table" => Ok(MachineType::HeadTable),
-            _ => Err(Error::field(
-                "machine",
-                format!(
-                    "unknown machine type {name:?}; expected table-table, head-head or head-table"
-                ),
-            )),
-        }
-    }
-}
-
 /// Angles of the two rotary axes in radians: `k` for K, `m` for M.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Pose {
@@ -131,6 +102,13 @@ impl Pose {
 
 /// One of the twelve rotary-axis types `KMH`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "ts",
+    derive(tsify::Tsify),
+    tsify(
+        type = "\"ABX\" | \"ACX\" | \"BCY\" | \"BAY\" | \"CAZ\" | \"CBZ\" | \"ABZ\" | \"ACY\" | \"BCX\" | \"BAZ\" | \"CAY\" | \"CBX\""
+    )
+)]
 pub struct RotaryType {
     /// The axis nearer the workpiece.
     pub k: RotaryAxis,
@@ -141,6 +119,32 @@ pub struct RotaryType {
 }
 
 impl RotaryType {
+    /// The twelve types as the options of a choice (schema), in the order of [`Self::ALL`].
+    pub const CHOICES: [crate::schema::Choice; 12] = {
+        use crate::schema::Choice;
+        const fn c(value: &'static str, label: &'static str) -> Choice {
+            Choice {
+                value,
+                label,
+                help: "",
+            }
+        }
+        [
+            c("ABX", "ABX: A (K) and B (M), tool along X at zero; Group I"),
+            c("ACX", "ACX: A (K) and C (M), tool along X at zero; Group I"),
+            c("BCY", "BCY: B (K) and C (M), tool along Y at zero; Group I"),
+            c("BAY", "BAY: B (K) and A (M), tool along Y at zero; Group I"),
+            c("CAZ", "CAZ: C (K) and A (M), tool along Z at zero; Group I"),
+            c("CBZ", "CBZ: C (K) and B (M), tool along Z at zero; Group I"),
+            c("ABZ", "ABZ: A (K) and B (M), tool along Z at zero; Group II"),
+            c("ACY", "ACY: A (K) and C (M), tool along Y at zero; Group II"),
+            c("BCX", "BCX: B (K) and C (M), tool along X at zero; Group II"),
+            c("BAZ", "BAZ: B (K) and A (M), tool along Z at zero; Group II"),
+            c("CAY", "CAY: C (K) and A (M), tool along Y at zero; Group II"),
+            c("CBX", "CBX: C (K) and B (M), tool along X at zero; Group II"),
+        ]
+    };
+
     /// The twelve types: Group I `ABX ACX BCY BAY CAZ CBZ`, then Group II
     /// `ABZ ACY BCX BAZ CAY CBX` (the order of Table 1 of the paper).
     pub const ALL: [RotaryType; 12] = {
@@ -389,57 +393,6 @@ pub struct InverseSolution {
     pub pole_angle: f64,
 }
 
-/// How a machine type realises the two rotary axes of a type, in words for the page.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(rename_all = "camelCase")]
-pub struct Layout {
-    /// The type, e.g. "CAZ".
-    pub type_name: String,
-    /// "I" or "II".
-    pub group: Group,
-    /// The machine type.
-    pub machine: MachineType,
-    /// Letter of K.
-    pub k_axis: char,
-    /// Letter of M.
-    pub m_axis: char,
-    /// What K is on this machine.
-    pub k_role: String,
-    /// What M is on this machine.
-    pub m_role: String,
-    /// Home tool orientation letter.
-    pub home: char,
-}
-
-/// Describes where K and M sit on a machine of type `machine` (module docs).
-pub fn layout(rtype: RotaryType, machine: MachineType) -> Layout {
-    let (k, m) = (rtype.k.letter(), rtype.m.letter());
-    let (k_role, m_role) = match machine {
-        MachineType::TableTable => (
-            format!("{k}: secondary table axis, carries the workpiece, mounted on {m}"),
-            format!("{m}: primary table axis on the bed, carries {k}"),
-        ),
-        MachineType::HeadHead => (
-            format!("{k}: primary head axis on the ram, carries {m}"),
-            format!("{m}: secondary head axis, mounted on {k}, carries the spindle"),
-        ),
-        MachineType::HeadTable => (
-            format!("{k}: table axis, carries the workpiece"),
-            format!("{m}: head axis, carries the spindle"),
-        ),
-    };
-    Layout {
-        type_name: rtype.name(),
-        group: rtype.group(),
-        machine,
-        k_axis: k,
-        m_axis: m,
-        k_role,
-        m_role,
-        home: rtype.home.letter(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -457,6 +410,16 @@ mod tests {
         }
         for bad in ["ABY", "AAX", "CCZ", "CAZZ", "", "DAX", "CAW"] {
             assert!(RotaryType::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_choices_are_the_twelve_types_in_order() {
+        for (c, t) in RotaryType::CHOICES.iter().zip(RotaryType::ALL) {
+            assert_eq!(c.value, t.name());
+            assert!(c.label.starts_with(&format!("{}: ", t.name())));
+            let group = if t.group() == Group::I { "Group I" } else { "Group II" };
+            assert!(c.label.ends_with(group), "{}", c.label);
         }
     }
 
