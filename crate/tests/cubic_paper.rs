@@ -15,11 +15,11 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
-use common::{close, Rng};
-use fiveaxis::cubic::{
-    analyze, height_map, machine, Analysis, CubicSetup, GeometricErrors, Options, Reference,
-    ERRORS, ZONES,
+use common::li::{
+    height_map, machine, run, try_run, CubicSetup, GeometricErrors, PaperAnalysis, ERRORS,
 };
+use common::{close, Rng};
+use fiveaxis::cubic::{Options, Reference, ZONES};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
 const ALL_REFERENCES: [Reference; 3] = [
@@ -33,10 +33,6 @@ fn opts(transform: bool, reference: Reference) -> Options {
         transform,
         reference,
     }
-}
-
-fn run(setup: &CubicSetup, e: &GeometricErrors, o: &Options) -> Analysis {
-    analyze(setup, e, o).unwrap()
 }
 
 /// A unit of error `k`: 1 mm or 1 rad.
@@ -841,7 +837,9 @@ fn only_nearby_passes_are_visited_and_the_result_is_that_of_all_passes() {
     ] {
         let o = Options::default();
         let m = height_map(&setup, &e, &o, 385, 385).unwrap();
-        let chain = machine(&setup, &e).unwrap();
+        let mut model = machine(&setup, &e).build().unwrap();
+        model.place_workpiece(&Vector3::new(0.0, 0.0, setup.workpiece_height));
+        let chain = model.chain;
         let set = fiveaxis::chain::Setup::AtPose(vec![0.0; 5]);
         let a = run(&setup, &e, &o);
         let ix: Vec<usize> = (0..m.nx).filter(|&i| (m.x[i] - 8.0).abs() < 0.6).collect();
@@ -917,29 +915,28 @@ fn the_levelled_height_map_is_zero_on_zone_is_central_square() {
 fn bad_setups_and_grids_are_reported() {
     let e = GeometricErrors::default();
     let o = Options::default();
-    let msg = |s: CubicSetup| analyze(&s, &e, &o).unwrap_err().to_string();
+    let msg = |s: CubicSetup| try_run(&s, &e, &o).err().unwrap().to_string();
     assert!(msg(CubicSetup {
         pick: 7.0,
         ..Default::default()
     })
     .starts_with("setup.pick:"));
-    assert!(msg(CubicSetup {
-        workpiece_height: -1.0,
-        ..Default::default()
-    })
-    .starts_with("setup.workpieceHeight:"));
-    assert!(msg(CubicSetup {
-        tool_radius: f64::NAN,
-        ..Default::default()
-    })
-    .starts_with("setup.toolRadius:"));
-    let big = GeometricErrors::single(3, 6f64.to_radians());
-    assert!(analyze(&CubicSetup::default(), &big, &o)
-        .unwrap_err()
-        .to_string()
-        .starts_with("errors.alphaBY:"));
+    let read = |v: serde_json::Value| {
+        fiveaxis::cubic::CubicInput::read(&v)
+            .err()
+            .unwrap()
+            .to_string()
+    };
+    assert!(read(serde_json::json!({ "setup": { "workpieceHeight": -1 } }))
+        .starts_with("setup.workpieceHeight:"));
+    assert!(read(serde_json::json!({ "setup": { "toolRadius": "3" } }))
+        .starts_with("setup.toolRadius:"));
+    assert!(read(serde_json::json!({ "machine": { "errors": { "E_A0B": 6 } } }))
+        .starts_with("machine.errors.E_A0B:"));
+    assert!(read(serde_json::json!({ "machine": { "errors": { "alphaBY": 0.1 } } }))
+        .starts_with("machine.errors.alphaBY: alphaBY is the symbol αBY"));
     assert!(height_map(&CubicSetup::default(), &e, &o, 3, 10)
         .unwrap_err()
         .to_string()
-        .starts_with("nx:"));
+        .starts_with("ny:"));
 }

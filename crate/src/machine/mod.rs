@@ -507,6 +507,7 @@ impl Machine {
         Ok(Model {
             machine: self.clone(),
             chain,
+            nominal: self.nominal_chain(),
             layout,
         })
     }
@@ -536,6 +537,8 @@ pub struct Model {
     pub machine: Machine,
     /// The chain with the machine's errors.
     pub chain: Chain,
+    /// The same chain without errors (the control's model of the machine).
+    pub nominal: Chain,
     /// K and M in the chain and the factors `θ = f·q`.
     pub layout: RotaryLayout,
 }
@@ -551,8 +554,26 @@ pub struct Solved {
 
 impl Model {
     /// The nominal chain (the machine without errors).
-    pub fn nominal(&self) -> Chain {
-        self.machine.nominal_chain()
+    pub fn nominal(&self) -> &Chain {
+        &self.nominal
+    }
+
+    /// Moves the workpiece origin of both chains by `offset` (mm, in the table frame at zero):
+    /// where a study sets its test piece on the table.
+    pub fn place_workpiece(&mut self, offset: &Vector3<f64>) {
+        self.chain.work_origin += offset;
+        self.nominal.work_origin += offset;
+    }
+
+    /// The chain's location error values are the machine's: a copy of this model with other
+    /// errors (engine units), the placement kept.
+    pub fn with_errors(&self, errors: &ErrorValues) -> Result<Model> {
+        let mut m = self.machine.clone();
+        m.errors = errors.clone();
+        let mut out = m.build()?;
+        let offset = self.nominal.work_origin - out.nominal.work_origin;
+        out.place_workpiece(&offset);
+        Ok(out)
     }
 
     /// Where the sensitivity of error `def` sits in [`Chain::jacobian`]'s output.
@@ -642,7 +663,7 @@ impl Model {
         let mut q = previous.map_or_else(|| vec![0.0; self.chain.len()], <[f64]>::to_vec);
         q[lay.k] = k;
         q[lay.m] = m;
-        let q = self.nominal().solve_linear(tip, &q)?;
+        let q = self.nominal.solve_linear(tip, &q)?;
         Ok(Solved {
             q,
             singular: sol.singular,

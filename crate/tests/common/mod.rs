@@ -1,8 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-#[cfg(target_arch = "wasm32")]
-pub mod wasm;
+pub mod li;
 
 /// A small deterministic generator (xorshift64*), so tests need no extra crate and never flake.
 pub struct Rng(u64);

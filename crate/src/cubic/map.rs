@@ -1,0 +1,320 @@
+//! The simulated machined face (like Fig 16(b)): ball-end zig-zag passes, scallops included,
+//! on a grid over the face (module docs of [`super`]).
+
+use super::zones::Test;
+use super::{Grid, Options, Piece, Reference};
+use crate::error::{Error, Result};
+use crate::machine::Machine;
+use nalgebra::Vector3;
+
+/// The simulated machined face (like Fig 16(b)): a height field of the ball-end zig-zag.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeightMap {
+    /// Grid points along X.
+    pub nx: usize,
+    /// Grid points along Y.
+    pub ny: usize,
+    /// X of the grid columns, mm: `nx` equal steps from `−1.5·zoneSize` to `+1.5·zoneSize`.
+    pub x: Vec<f64>,
+    /// Y of the grid rows, mm, likewise.
+    pub y: Vec<f64>,
+    /// Heights, mm, row-major `ny × nx`: the point `(x[ix], y[iy])` is `[iy·nx + ix]`.
+    pub height: Vec<f64>,
+    /// Average height over each zone (Table 1 order), mm: the trapezoidal rule on the grid
+    /// (a point on a zone border counts half for each zone). Includes the mean scallop height.
+    pub zone_average: Vec<f64>,
+    /// The actual step between passes, mm (see [`Piece::pick`]).
+    pub step: f64,
+    /// Closed-form scallop height for that step, `r − √(r² − (step/2)²)`, mm.
+    pub scallop: f64,
+    /// Passes simulated (all zones).
+    pub passes: usize,
+    /// Pass-point evaluations made (a measure of the work).
+    pub evaluations: usize,
+}
+
+/// Most grid points of a height map.
+pub const MAX_GRID_POINTS: usize = 4_000_000;
+/// Most grid points along one side of a height map.
+pub const MAX_GRID_SIDE: usize = 4001;
+
+/// One pass: the segment of actual ball centres.
+struct Pass {
+    a: Vector3<f64>,
+    /// Unit direction from `a` to the other end.
+    e: Vector3<f64>,
+    len: f64,
+    zmin: f64,
+}
+
+impl Pass {
+    fn new(a: Vector3<f64>, b: Vector3<f64>) -> Self {
+        let d = b - a;
+        let len = d.norm();
+        Self {
+            a,
+            e: if len > 0.0 { d / len } else { Vector3::x() },
+            len,
+            zmin: a.z.min(b.z),
+        }
+    }
+
+    /// Lowest point of the swept ball (a capsule of radius `r` around the segment) above
+    /// `(x, y)`, or +∞ where it does not reach. The cylinder part: the lower root `t = z − a_z`
+    /// of `|v|² − (v·e)² = r²`, `v = (x − a_x, y − a_y, t)`, valid where the foot `v·e` lies on
+    /// the segment; the two end spheres otherwise.
+    fn bottom(&self, x: f64, y: f64, r: f64) -> f64 {
+        let (dx, dy) = (x - self.a.x, y - self.a.y);
+        let r2 = r * r;
+        let sphere = |cx: f64, cy: f64, cz: f64| {
+            let d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+            if d2 <= r2 {
+                cz - (r2 - d2).sqrt()
+            } else {
+                f64::INFINITY
+            }
+        };
+        let b = self.a + self.e * self.len;
+        let mut best = sphere(self.a.x, self.a.y, self.a.z).min(sphere(b.x, b.y, b.z));
+        let ve = dx * self.e.x + dy * self.e.y;
+        let qa = 1.0 - self.e.z * self.e.z;
+        if qa > 1e-12 {
+            let qb = -self.e.z * ve;
+            let qc = dx * dx + dy * dy - ve * ve - r2;
+            let disc = qb * qb - qa * qc;
+            if disc >= 0.0 {
+                let t = (-qb - disc.sqrt()) / qa;
+                let s = ve + t * self.e.z;
+                if (0.0..=self.len).contains(&s) {
+                    best = best.min(self.a.z + t);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// A regular grid of points over the face.
+struct Face {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    h: Vec<f64>,
+}
+
+impl Face {
+    /// Index range of the coordinates `v` within `[lo, hi]` (sorted, equally spaced).
+    fn span(v: &[f64], lo: f64, hi: f64) -> std::ops::Range<usize> {
+        let n = v.len();
+        let (v0, dv) = (v[0], v[1] - v[0]);
+        let i0 = ((lo - v0) / dv).ceil().max(0.0);
+        let i1 = ((hi - v0) / dv).floor() + 1.0;
+        let i0 = if i0.is_finite() { i0 as usize } else { n };
+        let i1 = if i1.is_finite() && i1 > 0.0 {
+            (i1 as usize).min(n)
+        } else {
+            0
+        };
+        i0.min(i1)..i1
+    }
+
+    /// Lowers the grid to the pass wherever it cuts deeper, within `w` of the pass (horizontally).
+    fn cut(&mut self, p: &Pass, w: f64, r: f64) -> usize {
+        let b = p.a + p.e * p.len;
+        let xs = Self::span(&self.x, p.a.x.min(b.x) - w, p.a.x.max(b.x) + w);
+        let ys = Self::span(&self.y, p.a.y.min(b.y) - w, p.a.y.max(b.y) + w);
+        let nx = self.x.len();
+        let mut n = 0;
+        for iy in ys {
+            let y = self.y[iy];
+            for ix in xs.clone() {
+                let z = p.bottom(self.x[ix], y, r);
+                let h = &mut self.h[iy * nx + ix];
+                if z < *h {
+                    *h = z;
+                }
+                n += 1;
+            }
+        }
+        n
+    }
+}
+
+/// The rows of the automatic grid: four per pass step, aligned with the passes (the face starts
+/// on a pass), so that whole scallop periods can be averaged without aliasing; at most
+/// [`MAX_GRID_SIDE`] and `MAX_GRID_POINTS / nx`.
+pub fn auto_rows(setup: &Piece, nx: usize) -> usize {
+    let rows = 12 * (setup.passes_per_zone() - 1) + 1;
+    rows.min(MAX_GRID_SIDE).min(MAX_GRID_POINTS / nx.max(1)).max(4)
+}
+
+/// Simulates the machined face on an `nx × ny` grid (module docs; like Fig 16(b)); `ny` left out
+/// is [`auto_rows`].
+///
+/// Every zone is cut by its zig-zag passes along the face's first axis ([`Piece::pick`]); a pass is the
+/// segment between the actual tool centres (from the chain, eqs 1 and 14) of its two end points,
+/// and the ball swept along it removes everything above its lower surface. The face is the
+/// lowest of all passes and the stock, whatever the order of cutting. Only passes near a grid
+/// point can reach it: a first sweep within one pick of each pass gives an upper bound `M` of
+/// the face; a pass whose centres are at least `zmin` high cannot cut below `M` farther than
+/// `√(r² − (zmin − M)²)` from its line, so the second, exact sweep stops there.
+///
+/// Heights are in the frame and reference of `options`: [`Reference::ZoneIHeight`] subtracts
+/// the average, [`Reference::ZoneIPlane`] the least-squares plane, of ZONE I's central square
+/// (inset from its borders by `r`, at most a quarter of the zone side), which the balls of the
+/// neighbouring zones do not reach (they would bias the reference by up to a few per cent of
+/// the height differences).
+pub fn height_map(
+    machine: &Machine,
+    setup: &Piece,
+    options: &Options,
+    grid: &Grid,
+) -> Result<HeightMap> {
+    setup.validate()?;
+    let nx = grid.nx;
+    let ny = grid.ny.unwrap_or_else(|| auto_rows(setup, nx));
+    if !(4..=MAX_GRID_SIDE).contains(&nx) || !(4..=MAX_GRID_SIDE).contains(&ny) {
+        return Err(Error::field(
+            "ny",
+            format!("nx and ny must be between 4 and {MAX_GRID_SIDE}, got {nx} and {ny}"),
+        ));
+    }
+    if nx * ny > MAX_GRID_POINTS {
+        return Err(Error::field(
+            "nx",
+            format!("nx·ny must be at most {MAX_GRID_POINTS}, got {}", nx * ny),
+        ));
+    }
+    let test = Test::new(machine, setup, options)?;
+    let z = setup.zone_size;
+    let r = setup.tool_radius;
+    let step = setup.step();
+    let half = 0.5 * z;
+
+    let mut passes = Vec::with_capacity(9 * setup.passes_per_zone());
+    for zone in &test.zones {
+        let (xc, yc) = zone.centre;
+        // Each pass runs between the actual tool centres (from the chain) of its two ends.
+        for k in 0..setup.passes_per_zone() {
+            let y = yc - half + k as f64 * step;
+            let a = test.centre(zone, xc - half, y)?;
+            let b = test.centre(zone, xc + half, y)?;
+            passes.push(Pass::new(a, b));
+        }
+    }
+
+    let lin = |n: usize| -> Vec<f64> {
+        (0..n)
+            .map(|i| -1.5 * z + 3.0 * z * i as f64 / (n - 1) as f64)
+            .collect()
+    };
+    let mut grid = Face {
+        x: lin(nx),
+        y: lin(ny),
+        h: vec![setup.stock; nx * ny],
+    };
+    let mut evaluations = 0;
+    for p in &passes {
+        evaluations += grid.cut(p, step, r);
+    }
+    let bound = grid.h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    for p in &passes {
+        let gap = p.zmin - bound;
+        if gap >= r {
+            continue;
+        }
+        let w = if gap > 0.0 {
+            (r * r - gap * gap).sqrt()
+        } else {
+            r
+        };
+        evaluations += grid.cut(p, w * (1.0 + 1e-12) + 1e-12, r);
+    }
+
+    // Zone averages (trapezoidal weights: a point on a zone border counts half), then the
+    // reference, taken on ZONE I's central square (inset by r, at most a quarter of the zone
+    // side) where no pass of another zone reaches unless the errors move zones sideways.
+    let weights = |v: &[f64], c: f64, half: f64| -> Vec<(usize, f64)> {
+        let tol = 1e-9 * z;
+        v.iter()
+            .enumerate()
+            .filter_map(|(i, &t)| {
+                let d = (t - c).abs();
+                if d < half - tol {
+                    Some((i, 1.0))
+                } else if d <= half + tol {
+                    Some((i, 0.5))
+                } else {
+                    None
+                }
+            })
+            .collect()
+    };
+    let square = |(xc, yc): (f64, f64), half: f64| -> Vec<(usize, f64)> {
+        let wx = weights(&grid.x, xc, half);
+        weights(&grid.y, yc, half)
+            .into_iter()
+            .flat_map(|(iy, wy)| wx.iter().map(move |&(ix, w)| (iy * nx + ix, w * wy)))
+            .collect()
+    };
+    let members: Vec<Vec<(usize, f64)>> = test
+        .zones
+        .iter()
+        .map(|zone| square(zone.centre, half))
+        .collect();
+    let reference_area = {
+        let inner = square(test.zones[0].centre, half - r.min(0.25 * z));
+        if inner.is_empty() {
+            members[0].clone()
+        } else {
+            inner
+        }
+    };
+    let mean = |h: &[f64], idx: &[(usize, f64)]| -> f64 {
+        let w: f64 = idx.iter().map(|p| p.1).sum();
+        idx.iter().map(|&(i, wi)| wi * h[i]).sum::<f64>() / w
+    };
+    match options.reference {
+        Reference::Workpiece => {}
+        Reference::ZoneIHeight => {
+            let m = mean(&grid.h, &reference_area);
+            grid.h.iter_mut().for_each(|h| *h -= m);
+        }
+        Reference::ZoneIPlane => {
+            // Weighted least squares over ZONE I's central points: on a rectangular grid the
+            // centred x and y are orthogonal, so each slope is a one-dimensional regression.
+            let idx = &reference_area;
+            let w: f64 = idx.iter().map(|p| p.1).sum();
+            let m = mean(&grid.h, idx);
+            let xm = idx.iter().map(|&(i, wi)| wi * grid.x[i % nx]).sum::<f64>() / w;
+            let ym = idx.iter().map(|&(i, wi)| wi * grid.y[i / nx]).sum::<f64>() / w;
+            let (mut sxz, mut sxx, mut syz, mut syy) = (0.0, 0.0, 0.0, 0.0);
+            for &(i, wi) in idx {
+                let (dx, dy, dz) = (grid.x[i % nx] - xm, grid.y[i / nx] - ym, grid.h[i] - m);
+                sxz += wi * dx * dz;
+                sxx += wi * dx * dx;
+                syz += wi * dy * dz;
+                syy += wi * dy * dy;
+            }
+            let sx = if sxx > 0.0 { sxz / sxx } else { 0.0 };
+            let sy = if syy > 0.0 { syz / syy } else { 0.0 };
+            for iy in 0..ny {
+                for ix in 0..nx {
+                    grid.h[iy * nx + ix] -= m + sx * (grid.x[ix] - xm) + sy * (grid.y[iy] - ym);
+                }
+            }
+        }
+    }
+    let zone_average = members.iter().map(|idx| mean(&grid.h, idx)).collect();
+    Ok(HeightMap {
+        nx,
+        ny,
+        x: grid.x,
+        y: grid.y,
+        height: grid.h,
+        zone_average,
+        step,
+        scallop: r - (r * r - 0.25 * step * step).sqrt(),
+        passes: passes.len(),
+        evaluations,
+    })
+}
