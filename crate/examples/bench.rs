@@ -2,11 +2,31 @@
 //! same kernels as WebAssembly in Node on the same inputs and prints the ratio).
 //! Prints one JSON object per line: `{"name": ..., "ms": ..., "check": ...}`.
 
-use fiveaxis::cubic::{self, CubicSetup, GeometricErrors, Options};
+use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear;
 use fiveaxis::rotary::RotaryType;
-use fiveaxis::sshape::{identify, machine, overcut::ToolPath, study};
+use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
+use fiveaxis::sshape::{identify, overcut::ToolPath};
+use serde_json::{json, Value};
 use std::time::Instant;
+
+/// The machine object of a preset of `public/presets/machines.json` (the same file
+/// scripts/bench.mjs reads).
+fn preset(prefix: &str) -> Result<Value, Box<dyn std::error::Error>> {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../public/presets/machines.json"
+    ))?;
+    let all: Value = serde_json::from_str(&text)?;
+    all["presets"]
+        .as_array()
+        .and_then(|l| {
+            l.iter()
+                .find(|p| p["name"].as_str().is_some_and(|n| n.starts_with(prefix)))
+        })
+        .map(|p| p["machine"].clone())
+        .ok_or_else(|| format!("no machine preset {prefix}").into())
+}
 
 /// The moves of the benchmark, degrees `[θk0, θm0, θk1, θm1]`, from the same formula as
 /// scripts/bench.mjs.
@@ -75,18 +95,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
     );
     // The cubic test's height map of the Table 5 machine at 0.05 mm (the page's default is
-    // 385 × 385); the JavaScript side passes the same errors in µm → mm and degrees.
+    // 193 points along X); the same JSON input as scripts/bench.mjs, read the same way.
+    let mut li = preset("B/C tilting table, vertical spindle (Li et al. 2021)")?;
+    li["errors"] = json!({
+        "E_X0B": -0.0146, "E_Y0B": 0.0089, "E_Z0B": 0.0142, "E_A0B": 0.0023,
+        "E_B0B": -0.0029, "E_C0B": 0.00002, "E_A0C": 0.00017, "E_X0C": -0.0094,
+    });
+    let case = CubicInput::read(&json!({ "machine": li }))?;
     report(
         "cubic: height map 961x961 (Table 5)",
         time(
             3,
             || {
                 cubic::height_map(
-                    &CubicSetup::default(),
-                    &GeometricErrors::table5(),
-                    &Options::default(),
-                    961,
-                    961,
+                    &case.machine,
+                    &case.setup,
+                    &case.options(),
+                    &CubicGrid {
+                        nx: 961,
+                        ny: Some(961),
+                    },
                 )
             },
             |m| m.as_ref().map_or(f64::NAN, |m| m.height.iter().sum()),
@@ -106,7 +134,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ),
     );
-    // A new design per run (the wasm side has a cache, so each run uses another L0).
+    // A new design per run (the wasm side has a cache, so each run uses another pivot).
+    let chanal = preset("B swivel head, C rotary table, Y under the table")?;
+    let case_at = |run: usize| -> fiveaxis::Result<(SShapeCase, SShapeDefectsInput)> {
+        let mut m = chanal.clone();
+        m["geometry"]["pivotLength"] = json!(399.889 + 0.001 * run as f64);
+        m["errors"] = json!({ "E_X0B": 0.0294, "E_A0B": 3.2419e-4f64.to_degrees() });
+        SShapeCase::read_with(&json!({ "machine": m }))
+    };
     let mut run = 0;
     report(
         "sshape: eq 14 model (IK along both paths) + defects",
@@ -114,12 +149,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             3,
             || {
                 run += 1;
-                let d = study::Design::new(
-                    499.889 + 0.001 * run as f64,
-                    tool,
-                    machine::DefectModel::default(),
-                )?;
-                d.simulate(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0294, 3.2419e-4, 0.0], 0.0)
+                let (c, own) = case_at(run)?;
+                let d = study::Design::new(&c.machine, &c.tool, &c.model)?;
+                Ok::<_, fiveaxis::Error>(d.simulate(&c.machine.errors, own.d_r))
             },
             |r| r.as_ref().map_or(f64::NAN, |v| v.iter().sum()),
         ),
@@ -128,7 +160,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         env!("CARGO_MANIFEST_DIR"),
         "/../public/samples/sshape-measured.csv"
     ))?;
-    let design = study::Design::new(machine::PAPER_L0, tool, machine::DefectModel::default())?;
+    let (c, _) = case_at(0)?;
+    let design = study::Design::new(&c.machine, &c.tool, &c.model)?;
+    let paper: Vec<String> = [
+        "E_C0Y", "E_A0Z", "E_B0Z", "E_A0C", "E_B0C", "E_X0B", "E_A0B", "E_C0B",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     report(
         "sshape: identification of the 100-point sample (parse + SVD fit), 100 times",
         time(
@@ -137,7 +176,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let mut fit = None;
                 for _ in 0..100 {
                     let d = identify::parse_measurements(&csv)?;
-                    fit = Some(design.identify(&d, true, identify::DEFAULT_RTOL)?);
+                    fit = Some(design.identify(&d, Some(&paper), true, identify::DEFAULT_RTOL)?);
                 }
                 fit.ok_or_else(|| fiveaxis::Error::field("bench", "no run"))
             },

@@ -39,6 +39,10 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use std::fmt;
 
+/// Angle (rad) between a tool vector and ±K below which the orientation counts as singular: K is
+/// then undefined (a tilt of 1e-9 rad moves a point 500 mm away by 0.5 nm).
+pub const SINGULAR_ANGLE: f64 = 1e-9;
+
 /// A rotary axis A, B or C, rotating about X, Y or Z.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum RotaryAxis {
@@ -136,12 +140,30 @@ impl RotaryType {
             c("BAY", "BAY: B (K) and A (M), tool along Y at zero; Group I"),
             c("CAZ", "CAZ: C (K) and A (M), tool along Z at zero; Group I"),
             c("CBZ", "CBZ: C (K) and B (M), tool along Z at zero; Group I"),
-            c("ABZ", "ABZ: A (K) and B (M), tool along Z at zero; Group II"),
-            c("ACY", "ACY: A (K) and C (M), tool along Y at zero; Group II"),
-            c("BCX", "BCX: B (K) and C (M), tool along X at zero; Group II"),
-            c("BAZ", "BAZ: B (K) and A (M), tool along Z at zero; Group II"),
-            c("CAY", "CAY: C (K) and A (M), tool along Y at zero; Group II"),
-            c("CBX", "CBX: C (K) and B (M), tool along X at zero; Group II"),
+            c(
+                "ABZ",
+                "ABZ: A (K) and B (M), tool along Z at zero; Group II",
+            ),
+            c(
+                "ACY",
+                "ACY: A (K) and C (M), tool along Y at zero; Group II",
+            ),
+            c(
+                "BCX",
+                "BCX: B (K) and C (M), tool along X at zero; Group II",
+            ),
+            c(
+                "BAZ",
+                "BAZ: B (K) and A (M), tool along Z at zero; Group II",
+            ),
+            c(
+                "CAY",
+                "CAY: C (K) and A (M), tool along Y at zero; Group II",
+            ),
+            c(
+                "CBX",
+                "CBX: C (K) and B (M), tool along X at zero; Group II",
+            ),
         ]
     };
 
@@ -249,7 +271,7 @@ impl RotaryType {
     /// `θm = atan2(b, a) ± acos(v_K)`. Then `θk` turns the part of `R_M(θm)e_H` perpendicular to
     /// K onto the part of `v` perpendicular to K.
     ///
-    /// **Singular orientations**: `v = ±e_K` (for Group I at θm = 0 or π; for Group II at
+    /// **Singular orientations**: `v = ±e_K` (within [`SINGULAR_ANGLE`]) (for Group I at θm = 0 or π; for Group II at
     /// θm = ±90°). There θk is arbitrary; one solution is returned with θk kept at the previous
     /// value (0 without one) and `singular` set. Angles are in `(-π, π]` except `chosen`, which is
     /// unwrapped to the turn nearest `previous`.
@@ -277,7 +299,7 @@ impl RotaryType {
         let phase = b.atan2(a);
         // acos(v_K), computed as an atan2 so that it stays accurate next to the poles.
         let spread = v_perp.norm().atan2(vk);
-        let singular = v_perp.norm() < 1e-12;
+        let singular = pole_angle < SINGULAR_ANGLE;
         let theta_k_for = |theta_m: f64| -> f64 {
             let w = rotate(ma, theta_m, &e_h);
             let w_perp = w - e_k * w.dot(&e_k);
@@ -418,7 +440,11 @@ mod tests {
         for (c, t) in RotaryType::CHOICES.iter().zip(RotaryType::ALL) {
             assert_eq!(c.value, t.name());
             assert!(c.label.starts_with(&format!("{}: ", t.name())));
-            let group = if t.group() == Group::I { "Group I" } else { "Group II" };
+            let group = if t.group() == Group::I {
+                "Group I"
+            } else {
+                "Group II"
+            };
             assert!(c.label.ends_with(group), "{}", c.label);
         }
     }

@@ -143,6 +143,17 @@ pub enum Kind {
     Errors,
     /// A list of ISO 230-1 error names (e.g. the errors to identify), no repeats.
     ErrorNames,
+    /// A list of 1 to `max_len` numbers of `quantity` in `[min, max]`, none of them zero.
+    NumberList {
+        /// What each is.
+        quantity: Quantity,
+        /// Smallest accepted value.
+        min: f64,
+        /// Largest accepted value.
+        max: f64,
+        /// Most values.
+        max_len: usize,
+    },
 }
 
 /// The default of a field, in API units.
@@ -181,6 +192,9 @@ pub struct Field {
     /// The machine kinds it applies to (`"table-table"` …); empty: every kind. A value given for
     /// a machine it does not apply to is refused.
     pub kinds: &'static [&'static str],
+    /// The page shows it as a field; `false` for inputs the page derives from others (a sweep's
+    /// range, the increments of a move).
+    pub shown: bool,
 }
 
 impl Field {
@@ -194,6 +208,7 @@ impl Field {
         optional: false,
         group: "",
         kinds: &[],
+        shown: true,
     };
 }
 
@@ -354,6 +369,38 @@ pub fn read<T: DeserializeOwned>(fields: &[Field], value: &Value, path: &str) ->
     })
 }
 
+/// Reads one object as two input structs: the keys `B` declares go to `B`, the others to `A`
+/// (an export whose inputs are a shared case plus its own, e.g. the cubic test and its grid).
+/// A key neither declares is refused with both lists of keys.
+pub fn read_split<A: Inputs, B: Inputs>(value: &Value, path: &str) -> Result<(A, B)> {
+    let obj = match value {
+        Value::Object(m) => m.clone(),
+        Value::Null => Map::new(),
+        other => {
+            return Err(Error::field(
+                if path.is_empty() { "input" } else { path },
+                format!("expected an object, got {}", what(other)),
+            ))
+        }
+    };
+    let mut a = Map::new();
+    let mut b = Map::new();
+    for (k, v) in obj {
+        if B::FIELDS.iter().any(|f| f.key == k) {
+            b.insert(k, v);
+        } else if A::FIELDS.iter().any(|f| f.key == k) {
+            a.insert(k, v);
+        } else {
+            let all: Vec<Field> = A::FIELDS.iter().chain(B::FIELDS).copied().collect();
+            return Err(unknown_key(&all, path, &k));
+        }
+    }
+    Ok((
+        A::from_value(&Value::Object(a), path)?,
+        B::from_value(&Value::Object(b), path)?,
+    ))
+}
+
 /// `path.key`, or `key` at the top.
 pub fn join(path: &str, key: &str) -> String {
     if path.is_empty() {
@@ -401,7 +448,10 @@ fn read_object_in(
             ))
         }
     };
-    if let Some(key) = obj.keys().find(|k| !fields.iter().any(|f| f.key == k.as_str())) {
+    if let Some(key) = obj
+        .keys()
+        .find(|k| !fields.iter().any(|f| f.key == k.as_str()))
+    {
         return Err(unknown_key(fields, path, key));
     }
     let mut out = Map::new();
@@ -504,10 +554,9 @@ fn default_value(f: &Field, path: &str) -> Result<Value> {
         (_, DefaultValue::Num(v)) => json_number(v),
         (_, DefaultValue::Flag(b)) => Value::Bool(b),
         (_, DefaultValue::Str(s)) => Value::String(s.to_string()),
-        (Kind::Errors, _) => Value::Object(Map::new()),
-        (Kind::ErrorNames, _) => Value::Array(Vec::new()),
-        (_, DefaultValue::Empty) => Value::Object(Map::new()),
         (_, DefaultValue::None) => Value::Null,
+        (Kind::ErrorNames, DefaultValue::Empty) => Value::Array(Vec::new()),
+        (_, DefaultValue::Empty) => Value::Object(Map::new()),
     })
 }
 
@@ -553,13 +602,21 @@ fn check_number_in(
     if exclusive_min && x <= min {
         return Err(Error::field(
             path,
-            format!("must be greater than {} and at most {}, got {x}", with_unit(min), with_unit(max)),
+            format!(
+                "must be greater than {} and at most {}, got {x}",
+                with_unit(min),
+                with_unit(max)
+            ),
         ));
     }
     if x < min || x > max {
         return Err(Error::field(
             path,
-            format!("must be between {} and {}, got {x}", with_unit(min), with_unit(max)),
+            format!(
+                "must be between {} and {}, got {x}",
+                with_unit(min),
+                with_unit(max)
+            ),
         ));
     }
     Ok(x)
@@ -621,10 +678,7 @@ fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
             Value::String(s) if s.len() <= max_len => Ok(v.clone()),
             Value::String(s) => Err(Error::field(
                 path,
-                format!(
-                    "is {} bytes long; at most {max_len} are accepted",
-                    s.len()
-                ),
+                format!("is {} bytes long; at most {max_len} are accepted", s.len()),
             )),
             _ => Err(Error::field(
                 path,
@@ -632,6 +686,32 @@ fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
             )),
         },
         Kind::Object(fields) => read_object(fields, v, path),
+        Kind::NumberList {
+            quantity,
+            min,
+            max,
+            max_len,
+        } => {
+            let list = v.as_array().ok_or_else(|| {
+                Error::field(path, format!("expected a list of numbers, got {}", what(v)))
+            })?;
+            if list.is_empty() || list.len() > max_len {
+                return Err(Error::field(
+                    path,
+                    format!("expected 1 to {max_len} values, got {}", list.len()),
+                ));
+            }
+            let mut out = Vec::with_capacity(list.len());
+            for (i, item) in list.iter().enumerate() {
+                let p = format!("{path}[{i}]");
+                let x = check_number(&p, item, quantity, min, max)?;
+                if x == 0.0 {
+                    return Err(Error::field(p, "must not be zero"));
+                }
+                out.push(json_number(quantity.to_engine(x)));
+            }
+            Ok(Value::Array(out))
+        }
         Kind::Errors => crate::machine::errors::read_values(v, path),
         Kind::ErrorNames => crate::machine::errors::read_names(v, path),
     }
@@ -649,7 +729,8 @@ pub struct FieldInfo {
     pub label: String,
     /// Plain-language help.
     pub help: String,
-    /// `"number"`, `"count"`, `"flag"`, `"choice"`, `"text"`, `"errors"` or `"errorNames"`.
+    /// `"number"`, `"count"`, `"flag"`, `"choice"`, `"text"`, `"numberList"`, `"errors"` or
+    /// `"errorNames"`.
     pub kind: String,
     /// For numbers: what it is (decides the unit shown).
     #[cfg_attr(feature = "ts", tsify(optional))]
@@ -673,17 +754,25 @@ pub struct FieldInfo {
     pub choices: Vec<Choice>,
     /// The page's group.
     pub group: String,
+    /// The label of the object it sits in (`"Start"` for `start.k`), or `""`.
+    pub section: String,
     /// The machine kinds it applies to; empty: every kind.
     pub kinds: Vec<String>,
+    /// The page shows it (false: derived by the page from other inputs).
+    pub shown: bool,
 }
 
 /// The flattened schema of a field table (module docs), paths under `path`.
 pub fn describe(fields: &[Field], path: &str) -> Vec<FieldInfo> {
+    describe_in(fields, path, "", true)
+}
+
+fn describe_in(fields: &[Field], path: &str, section: &str, shown: bool) -> Vec<FieldInfo> {
     let mut out = Vec::new();
     for f in fields {
         let p = join(path, f.key);
         if let Kind::Object(inner) = f.kind {
-            out.extend(describe(inner, &p));
+            out.extend(describe_in(inner, &p, f.label, shown && f.shown));
             continue;
         }
         let (kind, quantity, min, max, exclusive_min, choices) = match f.kind {
@@ -692,7 +781,14 @@ pub fn describe(fields: &[Field], path: &str) -> Vec<FieldInfo> {
                 min,
                 max,
                 exclusive_min,
-            } => ("number", Some(quantity), Some(min), Some(max), exclusive_min, vec![]),
+            } => (
+                "number",
+                Some(quantity),
+                Some(min),
+                Some(max),
+                exclusive_min,
+                vec![],
+            ),
             Kind::Count { min, max } => (
                 "count",
                 Some(Quantity::Count),
@@ -706,6 +802,16 @@ pub fn describe(fields: &[Field], path: &str) -> Vec<FieldInfo> {
             Kind::Text { max_len } => ("text", None, None, Some(max_len as f64), false, vec![]),
             Kind::Errors => ("errors", None, None, None, false, vec![]),
             Kind::ErrorNames => ("errorNames", None, None, None, false, vec![]),
+            Kind::NumberList {
+                quantity, min, max, ..
+            } => (
+                "numberList",
+                Some(quantity),
+                Some(min),
+                Some(max),
+                false,
+                vec![],
+            ),
             Kind::Object(_) => ("object", None, None, None, false, vec![]),
         };
         out.push(FieldInfo {
@@ -727,7 +833,9 @@ pub fn describe(fields: &[Field], path: &str) -> Vec<FieldInfo> {
             optional: f.optional,
             choices,
             group: f.group.to_string(),
+            section: section.to_string(),
             kinds: f.kinds.iter().map(|k| k.to_string()).collect(),
+            shown: shown && f.shown,
         });
     }
     out
@@ -799,9 +907,11 @@ mod tests {
         assert_eq!(o.colour, Colour::Green);
         assert!((o.inner.tilt - 0.5f64.to_radians()).abs() < 1e-18);
         assert_eq!(o.extra, None);
-        let o: Outer =
-            Outer::from_value(&json!({ "n": 3, "inner": { "tilt": -1 }, "extra": 0.5 }), "")
-                .unwrap();
+        let o: Outer = Outer::from_value(
+            &json!({ "n": 3, "inner": { "tilt": -1 }, "extra": 0.5 }),
+            "",
+        )
+        .unwrap();
         assert!((o.inner.tilt + 1f64.to_radians()).abs() < 1e-18);
         assert_eq!(o.extra, Some(0.5));
     }
@@ -813,7 +923,9 @@ mod tests {
         assert!(msg(json!({ "n": 3, "sise": 1 })).starts_with("case.sise: unknown input"));
         assert!(msg(json!({ "n": 3, "sise": 1 })).contains("Did you mean \"size\"?"));
         assert!(msg(json!({ "n": 3, "inner": { "tlt": 1 } })).starts_with("case.inner.tlt: "));
-        assert!(msg(json!({ "n": 3, "size": 0 })).starts_with("case.size: must be greater than 0 mm"));
+        assert!(
+            msg(json!({ "n": 3, "size": 0 })).starts_with("case.size: must be greater than 0 mm")
+        );
         assert!(msg(json!({ "n": 3.5 })).starts_with("case.n: must be a whole number"));
         assert!(msg(json!({ "n": 3, "inner": { "tilt": 2 } }))
             .starts_with("case.inner.tilt: must be between -1 degrees and 1 degrees, got 2"));

@@ -22,7 +22,7 @@ mod common;
 
 use common::close;
 use fiveaxis::chain::Setup;
-use fiveaxis::cubic::{analyze, CubicInput, Options, Reference, ZONES};
+use fiveaxis::cubic::{analyze, CubicInput, CubicReference, Options, ZONES};
 use fiveaxis::geometry::{rotation, Axis};
 use fiveaxis::machine::errors::ErrorDef;
 use fiveaxis::machine::Machine;
@@ -71,7 +71,11 @@ fn hand(m: &Machine, def: &ErrorDef, a: f64, c: f64, x: f64, y: f64, face: f64, 
             let v = qc * rotation(Axis::X, a) * n;
             let l = m.geometry.pivot_length + m.geometry.tool_length;
             let lever = v * (r - l);
-            let (w, t) = if axis == 'A' { (qc * w, qc * t) } else { (w, t) };
+            let (w, t) = if axis == 'A' {
+                (qc * w, qc * t)
+            } else {
+                (w, t)
+            };
             n.dot(&(w.cross(&lever) + t))
         }
         _ => f64::NAN,
@@ -87,8 +91,16 @@ fn zones_are_cut_with_table_1s_tool_vectors_within_the_travel() {
         for (z, def) in a.zones.iter().zip(ZONES) {
             // FK of the zone's rotary pose gives Table 1's vector (u, v, n = X, Y, Z here).
             let q = model.positions(z.rotary[0], z.rotary[1]);
-            let axis = model.nominal().tool_pose(&q, false, &Setup::None).unwrap().axis;
-            assert!((axis - Vector3::from(def.tool)).norm() < 1e-12, "{}", def.name);
+            let axis = model
+                .nominal()
+                .tool_pose(&q, false, &Setup::None)
+                .unwrap()
+                .axis;
+            assert!(
+                (axis - Vector3::from(def.tool)).norm() < 1e-12,
+                "{}",
+                def.name
+            );
             let [(k0, k1), (m0, m1)] = model.travel();
             assert!(z.rotary[0] >= k0 - 1e-9 && z.rotary[0] <= k1 + 1e-9);
             assert!(z.rotary[1] >= m0 - 1e-9 && z.rotary[1] <= m1 + 1e-9);
@@ -116,8 +128,22 @@ fn first_order_heights_match_the_hand_derived_forms_on_a_trunnion_and_a_fork_hea
                 if !matches!(def.axis, 'A' | 'C') {
                     continue;
                 }
-                let expect = hand(&m, def, am, c, z.centre[0], z.centre[1], face, piece.tool_radius);
-                close(k.height, expect, 1e-9, &format!("{} {} {}", m.kind.value(), z.zone.name, def.name));
+                let expect = hand(
+                    &m,
+                    def,
+                    am,
+                    c,
+                    z.centre[0],
+                    z.centre[1],
+                    face,
+                    piece.tool_radius,
+                );
+                close(
+                    k.height,
+                    expect,
+                    1e-9,
+                    &format!("{} {} {}", m.kind.value(), z.zone.name, def.name),
+                );
                 checked += 1;
             }
         }
@@ -130,12 +156,19 @@ fn sensitivities_are_finite_differences_of_the_exact_chain() {
     for text in [TRUNNION, FORK] {
         let base = machine(text);
         for transform in [true, false] {
-            for reference in [Reference::Workpiece, Reference::ZoneIPlane] {
-                let o = Options { transform, reference };
+            for reference in [CubicReference::Workpiece, CubicReference::ZoneIPlane] {
+                let o = Options {
+                    transform,
+                    reference,
+                };
                 let piece = input(json!({})).setup;
                 let a = analyze(&base, &piece, &o).unwrap();
                 for (e, def) in a.errors.iter().enumerate() {
-                    let h = if def.quantity == Quantity::SmallAngle { 1e-6 } else { 1e-4 };
+                    let h = if def.quantity == Quantity::SmallAngle {
+                        1e-6
+                    } else {
+                        1e-4
+                    };
                     let run = |v: f64| {
                         let mut m = base.clone();
                         m.errors.set(def.name, v).unwrap();
@@ -164,19 +197,44 @@ fn the_test_says_which_errors_it_cannot_see() {
     // height alone; every other error of A and C moves some zone.
     let m = machine(TRUNNION);
     let a = analyze(&m, &input(json!({})).setup, &Options::default()).unwrap();
-    let invisible: Vec<&str> = a.errors.iter().filter(|d| matches!(d.axis, 'A' | 'C')).filter(|d| {
-        a.zones.iter().all(|z| {
-            hand(&m, d, z.rotary[1], z.rotary[0], z.centre[0], z.centre[1], 65.0 + 50.0, 3.0).abs() < 1e-12
+    let invisible: Vec<&str> = a
+        .errors
+        .iter()
+        .filter(|d| matches!(d.axis, 'A' | 'C'))
+        .filter(|d| {
+            a.zones.iter().all(|z| {
+                hand(
+                    &m,
+                    d,
+                    z.rotary[1],
+                    z.rotary[0],
+                    z.centre[0],
+                    z.centre[1],
+                    65.0 + 50.0,
+                    3.0,
+                )
+                .abs()
+                    < 1e-12
+            })
         })
-    }).map(|d| d.name).collect();
-    assert_eq!(invisible, ["E_X0A", "E_C0A", "E_X0C", "E_Y0C", "E_Z0C", "E_C0C"]);
+        .map(|d| d.name)
+        .collect();
+    assert_eq!(
+        invisible,
+        ["E_X0A", "E_C0A", "E_X0C", "E_Y0C", "E_Z0C", "E_C0C"]
+    );
     for name in invisible {
         assert!(a.visibility.invisible.contains(&name), "{name}");
     }
     // The report agrees with the sensitivity table for every error, squareness errors included.
     for (e, d) in a.errors.iter().enumerate() {
         let seen = a.sensitivity.iter().any(|row| row[e].height.abs() > 1e-9);
-        assert_eq!(!seen, a.visibility.invisible.contains(&d.name), "{}", d.name);
+        assert_eq!(
+            !seen,
+            a.visibility.invisible.contains(&d.name),
+            "{}",
+            d.name
+        );
     }
     // The rank is at most the number of visible errors and at most 8 (9 zones, ZONE I's
     // height fixed at zero by the set-up on this Group I machine).
@@ -190,8 +248,14 @@ fn a_zone_beyond_the_travel_is_reported_not_computed() {
     m.rotary.m_to = 20f64.to_radians();
     let e = analyze(&m, &input(json!({})).setup, &Options::default()).unwrap_err();
     assert_eq!(e.field, "machine");
-    assert!(e.message.starts_with("ZONE II-1: outside the travel"), "{e}");
-    assert!(e.message.contains("A = 30°") && e.message.contains("A from 0° to 20°"), "{e}");
+    assert!(
+        e.message.starts_with("ZONE II-1: outside the travel"),
+        "{e}"
+    );
+    assert!(
+        e.message.contains("A = 30°") && e.message.contains("A from 0° to 20°"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -202,16 +266,29 @@ fn every_error_of_a_head_head_machine_acts() {
     let piece = input(json!({})).setup;
     for def in base.error_defs() {
         let mut m = base.clone();
-        let v = if def.quantity == Quantity::SmallAngle { 0.01f64.to_radians() } else { 0.01 };
+        let v = if def.quantity == Quantity::SmallAngle {
+            0.01f64.to_radians()
+        } else {
+            0.01
+        };
         m.errors.set(def.name, v).unwrap();
         let a = analyze(&m, &piece, &Options::default()).unwrap();
         let l = m.geometry.pivot_length + m.geometry.tool_length + 100.0;
-        let tol = if def.quantity == Quantity::SmallAngle { l * v * v } else { 1e-9 };
+        let tol = if def.quantity == Quantity::SmallAngle {
+            l * v * v
+        } else {
+            1e-9
+        };
         let mut moved = false;
         for z in &a.zones {
             close(z.exact.height, z.linear.height, tol, def.name);
             moved |= z.exact.height.abs() > 10.0 * tol;
         }
-        assert_eq!(moved, !a.visibility.invisible.contains(&def.name), "{}", def.name);
+        assert_eq!(
+            moved,
+            !a.visibility.invisible.contains(&def.name),
+            "{}",
+            def.name
+        );
     }
 }

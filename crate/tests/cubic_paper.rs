@@ -19,16 +19,16 @@ use common::li::{
     height_map, machine, run, try_run, CubicSetup, GeometricErrors, PaperAnalysis, ERRORS,
 };
 use common::{close, Rng};
-use fiveaxis::cubic::{Options, Reference, ZONES};
+use fiveaxis::cubic::{CubicReference, Options, ZONES};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
-const ALL_REFERENCES: [Reference; 3] = [
-    Reference::Workpiece,
-    Reference::ZoneIHeight,
-    Reference::ZoneIPlane,
+const ALL_REFERENCES: [CubicReference; 3] = [
+    CubicReference::Workpiece,
+    CubicReference::ZoneIHeight,
+    CubicReference::ZoneIPlane,
 ];
 
-fn opts(transform: bool, reference: Reference) -> Options {
+fn opts(transform: bool, reference: CubicReference) -> Options {
     Options {
         transform,
         reference,
@@ -156,7 +156,7 @@ fn with_the_workpiece_transform_zone_i_is_unaffected_by_every_error() {
         },
     ] {
         for e in &cases {
-            let a = run(&setup, e, &opts(true, Reference::Workpiece));
+            let a = run(&setup, e, &opts(true, CubicReference::Workpiece));
             let z1 = &a.zones[0];
             assert_eq!(z1.zone.name, "I");
             for v in [z1.exact.height, z1.exact.slope_x, z1.exact.slope_y] {
@@ -179,7 +179,7 @@ fn without_the_transform_zone_i_is_affected_by_dz_by_only_section_4_3_names_dx_b
     let a = run(
         &CubicSetup::default(),
         &GeometricErrors::default(),
-        &opts(false, Reference::Workpiece),
+        &opts(false, CubicReference::Workpiece),
     );
     for (k, def) in ERRORS.iter().enumerate() {
         let expected = if def.key == "dzBY" { 1.0 } else { 0.0 };
@@ -189,13 +189,13 @@ fn without_the_transform_zone_i_is_affected_by_dz_by_only_section_4_3_names_dx_b
     let dz = run(
         &CubicSetup::default(),
         &GeometricErrors::single(2, 0.5),
-        &opts(false, Reference::Workpiece),
+        &opts(false, CubicReference::Workpiece),
     );
     close(dz.zones[0].exact.height, 0.5, 1e-12, "δzBY = 0.5 mm");
     let dx = run(
         &CubicSetup::default(),
         &GeometricErrors::single(0, 0.5),
-        &opts(false, Reference::Workpiece),
+        &opts(false, CubicReference::Workpiece),
     );
     close(dx.zones[0].exact.height, 0.0, 1e-12, "δxBY = 0.5 mm");
 }
@@ -215,7 +215,7 @@ fn alpha_by_and_alpha_cb_act_alike_on_heights_and_dy_by_dx_cb_not_at_all() {
         let a = run(
             &setup,
             &GeometricErrors::default(),
-            &opts(true, Reference::Workpiece),
+            &opts(true, CubicReference::Workpiece),
         );
         let mut tilts_differ = false;
         for (z, k) in a.zones.iter().zip(&a.sensitivity) {
@@ -241,7 +241,7 @@ fn alpha_by_and_alpha_cb_act_alike_on_heights_and_dy_by_dx_cb_not_at_all() {
         let a = run(
             &CubicSetup::default(),
             &GeometricErrors::single(i, 0.5),
-            &opts(true, Reference::Workpiece),
+            &opts(true, CubicReference::Workpiece),
         );
         for z in &a.zones {
             for v in [z.exact.height, z.exact.slope_x, z.exact.slope_y] {
@@ -326,7 +326,7 @@ fn first_order_sensitivities_match_the_closed_forms_of_eqs_2_and_10() {
             let a = run(
                 &setup,
                 &GeometricErrors::default(),
-                &opts(transform, Reference::Workpiece),
+                &opts(transform, CubicReference::Workpiece),
             );
             for (z, (k, (b, c))) in a.zones.iter().zip(a.sensitivity.iter().zip(TABLE_2)) {
                 let [x, y] = z.centre;
@@ -405,7 +405,7 @@ fn exact_heights_match_the_papers_matrices() {
         let a = run(
             &setup,
             &GeometricErrors(e),
-            &opts(transform, Reference::Workpiece),
+            &opts(transform, CubicReference::Workpiece),
         );
         for (z, (b, c)) in a.zones.iter().zip(TABLE_2) {
             let (mb, mc) = (
@@ -439,7 +439,7 @@ fn exact_heights_match_the_papers_matrices() {
 fn small_errors_act_linearly_and_the_sensitivities_are_the_exact_ratio_e_over_epsilon() {
     // Eq 15: k = E/ε stays constant over a decade of ε and equals the analytic k.
     for transform in [false, true] {
-        let o = opts(transform, Reference::Workpiece);
+        let o = opts(transform, CubicReference::Workpiece);
         let base = run(&CubicSetup::default(), &GeometricErrors::default(), &o);
         for k in 0..8 {
             let unit = if is_angle(k) { 1e-5 } else { 1e-3 }; // 0.57 mdeg, 1 µm
@@ -471,7 +471,7 @@ fn small_errors_act_linearly_and_the_sensitivities_are_the_exact_ratio_e_over_ep
         let a = run(
             &CubicSetup::default(),
             &GeometricErrors::table5(),
-            &opts(transform, Reference::Workpiece),
+            &opts(transform, CubicReference::Workpiece),
         );
         for z in &a.zones {
             close(z.exact.height, z.linear.height, 1e-5, z.zone.name);
@@ -577,7 +577,7 @@ fn first_order_heights_depend_on_the_horizontal_set_up_only() {
     // on the table does; the B–C offset only without M_WC.
     let zero = GeometricErrors::default();
     let k_of = |s: CubicSetup, transform: bool| {
-        run(&s, &zero, &opts(transform, Reference::Workpiece)).sensitivity
+        run(&s, &zero, &opts(transform, CubicReference::Workpiece)).sensitivity
     };
     let max_diff = |a: &[[fiveaxis::cubic::ZonePlane; 8]],
                     b: &[[fiveaxis::cubic::ZonePlane; 8]]| {
@@ -649,7 +649,7 @@ fn first_order_heights_depend_on_the_horizontal_set_up_only() {
         let r = run(
             &s,
             &GeometricErrors::single(3, a),
-            &opts(false, Reference::Workpiece),
+            &opts(false, CubicReference::Workpiece),
         );
         let h = s.table_above_b + height;
         close(
@@ -667,8 +667,8 @@ fn levelled_on_zone_i_the_heights_do_not_depend_on_the_workpiece_transform() {
     // profile with or without M_WC (to first order; exactly for the sensitivities).
     let setup = CubicSetup::default();
     let zero = GeometricErrors::default();
-    let without = run(&setup, &zero, &opts(false, Reference::ZoneIPlane));
-    let with = run(&setup, &zero, &opts(true, Reference::ZoneIPlane));
+    let without = run(&setup, &zero, &opts(false, CubicReference::ZoneIPlane));
+    let with = run(&setup, &zero, &opts(true, CubicReference::ZoneIPlane));
     for z in 0..9 {
         for k in 0..8 {
             close(
@@ -683,8 +683,8 @@ fn levelled_on_zone_i_the_heights_do_not_depend_on_the_workpiece_transform() {
     // tenth of Table 5.
     let difference = |f: f64| {
         let e = GeometricErrors(GeometricErrors::table5().0.map(|v| v * f));
-        let a = run(&setup, &e, &opts(false, Reference::ZoneIPlane));
-        let b = run(&setup, &e, &opts(true, Reference::ZoneIPlane));
+        let a = run(&setup, &e, &opts(false, CubicReference::ZoneIPlane));
+        let b = run(&setup, &e, &opts(true, CubicReference::ZoneIPlane));
         (0..9)
             .map(|z| (a.zones[z].exact.height - b.zones[z].exact.height).abs())
             .fold(0.0, f64::max)
@@ -694,8 +694,8 @@ fn levelled_on_zone_i_the_heights_do_not_depend_on_the_workpiece_transform() {
     assert!(tenth < 0.011 * full, "{tenth} vs {full}");
     let e = GeometricErrors::table5();
     // Shifting only ZONE I's height does not remove the difference (its tilt stays).
-    let a = run(&setup, &e, &opts(false, Reference::ZoneIHeight));
-    let b = run(&setup, &e, &opts(true, Reference::ZoneIHeight));
+    let a = run(&setup, &e, &opts(false, CubicReference::ZoneIHeight));
+    let b = run(&setup, &e, &opts(true, CubicReference::ZoneIHeight));
     let most = (0..9)
         .map(|z| (a.zones[z].exact.height - b.zones[z].exact.height).abs())
         .fold(0.0, f64::max);
@@ -712,7 +712,7 @@ fn mean_scallop(r: f64, step: f64) -> f64 {
 
 #[test]
 fn the_scallops_have_the_closed_form_height() {
-    // h = r − √(r² − (p/2)²) = 0.4167 µm for p = 0.1 mm, r = 3 mm. Grid points every 0.05 mm
+    // h = r − √(r² − (p/2)²) = 0.4167 µm for p = 0.1 mm, r = 3 mm. CubicGrid points every 0.05 mm
     // in Y fall on the passes and half-way between them.
     let setup = CubicSetup::default();
     let m = height_map(
@@ -776,19 +776,25 @@ fn the_height_map_agrees_with_the_analytic_zone_heights() {
     let setup = CubicSetup::default();
     let r = setup.tool_radius;
     let cases = [
-        (GeometricErrors::table5(), opts(true, Reference::Workpiece)),
-        (GeometricErrors::table5(), opts(false, Reference::Workpiece)),
         (
             GeometricErrors::table5(),
-            opts(true, Reference::ZoneIHeight),
+            opts(true, CubicReference::Workpiece),
         ),
         (
             GeometricErrors::table5(),
-            opts(false, Reference::ZoneIPlane),
+            opts(false, CubicReference::Workpiece),
+        ),
+        (
+            GeometricErrors::table5(),
+            opts(true, CubicReference::ZoneIHeight),
+        ),
+        (
+            GeometricErrors::table5(),
+            opts(false, CubicReference::ZoneIPlane),
         ),
         (
             GeometricErrors::single(4, 0.02f64.to_radians()),
-            opts(true, Reference::Workpiece),
+            opts(true, CubicReference::Workpiece),
         ),
     ];
     let s_bar = mean_scallop(r, setup.step());
@@ -796,7 +802,7 @@ fn the_height_map_agrees_with_the_analytic_zone_heights() {
         let a = run(&setup, &e, &o);
         let m = height_map(&setup, &e, &o, 193, 3841).unwrap();
         let inner = inner_averages(&m, 1.5);
-        let shift = if o.reference == Reference::Workpiece {
+        let shift = if o.reference == CubicReference::Workpiece {
             s_bar
         } else {
             0.0
@@ -905,7 +911,14 @@ fn the_levelled_height_map_is_zero_on_zone_is_central_square() {
         GeometricErrors::table5(),
         GeometricErrors::single(4, 0.3f64.to_radians()),
     ] {
-        let m = height_map(&setup, &e, &opts(false, Reference::ZoneIPlane), 97, 1921).unwrap();
+        let m = height_map(
+            &setup,
+            &e,
+            &opts(false, CubicReference::ZoneIPlane),
+            97,
+            1921,
+        )
+        .unwrap();
         let central = inner_averages(&m, 3.0)[0];
         close(central, 0.0, 1e-5, "ZONE I's central square");
     }
@@ -927,14 +940,20 @@ fn bad_setups_and_grids_are_reported() {
             .unwrap()
             .to_string()
     };
-    assert!(read(serde_json::json!({ "setup": { "workpieceHeight": -1 } }))
-        .starts_with("setup.workpieceHeight:"));
+    assert!(
+        read(serde_json::json!({ "setup": { "workpieceHeight": -1 } }))
+            .starts_with("setup.workpieceHeight:")
+    );
     assert!(read(serde_json::json!({ "setup": { "toolRadius": "3" } }))
         .starts_with("setup.toolRadius:"));
-    assert!(read(serde_json::json!({ "machine": { "errors": { "E_A0B": 6 } } }))
-        .starts_with("machine.errors.E_A0B:"));
-    assert!(read(serde_json::json!({ "machine": { "errors": { "alphaBY": 0.1 } } }))
-        .starts_with("machine.errors.alphaBY: alphaBY is the symbol αBY"));
+    assert!(
+        read(serde_json::json!({ "machine": { "errors": { "E_A0B": 6 } } }))
+            .starts_with("machine.errors.E_A0B:")
+    );
+    assert!(
+        read(serde_json::json!({ "machine": { "errors": { "alphaBY": 0.1 } } }))
+            .starts_with("machine.errors.alphaBY: alphaBY is the symbol αBY")
+    );
     assert!(height_map(&CubicSetup::default(), &e, &o, 3, 10)
         .unwrap_err()
         .to_string()

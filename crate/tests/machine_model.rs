@@ -26,7 +26,11 @@ fn machine(v: Value) -> Machine {
 
 fn unit(rng: &mut Rng) -> Vector3<f64> {
     loop {
-        let v = Vector3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let v = Vector3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
         if v.norm() > 0.2 && v.norm() < 1.0 {
             return v / v.norm();
         }
@@ -54,7 +58,11 @@ fn the_tool_vector_is_r_k_r_m_e_h_for_every_kind_type_layout_and_sense() {
                     let axis = chain.tool_pose(&q, false, &Setup::None).unwrap().axis;
                     let sk = if kr { -1.0 } else { 1.0 };
                     let sm = if mr { -1.0 } else { 1.0 };
-                    let v = rotate(t.k.axis(), sk * k, &rotate(t.m.axis(), sm * mm, &t.home.unit()));
+                    let v = rotate(
+                        t.k.axis(),
+                        sk * k,
+                        &rotate(t.m.axis(), sm * mm, &t.home.unit()),
+                    );
                     assert!((axis - v).norm() < 1e-12, "{kind} {} {linear}", t.name());
                 }
             }
@@ -66,32 +74,37 @@ fn the_tool_vector_is_r_k_r_m_e_h_for_every_kind_type_layout_and_sense() {
 fn the_papers_machines_are_the_chains_written_out_link_by_link() {
     let mut rng = Rng::new(3);
     // Li et al.: B on the bed, C on B (offset along X), X Y Z on the spindle, ISO 841 signs.
-    let li = machine(json!({
-        "kind": "table-table", "type": "CBZ", "linear": "spindle-xyz",
-        "geometry": { "rotaryOffset": 12, "tableHeight": -30, "toolLength": 0 },
-    }));
+    let mut li = common::machine_preset("B/C tilting table, vertical spindle (Li et al.");
+    li["geometry"] = json!({ "rotaryOffset": 12, "tableHeight": -30, "toolLength": 0 });
+    let li = machine(li);
     let li_chain = Chain {
         work: vec![
             Link::rotary("B", Axis::Y).on_table(),
-            Link::rotary("C", Axis::Z).on_table().at(Vector3::new(12.0, 0.0, 0.0)),
+            Link::rotary("C", Axis::Z)
+                .on_table()
+                .at(Vector3::new(12.0, 0.0, 0.0)),
         ],
-        tool: vec![Link::linear("X", Axis::X), Link::linear("Y", Axis::Y), Link::linear("Z", Axis::Z)],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Y", Axis::Y),
+            Link::linear("Z", Axis::Z),
+        ],
         work_origin: Vector3::new(0.0, 0.0, -30.0),
         tool_tip: Vector3::zeros(),
         tool_axis: Axis::Z,
     };
     // Chanal et al.: Y under the table, C on it turning by +C, X Z B on the spindle, the tip L0
     // below B.
-    let chanal = machine(json!({
-        "kind": "head-table", "type": "CBZ", "linear": "table-y",
-        "geometry": { "tableHeight": 0, "pivotLength": 399.889, "toolLength": 100 },
-        "rotary": { "kReversed": true },
-    }));
+    let chanal = machine(common::machine_preset("B swivel head, C rotary table"));
     let mut c_axis = Link::rotary("C", Axis::Z).on_table();
     c_axis.sign = 1.0;
     let chanal_chain = Chain {
         work: vec![Link::linear("Y", Axis::Y).on_table(), c_axis],
-        tool: vec![Link::linear("X", Axis::X), Link::linear("Z", Axis::Z), Link::rotary("B", Axis::Y)],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Z", Axis::Z),
+            Link::rotary("B", Axis::Y),
+        ],
         work_origin: Vector3::zeros(),
         tool_tip: Vector3::new(0.0, 0.0, -499.889),
         tool_axis: Axis::Z,
@@ -125,7 +138,11 @@ fn every_error_of_the_table_moves_its_axis_frame_by_its_component() {
         for (i, (_, l)) in model.chain.links().enumerate() {
             for c in 0..6 {
                 let expected = if i == link && c == def.component {
-                    if c < 3 { value } else { value.to_radians() }
+                    if c < 3 {
+                        value
+                    } else {
+                        value.to_radians()
+                    }
                 } else {
                     0.0
                 };
@@ -145,11 +162,17 @@ fn errors_of_axes_the_machine_lacks_and_misplaced_geometry_are_refused() {
     };
     assert!(err(json!({ "type": "CBZ", "errors": { "E_Y0A": 0.01 } }))
         .starts_with("machine.errors.E_Y0A: this machine has no A axis"));
-    assert!(err(json!({ "kind": "table-table", "geometry": { "pivotLength": 200 } }))
-        .starts_with("machine.geometry.pivotLength: does not apply to a table-table machine"));
-    assert!(err(json!({ "kind": "head-table", "geometry": { "rotaryOffset": 2 } }))
-        .starts_with("machine.geometry.rotaryOffset: does not apply to a head-table machine"));
-    assert!(err(json!({ "rotary": { "mFrom": 30, "mTo": 10 } })).starts_with("machine.rotary.mTo: "));
+    assert!(
+        err(json!({ "kind": "table-table", "geometry": { "pivotLength": 200 } }))
+            .starts_with("machine.geometry.pivotLength: does not apply to a table-table machine")
+    );
+    assert!(
+        err(json!({ "kind": "head-table", "geometry": { "rotaryOffset": 2 } }))
+            .starts_with("machine.geometry.rotaryOffset: does not apply to a head-table machine")
+    );
+    assert!(
+        err(json!({ "rotary": { "mFrom": 30, "mTo": 10 } })).starts_with("machine.rotary.mTo: ")
+    );
     assert!(err(json!({ "typ": "CBZ" })).starts_with("machine.typ: unknown input"));
     assert!(err(json!({ "type": "CBY" })).starts_with("machine.type: expected one of"));
 }
@@ -170,8 +193,16 @@ fn inverse_kinematics_within_the_travel_round_trips() {
             let mut previous: Option<Vec<f64>> = None;
             for i in 0..40 {
                 let dir = unit(&mut rng);
-                let tip = Vector3::new(rng.range(-80.0, 80.0), rng.range(-80.0, 80.0), rng.range(-80.0, 80.0));
-                let rule = if i % 2 == 0 { BranchRule::SmallestTilt } else { BranchRule::Nearest };
+                let tip = Vector3::new(
+                    rng.range(-80.0, 80.0),
+                    rng.range(-80.0, 80.0),
+                    rng.range(-80.0, 80.0),
+                );
+                let rule = if i % 2 == 0 {
+                    BranchRule::SmallestTilt
+                } else {
+                    BranchRule::Nearest
+                };
                 let s = match model.inverse(&tip, &dir, rule, previous.as_deref()) {
                     Ok(s) => s,
                     Err(e) => {
@@ -197,30 +228,74 @@ fn the_smallest_tilt_rule_gives_li_et_al_s_table_2_and_an_unreachable_pose_is_re
     let model = machine(json!({})).build().unwrap();
     // Tool leaning 30° towards +X (II-3 of the cubic test): B = 30°, C = 180°.
     let d = Vector3::new(-0.5, 0.0, 3f64.sqrt() / 2.0);
-    let s = model.inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None).unwrap();
+    let s = model
+        .inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None)
+        .unwrap();
     let [c, b] = model.rotary_of(&s.q);
     close(b.to_degrees(), 30.0, 1e-9, "B");
     close(c.to_degrees(), 180.0, 1e-9, "C");
     // The same with B limited to [-40°, 20°]: only B = −30°, C = 0° remains.
-    let limited = machine(json!({ "rotary": { "mFrom": -40, "mTo": 20 } })).build().unwrap();
-    let s = limited.inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None).unwrap();
+    let limited = machine(json!({ "rotary": { "mFrom": -40, "mTo": 20 } }))
+        .build()
+        .unwrap();
+    let s = limited
+        .inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None)
+        .unwrap();
     let [c, b] = limited.rotary_of(&s.q);
     close(b.to_degrees(), -30.0, 1e-9, "B");
     close(c.to_degrees(), 0.0, 1e-9, "C");
     // And with B limited to [0°, 20°] the pose cannot be reached.
-    let tight = machine(json!({ "rotary": { "mFrom": 0, "mTo": 20 } })).build().unwrap();
-    let e = tight.inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None).unwrap_err();
-    assert!(e.message.contains("C = 180°, B = 30°") && e.message.contains("B from 0° to 20°"), "{e}");
+    let tight = machine(json!({ "rotary": { "mFrom": 0, "mTo": 20 } }))
+        .build()
+        .unwrap();
+    let e = tight
+        .inverse(&Vector3::zeros(), &d, BranchRule::SmallestTilt, None)
+        .unwrap_err();
+    assert!(
+        e.message.contains("C = 180°, B = 30°") && e.message.contains("B from 0° to 20°"),
+        "{e}"
+    );
 }
 
 #[test]
 fn fit_writes_an_angle_in_the_travel() {
     let d = f64::to_radians;
-    close(fit(d(-90.0), d(-360.0), d(360.0), None).unwrap(), d(270.0), 1e-12, "[0, 360)");
-    close(fit(d(-90.0), d(-120.0), d(120.0), None).unwrap(), d(-90.0), 1e-12, "nearest 0");
-    close(fit(d(10.0), d(-720.0), d(720.0), Some(d(700.0))).unwrap(), d(730.0) - TAU, 1e-12, "near");
+    close(
+        fit(d(-90.0), d(-360.0), d(360.0), None).unwrap(),
+        d(270.0),
+        1e-12,
+        "[0, 360)",
+    );
+    close(
+        fit(d(-90.0), d(-120.0), d(120.0), None).unwrap(),
+        d(-90.0),
+        1e-12,
+        "nearest 0",
+    );
+    close(
+        fit(d(10.0), d(-720.0), d(720.0), Some(d(700.0))).unwrap(),
+        d(730.0) - TAU,
+        1e-12,
+        "near",
+    );
     assert!(fit(d(90.0), d(-30.0), d(30.0), None).is_none());
     assert!(fit(PI, d(-180.0), d(180.0), None).is_some());
+}
+
+#[test]
+fn every_preset_of_the_page_is_a_machine() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../public/presets/machines.json"
+    ))
+    .unwrap();
+    let all: Value = serde_json::from_str(&text).unwrap();
+    let presets = all["presets"].as_array().unwrap();
+    assert!(presets.len() >= 6);
+    for p in presets {
+        let m = machine(p["machine"].clone());
+        m.build().unwrap_or_else(|e| panic!("{}: {e}", p["name"]));
+    }
 }
 
 #[test]
@@ -229,7 +304,9 @@ fn swing_length_and_standard_machine() {
     assert_eq!(m.kind, MachineKind::TableTable);
     assert_eq!(m.rotary_type.name(), "CBZ");
     close(m.swing_length().unwrap(), 100.0, 0.0, "table height");
-    let h = machine(json!({ "kind": "head-head", "geometry": { "pivotLength": 250, "toolLength": 80 } }));
+    let h = machine(
+        json!({ "kind": "head-head", "geometry": { "pivotLength": 250, "toolLength": 80 } }),
+    );
     close(h.swing_length().unwrap(), 330.0, 1e-12, "pivot + tool");
     let _ = Pose::new(0.0, 0.0);
 }

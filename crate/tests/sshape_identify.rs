@@ -6,12 +6,11 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
+use common::chanal::{self, design, identify8, PAPER_L0};
 use common::{close, Rng};
 use fiveaxis::sshape::identify::{fit, parse_measurements, DEFAULT_RTOL};
-use fiveaxis::sshape::machine::{Branch, DefectModel, Point, Reference, PAPER_L0};
-use fiveaxis::sshape::overcut::ToolPath;
+use fiveaxis::sshape::machine::{DefectPoint, DefectReference, PathBranch};
 use fiveaxis::sshape::part::{Curve, Part};
-use fiveaxis::sshape::study::Design;
 use nalgebra::DMatrix;
 
 /// Table 4, "values for simulation": E_X0B = 0.0294 mm, E_A0B = 3.2419e-4 rad, others 0.
@@ -41,8 +40,8 @@ fn csv(values: &[f64]) -> String {
 }
 
 fn sample_text() -> String {
-    let design = Design::new(PAPER_L0, ToolPath::paper(), DefectModel::default()).unwrap();
-    let clean = design.simulate(&TABLE4, SAMPLE_DR).unwrap();
+    let design = design(PAPER_L0, chanal::default_model());
+    let clean = design.simulate(&chanal::errors(&TABLE4), SAMPLE_DR);
     let mut rng = Rng::new(SAMPLE_SEED);
     let noisy: Vec<f64> = clean
         .iter()
@@ -82,8 +81,8 @@ fn the_sample_file_is_what_its_header_says() {
 #[test]
 fn identifying_the_sample_recovers_table_4_and_the_tool_radius() {
     let d = parse_measurements(&std::fs::read_to_string(SAMPLE_PATH).unwrap()).unwrap();
-    let design = Design::new(PAPER_L0, ToolPath::paper(), DefectModel::default()).unwrap();
-    let f = design.identify(&d, true, DEFAULT_RTOL).unwrap();
+    let design = design(PAPER_L0, chanal::default_model());
+    let f = identify8(&design, &d, true, DEFAULT_RTOL);
     assert_eq!(f.rank, 9);
     assert!(f.groups.is_empty());
     let truth = [TABLE4.to_vec(), vec![SAMPLE_DR]].concat();
@@ -110,20 +109,16 @@ fn identifying_the_sample_recovers_table_4_and_the_tool_radius() {
 
 #[test]
 fn round_trip_with_eq_14_as_printed_reports_the_two_pairs_and_recovers_table_4() {
-    // Reference at all axes zero (eq 14 as printed): E_A0Z/E_A0C and E_B0Z/E_B0C come out as
+    // DefectReference at all axes zero (eq 14 as printed): E_A0Z/E_A0C and E_B0Z/E_B0C come out as
     // two inseparable pairs (found from the singular values, not named in the code), each with
     // one identifiable combination, their difference; E_X0B and E_A0B are recovered.
-    for branch in [Branch::Paper, Branch::Continuous] {
-        let model = DefectModel {
-            branch,
-            reference: Reference::AxesZero,
-            point: Point::Tip,
-        };
-        let design = Design::new(PAPER_L0, ToolPath::paper(), model).unwrap();
-        let clean = design.simulate(&TABLE4, 0.0).unwrap();
+    for branch in [PathBranch::Paper, PathBranch::Continuous] {
+        let model = chanal::model(branch, DefectReference::AxesZero, DefectPoint::Tip);
+        let design = design(PAPER_L0, model);
+        let clean = design.simulate(&chanal::errors(&TABLE4), 0.0);
         let mut rng = Rng::new(7);
         let d: Vec<f64> = clean.iter().map(|v| v + 0.001 * gauss(&mut rng)).collect();
-        let f = design.identify(&d, false, DEFAULT_RTOL).unwrap();
+        let f = identify8(&design, &d, false, DEFAULT_RTOL);
         assert_eq!(f.rank, 6, "{branch:?}: {:?}", f.singular_values);
         let mut members: Vec<Vec<String>> = f.groups.iter().map(|g| g.members.clone()).collect();
         members.sort();
@@ -302,8 +297,8 @@ fn the_standard_errors_match_the_scatter_over_repeated_noise_draws() {
     // 300 noise draws of 2 µm on the Table 4 part: the empirical spread of each estimate around
     // its true value agrees with the reported standard error within 15 %, and the estimates are
     // unbiased (mean error below 3 standard errors of the mean).
-    let design = Design::new(PAPER_L0, ToolPath::paper(), DefectModel::default()).unwrap();
-    let clean = design.simulate(&TABLE4, SAMPLE_DR).unwrap();
+    let design = design(PAPER_L0, chanal::default_model());
+    let clean = design.simulate(&chanal::errors(&TABLE4), SAMPLE_DR);
     let truth = [TABLE4.to_vec(), vec![SAMPLE_DR]].concat();
     let mut rng = Rng::new(99);
     let n = 300;
@@ -313,7 +308,7 @@ fn the_standard_errors_match_the_scatter_over_repeated_noise_draws() {
             .iter()
             .map(|v| v + SAMPLE_NOISE * gauss(&mut rng))
             .collect();
-        let f = design.identify(&d, true, DEFAULT_RTOL).unwrap();
+        let f = identify8(&design, &d, true, DEFAULT_RTOL);
         for k in 0..9 {
             let e = f.estimates[k].value.unwrap() - truth[k];
             sum[k] += e;

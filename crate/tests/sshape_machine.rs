@@ -6,11 +6,13 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
+use common::chanal::{
+    self, inverse, machine, pose_of, positions, sensitivities, AxisPose, ERROR_NAMES, PAPER_L0,
+};
 use common::{close, Rng};
 use fiveaxis::chain::Setup;
 use fiveaxis::sshape::machine::{
-    defect_matrix, measurement_poses, poses_along, AxisPose, Branch, DefectModel, Machine, Point,
-    Reference, ERROR_NAMES, PAPER_L0,
+    defect_matrix, measurement_poses, poses_along, DefectPoint, DefectReference, PathBranch,
 };
 use fiveaxis::sshape::overcut::ToolPath;
 use fiveaxis::sshape::part::{Part, SurfaceId};
@@ -62,10 +64,10 @@ fn random_pose(rng: &mut Rng) -> AxisPose {
 fn the_chain_reproduces_every_entry_of_appendix_a() {
     let mut rng = Rng::new(41);
     for l0 in [PAPER_L0, 250.0, 1000.0] {
-        let m = Machine::new(l0).unwrap();
+        let m = chanal::on(l0);
         for _ in 0..500 {
             let p = random_pose(&mut rng);
-            let s = m.sensitivities(&p).unwrap();
+            let s = sensitivities(&m, &p);
             let a = appendix_a(l0, p.x, p.y, p.z, p.b, p.c);
             for (j, sj) in s.iter().enumerate() {
                 for (r, row) in a.iter().enumerate() {
@@ -83,25 +85,24 @@ fn the_chain_reproduces_every_entry_of_appendix_a() {
 
 #[test]
 fn the_sensitivities_are_the_derivatives_of_the_exact_chain() {
-    let m = Machine::new(PAPER_L0).unwrap();
+    let m = chanal::on(PAPER_L0);
+    let with_errors = |xi: &[f64; 8]| {
+        let mut mm = machine(PAPER_L0);
+        mm.errors = chanal::errors(xi);
+        mm.build().unwrap().chain
+    };
     let mut rng = Rng::new(42);
     for _ in 0..100 {
         let p = random_pose(&mut rng);
-        let q = m.positions(&p);
-        let s = m.sensitivities(&p).unwrap();
+        let q = positions(&p);
+        let s = sensitivities(&m, &p);
         for j in 0..8 {
             let h = 1e-7;
             let mut xi = [0.0; 8];
             xi[j] = h;
-            let plus = m
-                .with_errors(&xi)
-                .tool_pose(&q, true, &Setup::None)
-                .unwrap();
+            let plus = with_errors(&xi).tool_pose(&q, true, &Setup::None).unwrap();
             xi[j] = -h;
-            let minus = m
-                .with_errors(&xi)
-                .tool_pose(&q, true, &Setup::None)
-                .unwrap();
+            let minus = with_errors(&xi).tool_pose(&q, true, &Setup::None).unwrap();
             let fd_tip = (plus.tip - minus.tip) / (2.0 * h);
             let fd_axis = (plus.axis - minus.axis) / (2.0 * h);
             assert!(
@@ -117,7 +118,7 @@ fn the_sensitivities_are_the_derivatives_of_the_exact_chain() {
 #[test]
 fn nominal_kinematics_follow_the_papers_tan_relations() {
     // tan C = −R·y/R·x and tan B = √(R·x² + R·y²)/R·z, with B ≥ 0 (Paper branch).
-    let m = Machine::new(PAPER_L0).unwrap();
+    let m = chanal::on(PAPER_L0);
     let mut rng = Rng::new(43);
     for _ in 0..300 {
         let axis = Vector3::new(
@@ -131,7 +132,7 @@ fn nominal_kinematics_follow_the_papers_tan_relations() {
             rng.range(-100.0, 100.0),
             rng.range(-10.0, 40.0),
         );
-        let p = m.inverse(&tip, &axis, Branch::Paper, None).unwrap();
+        let p = inverse(&m, &tip, &axis, PathBranch::Paper, None);
         assert!(p.b >= 0.0);
         close(
             p.c.tan(),
@@ -141,8 +142,9 @@ fn nominal_kinematics_follow_the_papers_tan_relations() {
         );
         close(p.b.tan(), axis.x.hypot(axis.y) / axis.z, 1e-12, "tan B");
         let pose = m
-            .chain
-            .tool_pose(&m.positions(&p), false, &Setup::None)
+            .model
+            .nominal()
+            .tool_pose(&positions(&p), false, &Setup::None)
             .unwrap();
         assert!((pose.tip - tip).norm() < 1e-9 && (pose.axis - axis).norm() < 1e-12);
         // The tool axis in workpiece coordinates is (sin B cos C, −sin B sin C, cos B).
@@ -154,13 +156,12 @@ fn nominal_kinematics_follow_the_papers_tan_relations() {
             c: p.c + std::f64::consts::PI,
             ..p
         };
-        let q = m
-            .inverse(&tip, &axis, Branch::Continuous, Some(&prev))
-            .unwrap();
+        let q = inverse(&m, &tip, &axis, PathBranch::Continuous, Some(&prev));
         close(q.b, -p.b, 1e-12, "B flipped");
         let pose = m
-            .chain
-            .tool_pose(&m.positions(&q), false, &Setup::None)
+            .model
+            .nominal()
+            .tool_pose(&positions(&q), false, &Setup::None)
             .unwrap();
         assert!((pose.tip - tip).norm() < 1e-9 && (pose.axis - axis).norm() < 1e-12);
     }
@@ -168,14 +169,18 @@ fn nominal_kinematics_follow_the_papers_tan_relations() {
 
 #[test]
 fn the_tool_is_vertical_on_the_middle_of_the_s_and_c_is_kept_there() {
-    let m = Machine::new(PAPER_L0).unwrap();
+    let m = chanal::on(PAPER_L0);
     let part = Part::standard().unwrap();
     let path = ToolPath::paper();
     for id in SurfaceId::BOTH {
         let s = part.surface(id);
         let us: Vec<f64> = (0..=1300).map(|i| i as f64 / 1300.0).collect();
-        for branch in [Branch::Paper, Branch::Continuous] {
-            let poses = poses_along(&m, &path, s, &us, branch).unwrap();
+        for branch in [PathBranch::Paper, PathBranch::Continuous] {
+            let poses: Vec<AxisPose> = poses_along(&m, &path, s, &us, branch)
+                .unwrap()
+                .iter()
+                .map(pose_of)
+                .collect();
             for (u, p) in us.iter().zip(&poses) {
                 let inside = *u >= 6.0 / 13.0 - 1e-12 && *u <= 8.0 / 13.0 + 1e-12;
                 if inside {
@@ -200,14 +205,14 @@ fn the_tool_is_vertical_on_the_middle_of_the_s_and_c_is_kept_there() {
             // value at the entry when leaving, by taking B < 0.
             let exit = poses.iter().rposition(|p| p.singular).unwrap() + 1;
             match branch {
-                Branch::Paper => {
+                PathBranch::Paper => {
                     assert!(poses.iter().all(|p| p.b >= 0.0));
                     assert!(
                         (poses[exit].c - poses[exit - 1].c).abs() > 2.0,
                         "C jumps when the tool tilts again"
                     );
                 }
-                Branch::Continuous => {
+                PathBranch::Continuous => {
                     assert!(poses[exit + 5].b < 0.0);
                     assert!((poses[exit].c - poses[exit - 1].c).abs() < 0.7);
                 }
@@ -222,7 +227,7 @@ fn probing_the_table_at_four_c_positions_gives_eqs_14_prime_and_15() {
     // X = 0, Z = L0. The chain's first-order change of the probe tip's y (workpiece coordinates)
     // must be eq 14' for each C; then y180 − y0 = −2·L0·E_A0B and y270 − y90 = 2·E_X0B (eq 15).
     let l0 = 533.889;
-    let m = Machine::new(l0).unwrap();
+    let m = chanal::on(l0);
     let xi = [
         1.3e-5, -2.1e-5, 0.7e-5, 3.3e-5, -1.9e-5, 0.012, 2.4e-4, -4.0e-5,
     ];
@@ -238,7 +243,7 @@ fn probing_the_table_at_four_c_positions_gives_eqs_14_prime_and_15() {
             c,
             singular: false,
         };
-        let s = m.sensitivities(&p).unwrap();
+        let s = sensitivities(&m, &p);
         let dy: f64 = (0..8).map(|j| s[j].0.y * xi[j]).sum();
         let [c0y, a0z, b0z, a0c, b0c, x0b, a0b, _] = xi;
         let eq14 = match k {
@@ -280,23 +285,15 @@ fn probing_the_table_at_four_c_positions_gives_eqs_14_prime_and_15() {
     );
 }
 
-fn pair_cosines(reference: Reference, point: Point, branch: Branch) -> (f64, f64) {
-    let m = Machine::new(PAPER_L0).unwrap();
+fn pair_cosines(reference: DefectReference, point: DefectPoint, branch: PathBranch) -> (f64, f64) {
+    let m = chanal::on(PAPER_L0);
     let part = Part::standard().unwrap();
     let path = ToolPath::paper();
     let pts = part.measurement_points();
     let poses = measurement_poses(&m, &path, &part, &pts, branch).unwrap();
-    let rows = defect_matrix(
-        &m,
-        &poses,
-        &DefectModel {
-            branch,
-            reference,
-            point,
-        },
-    )
-    .unwrap();
-    let col = |j: usize| -> Vec<f64> { rows.iter().map(|r| r[j]).collect() };
+    let rows = defect_matrix(&m, &poses, reference, point).unwrap();
+    let c = chanal::columns(&m);
+    let col = |j: usize| -> Vec<f64> { rows.iter().map(|r| r[c[j]]).collect() };
     let cos = |a: Vec<f64>, b: Vec<f64>| {
         let dot: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
         let na: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -312,22 +309,22 @@ fn e_a0z_and_e_a0c_act_alike_but_for_sign_only_with_eq_14s_reference_at_axes_zer
     // the tip by −Y·E_A0C in z (E_A0Z does not): J_A0Z + J_A0C = (0, 0, −Y), never an exact
     // dependence once projected on normals with a z component.
     let mut rng = Rng::new(44);
-    let m = Machine::new(PAPER_L0).unwrap();
+    let m = chanal::on(PAPER_L0);
     for _ in 0..50 {
         let p = random_pose(&mut rng);
-        let s = m.sensitivities(&p).unwrap();
+        let s = sensitivities(&m, &p);
         assert!((s[1].0 + s[3].0 - Vector3::new(0.0, 0.0, -p.y)).norm() < 1e-9);
         assert!((s[2].0 + s[4].0 - Vector3::new(0.0, 0.0, p.x)).norm() < 1e-9);
     }
     // Eq 14 as printed subtracts the defect at all axes zero, which adds ∓L0 along y (x) to the
     // two columns: then the shared term dominates and the paper's claim holds to within 0.1 %.
-    for branch in [Branch::Paper, Branch::Continuous] {
-        for point in [Point::Tip, Point::Contact] {
-            let (a, b) = pair_cosines(Reference::AxesZero, point, branch);
+    for branch in [PathBranch::Paper, PathBranch::Continuous] {
+        for point in [DefectPoint::Tip, DefectPoint::Contact] {
+            let (a, b) = pair_cosines(DefectReference::AxesZero, point, branch);
             assert!(a < -0.999 && b < -0.999, "axes zero: {a} {b}");
             // With the reference at the workpiece origin (the tool tip there), E_A0Z's lever arm
             // is only the tip height, and the pairs are far from opposite.
-            let (a, b) = pair_cosines(Reference::WorkOrigin, point, branch);
+            let (a, b) = pair_cosines(DefectReference::WorkOrigin, point, branch);
             assert!(a > -0.75 && b > -0.98, "work origin: {a} {b}");
         }
     }
@@ -337,32 +334,17 @@ fn e_a0z_and_e_a0c_act_alike_but_for_sign_only_with_eq_14s_reference_at_axes_zer
 fn errors_that_do_not_depend_on_z_are_the_same_for_both_references() {
     // E_C0Y, E_X0B, E_A0B and E_C0B do not involve Z: subtracting their defect at Z = 0 or at
     // Z = L0 (both at X = Y = B = C = 0) is the same.
-    let m = Machine::new(PAPER_L0).unwrap();
+    let m = chanal::on(PAPER_L0);
     let part = Part::standard().unwrap();
     let path = ToolPath::paper();
     let pts = part.measurement_points();
-    let poses = measurement_poses(&m, &path, &part, &pts, Branch::Paper).unwrap();
-    let a = defect_matrix(
-        &m,
-        &poses,
-        &DefectModel {
-            reference: Reference::WorkOrigin,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let b = defect_matrix(
-        &m,
-        &poses,
-        &DefectModel {
-            reference: Reference::AxesZero,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let poses = measurement_poses(&m, &path, &part, &pts, PathBranch::Paper).unwrap();
+    let a = defect_matrix(&m, &poses, DefectReference::WorkOrigin, DefectPoint::Tip).unwrap();
+    let b = defect_matrix(&m, &poses, DefectReference::AxesZero, DefectPoint::Tip).unwrap();
+    let c = chanal::columns(&m);
     for (ra, rb) in a.iter().zip(&b) {
         for j in [0, 5, 6, 7] {
-            close(ra[j], rb[j], 1e-9, ERROR_NAMES[j]);
+            close(ra[c[j]], rb[c[j]], 1e-9, ERROR_NAMES[j]);
         }
     }
 }

@@ -2,7 +2,7 @@
 //! on a grid over the face (module docs of [`super`]).
 
 use super::zones::Test;
-use super::{Grid, Options, Piece, Reference};
+use super::{CubicGrid, CubicPiece, CubicReference, Options};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use nalgebra::Vector3;
@@ -10,9 +10,9 @@ use nalgebra::Vector3;
 /// The simulated machined face (like Fig 16(b)): a height field of the ball-end zig-zag.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeightMap {
-    /// Grid points along X.
+    /// CubicGrid points along X.
     pub nx: usize,
-    /// Grid points along Y.
+    /// CubicGrid points along Y.
     pub ny: usize,
     /// X of the grid columns, mm: `nx` equal steps from `−1.5·zoneSize` to `+1.5·zoneSize`.
     pub x: Vec<f64>,
@@ -23,7 +23,7 @@ pub struct HeightMap {
     /// Average height over each zone (Table 1 order), mm: the trapezoidal rule on the grid
     /// (a point on a zone border counts half for each zone). Includes the mean scallop height.
     pub zone_average: Vec<f64>,
-    /// The actual step between passes, mm (see [`Piece::pick`]).
+    /// The actual step between passes, mm (see [`CubicPiece::pick`]).
     pub step: f64,
     /// Closed-form scallop height for that step, `r − √(r² − (step/2)²)`, mm.
     pub scallop: f64,
@@ -142,15 +142,17 @@ impl Face {
 /// The rows of the automatic grid: four per pass step, aligned with the passes (the face starts
 /// on a pass), so that whole scallop periods can be averaged without aliasing; at most
 /// [`MAX_GRID_SIDE`] and `MAX_GRID_POINTS / nx`.
-pub fn auto_rows(setup: &Piece, nx: usize) -> usize {
+pub fn auto_rows(setup: &CubicPiece, nx: usize) -> usize {
     let rows = 12 * (setup.passes_per_zone() - 1) + 1;
-    rows.min(MAX_GRID_SIDE).min(MAX_GRID_POINTS / nx.max(1)).max(4)
+    rows.min(MAX_GRID_SIDE)
+        .min(MAX_GRID_POINTS / nx.max(1))
+        .max(4)
 }
 
 /// Simulates the machined face on an `nx × ny` grid (module docs; like Fig 16(b)); `ny` left out
 /// is [`auto_rows`].
 ///
-/// Every zone is cut by its zig-zag passes along the face's first axis ([`Piece::pick`]); a pass is the
+/// Every zone is cut by its zig-zag passes along the face's first axis ([`CubicPiece::pick`]); a pass is the
 /// segment between the actual tool centres (from the chain, eqs 1 and 14) of its two end points,
 /// and the ball swept along it removes everything above its lower surface. The face is the
 /// lowest of all passes and the stock, whatever the order of cutting. Only passes near a grid
@@ -158,16 +160,16 @@ pub fn auto_rows(setup: &Piece, nx: usize) -> usize {
 /// the face; a pass whose centres are at least `zmin` high cannot cut below `M` farther than
 /// `√(r² − (zmin − M)²)` from its line, so the second, exact sweep stops there.
 ///
-/// Heights are in the frame and reference of `options`: [`Reference::ZoneIHeight`] subtracts
-/// the average, [`Reference::ZoneIPlane`] the least-squares plane, of ZONE I's central square
+/// Heights are in the frame and reference of `options`: [`CubicReference::ZoneIHeight`] subtracts
+/// the average, [`CubicReference::ZoneIPlane`] the least-squares plane, of ZONE I's central square
 /// (inset from its borders by `r`, at most a quarter of the zone side), which the balls of the
 /// neighbouring zones do not reach (they would bias the reference by up to a few per cent of
 /// the height differences).
 pub fn height_map(
     machine: &Machine,
-    setup: &Piece,
+    setup: &CubicPiece,
     options: &Options,
-    grid: &Grid,
+    grid: &CubicGrid,
 ) -> Result<HeightMap> {
     setup.validate()?;
     let nx = grid.nx;
@@ -274,12 +276,12 @@ pub fn height_map(
         idx.iter().map(|&(i, wi)| wi * h[i]).sum::<f64>() / w
     };
     match options.reference {
-        Reference::Workpiece => {}
-        Reference::ZoneIHeight => {
+        CubicReference::Workpiece => {}
+        CubicReference::ZoneIHeight => {
             let m = mean(&grid.h, &reference_area);
             grid.h.iter_mut().for_each(|h| *h -= m);
         }
-        Reference::ZoneIPlane => {
+        CubicReference::ZoneIPlane => {
             // Weighted least squares over ZONE I's central points: on a rectangular grid the
             // centred x and y are orthogonal, so each slope is a one-dimensional regression.
             let idx = &reference_area;

@@ -45,7 +45,7 @@
 //! nominal zone centre (exactly, mm) and its **slopes** `∂h/∂x`, `∂h/∂y` (the tilt). The ball
 //! radius cancels. **Sign** (Section 4.2): positive is a surface above nominal, material left.
 //!
-//! **Frames** ([`Reference`], `transform`): with the workpiece transform (eqs 10–12, Fig 12) the
+//! **Frames** ([`CubicReference`], `transform`): with the workpiece transform (eqs 10–12, Fig 12) the
 //! workpiece is set up with every axis at zero, where it coincides with the nominal table
 //! ([`Setup::AtPose`]), so a zone cut there (ZONE I on a Group I machine) is exact; without it
 //! (eq 2, Fig 10) W is the erroneous table frame. The heights are measured from W, or from the
@@ -75,7 +75,7 @@ use zones::Test;
 
 crate::choices! {
     /// What the heights are measured from (module docs).
-    pub enum Reference {
+    pub enum CubicReference {
         /// The workpiece frame: the nominal face is at height 0.
         Workpiece = "workpiece" {
             label: "Workpiece frame (nominal face)",
@@ -107,7 +107,7 @@ crate::inputs! {
     /// The vertical set-up never enters the first-order zone heights (a small rotation moves a
     /// point along `n` in proportion to its distance from the axis across `n`); the workpiece's
     /// place on the table does.
-    pub struct Piece {
+    pub struct CubicPiece {
         /// Height of the face above the table surface, mm.
         pub workpiece_height: f64 = "workpieceHeight" optional {
             label: "Workpiece height",
@@ -177,9 +177,9 @@ crate::inputs! {
             default: DefaultValue::Empty,
         },
         /// The test piece.
-        pub setup: Piece = "setup" optional {
+        pub setup: CubicPiece = "setup" optional {
             label: "Test piece",
-            kind: Kind::Object(Piece::FIELDS),
+            kind: Kind::Object(CubicPiece::FIELDS),
             default: DefaultValue::Empty,
         },
         /// With the workpiece transform `M_WC` (eqs 10–12): set up with every axis at zero.
@@ -191,10 +191,10 @@ crate::inputs! {
             group: "Model",
         },
         /// What the heights are measured from.
-        pub reference: Reference = "reference" optional {
+        pub reference: CubicReference = "reference" optional {
             label: "Heights measured from",
             help: "The nominal face, or ZONE I as Li et al. measure (its height, or its plane).",
-            kind: Kind::Choice(Reference::CHOICES),
+            kind: Kind::Choice(CubicReference::CHOICES),
             default: DefaultValue::Str("workpiece"),
             group: "Model",
         },
@@ -203,7 +203,7 @@ crate::inputs! {
 
 crate::inputs! {
     /// The grid of the simulated face.
-    pub struct Grid {
+    pub struct CubicGrid {
         /// Points along the face's first axis.
         pub nx: usize = "nx" {
             label: "Height-map points along {U}",
@@ -221,7 +221,7 @@ crate::inputs! {
     }
 }
 
-impl Piece {
+impl CubicPiece {
     /// Checks what the field table cannot: the pick against the ball and the number of passes
     /// (messages name `setup.<field>`).
     pub fn validate(&self) -> Result<()> {
@@ -238,7 +238,10 @@ impl Piece {
         if self.pick > self.zone_size {
             return Err(Error::field(
                 "setup.pick",
-                format!("must be at most the zone size {} mm, got {}", self.zone_size, self.pick),
+                format!(
+                    "must be at most the zone size {} mm, got {}",
+                    self.zone_size, self.pick
+                ),
             ));
         }
         if self.passes_per_zone() > MAX_PASSES_PER_ZONE {
@@ -298,14 +301,14 @@ pub struct Options {
     /// With the workpiece transform `M_WC`: the workpiece set with every axis at zero.
     pub transform: bool,
     /// What the heights are measured from.
-    pub reference: Reference,
+    pub reference: CubicReference,
 }
 
 impl Default for Options {
     fn default() -> Self {
         Self {
             transform: true,
-            reference: Reference::Workpiece,
+            reference: CubicReference::Workpiece,
         }
     }
 }
@@ -350,18 +353,22 @@ impl ZonePlane {
 
 /// Planes of the nine zones (Table 1 order) measured from `reference`: ZONE I (index 0) is the
 /// reference zone. Linear in the planes, so it applies to sensitivities as well.
-fn relative(planes: &[ZonePlane], centres: &[(f64, f64)], reference: Reference) -> Vec<ZonePlane> {
+fn relative(
+    planes: &[ZonePlane],
+    centres: &[(f64, f64)],
+    reference: CubicReference,
+) -> Vec<ZonePlane> {
     let z1 = planes[0];
     planes
         .iter()
         .zip(centres)
         .map(|(p, &(x, y))| match reference {
-            Reference::Workpiece => *p,
-            Reference::ZoneIHeight => ZonePlane {
+            CubicReference::Workpiece => *p,
+            CubicReference::ZoneIHeight => ZonePlane {
                 height: p.height - z1.height,
                 ..*p
             },
-            Reference::ZoneIPlane => ZonePlane {
+            CubicReference::ZoneIPlane => ZonePlane {
                 height: p.height - z1.at(centres[0], x, y),
                 slope_x: p.slope_x - z1.slope_x,
                 slope_y: p.slope_y - z1.slope_y,
@@ -425,7 +432,7 @@ pub struct Analysis {
 
 /// Zone heights, slopes and sensitivities of the cubic-machining test on `machine` (module
 /// docs).
-pub fn analyze(machine: &Machine, piece: &Piece, options: &Options) -> Result<Analysis> {
+pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Result<Analysis> {
     let test = Test::new(machine, piece, options)?;
     let centres: Vec<(f64, f64)> = test.zones.iter().map(|z| z.centre).collect();
     let exact: Vec<ZonePlane> = test

@@ -1,7 +1,7 @@
 //! The nine zones on one machine: their poses from the inverse kinematics, the exact machined
 //! plane of each, and its first-order sensitivities (module docs of [`super`]).
 
-use super::{Options, Piece, ZonePlane, BRANCH};
+use super::{CubicPiece, Options, ZonePlane, BRANCH};
 use crate::chain::{Chain, Setup};
 use crate::error::{Error, Result};
 use crate::machine::errors::ErrorDef;
@@ -29,15 +29,60 @@ const Q2: f64 = 0.353_553_390_593_273_8; // √2/4
 /// centre; II-1 left, II-2 bottom, II-3 right, II-4 top; III-1 bottom-left, III-2 bottom-right,
 /// III-3 top-right, III-4 top-left. The tool leans 30° towards the centre of the face.
 pub const ZONES: [ZoneDef; 9] = [
-    ZoneDef { name: "I", col: 0, row: 0, tool: [0.0, 0.0, 1.0] },
-    ZoneDef { name: "II-1", col: -1, row: 0, tool: [0.5, 0.0, S3] },
-    ZoneDef { name: "II-2", col: 0, row: -1, tool: [0.0, 0.5, S3] },
-    ZoneDef { name: "II-3", col: 1, row: 0, tool: [-0.5, 0.0, S3] },
-    ZoneDef { name: "II-4", col: 0, row: 1, tool: [0.0, -0.5, S3] },
-    ZoneDef { name: "III-1", col: -1, row: -1, tool: [Q2, Q2, S3] },
-    ZoneDef { name: "III-2", col: 1, row: -1, tool: [-Q2, Q2, S3] },
-    ZoneDef { name: "III-3", col: 1, row: 1, tool: [-Q2, -Q2, S3] },
-    ZoneDef { name: "III-4", col: -1, row: 1, tool: [Q2, -Q2, S3] },
+    ZoneDef {
+        name: "I",
+        col: 0,
+        row: 0,
+        tool: [0.0, 0.0, 1.0],
+    },
+    ZoneDef {
+        name: "II-1",
+        col: -1,
+        row: 0,
+        tool: [0.5, 0.0, S3],
+    },
+    ZoneDef {
+        name: "II-2",
+        col: 0,
+        row: -1,
+        tool: [0.0, 0.5, S3],
+    },
+    ZoneDef {
+        name: "II-3",
+        col: 1,
+        row: 0,
+        tool: [-0.5, 0.0, S3],
+    },
+    ZoneDef {
+        name: "II-4",
+        col: 0,
+        row: 1,
+        tool: [0.0, -0.5, S3],
+    },
+    ZoneDef {
+        name: "III-1",
+        col: -1,
+        row: -1,
+        tool: [Q2, Q2, S3],
+    },
+    ZoneDef {
+        name: "III-2",
+        col: 1,
+        row: -1,
+        tool: [-Q2, Q2, S3],
+    },
+    ZoneDef {
+        name: "III-3",
+        col: 1,
+        row: 1,
+        tool: [-Q2, -Q2, S3],
+    },
+    ZoneDef {
+        name: "III-4",
+        col: -1,
+        row: 1,
+        tool: [Q2, -Q2, S3],
+    },
 ];
 
 /// A zone placed on the face: its definition, centre and the pose used to cut it.
@@ -59,14 +104,14 @@ pub(super) struct Zone {
 pub(super) struct Test {
     model: Model,
     setup: Setup,
-    piece: Piece,
+    piece: CubicPiece,
     /// The face frame `(u, v, n)` in workpiece coordinates.
     frame: [Vector3<f64>; 3],
     pub(super) zones: Vec<Zone>,
 }
 
 impl Test {
-    pub(super) fn new(machine: &Machine, piece: &Piece, options: &Options) -> Result<Self> {
+    pub(super) fn new(machine: &Machine, piece: &CubicPiece, options: &Options) -> Result<Self> {
         piece.validate()?;
         let mut model = machine.build()?;
         let frame = machine.face_frame();
@@ -88,9 +133,9 @@ impl Test {
                 def.row as f64 * piece.zone_size,
             );
             let tip = nominal_tip(&frame, centre.0, centre.1, &dir, piece.tool_radius);
-            let s = model
-                .inverse(&tip, &dir, BRANCH, None)
-                .map_err(|e| Error::field("machine", format!("ZONE {}: {}", def.name, e.message)))?;
+            let s = model.inverse(&tip, &dir, BRANCH, None).map_err(|e| {
+                Error::field("machine", format!("ZONE {}: {}", def.name, e.message))
+            })?;
             zones.push(Zone {
                 def,
                 centre,

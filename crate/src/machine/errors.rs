@@ -142,30 +142,177 @@ const fn ang(
 /// position along it, two tilts, the zero position), then the squareness of the linear axes.
 pub const TABLE: [ErrorDef; 21] = [
     // A (about X)
-    pos("E_Y0A", 'A', 1, "A axis position along Y", "The A axis line lies this far towards +Y of where the control believes it is.", &[]),
-    pos("E_Z0A", 'A', 2, "A axis position along Z", "The A axis line lies this far towards +Z of where the control believes it is.", &[]),
-    pos("E_X0A", 'A', 0, "A axis position along its axis (X)", "Shifts everything A carries along X, like an offset of the X axis.", &[]),
-    ang("E_B0A", 'A', 4, "A axis tilt about Y", "The A axis is turned about Y: it is not parallel to X in the XZ plane.", &[]),
-    ang("E_C0A", 'A', 5, "A axis tilt about Z", "The A axis is turned about Z: it is not parallel to X in the XY plane.", &[]),
-    ang("E_A0A", 'A', 3, "A axis zero position", "A stands at this angle when the control shows 0°.", &[]),
+    pos(
+        "E_Y0A",
+        'A',
+        1,
+        "A axis position along Y",
+        "The A axis line lies this far towards +Y of where the control believes it is.",
+        &[],
+    ),
+    pos(
+        "E_Z0A",
+        'A',
+        2,
+        "A axis position along Z",
+        "The A axis line lies this far towards +Z of where the control believes it is.",
+        &[],
+    ),
+    pos(
+        "E_X0A",
+        'A',
+        0,
+        "A axis position along its axis (X)",
+        "Shifts everything A carries along X, like an offset of the X axis.",
+        &[],
+    ),
+    ang(
+        "E_B0A",
+        'A',
+        4,
+        "A axis tilt about Y",
+        "The A axis is turned about Y: it is not parallel to X in the XZ plane.",
+        &[],
+    ),
+    ang(
+        "E_C0A",
+        'A',
+        5,
+        "A axis tilt about Z",
+        "The A axis is turned about Z: it is not parallel to X in the XY plane.",
+        &[],
+    ),
+    ang(
+        "E_A0A",
+        'A',
+        3,
+        "A axis zero position",
+        "A stands at this angle when the control shows 0°.",
+        &[],
+    ),
     // B (about Y)
-    pos("E_X0B", 'B', 0, "B axis position along X", "The B axis line lies this far towards +X of where the control believes it is.", &[alias("δxBY", "dxBY")]),
-    pos("E_Z0B", 'B', 2, "B axis position along Z", "The B axis line lies this far towards +Z of where the control believes it is.", &[alias("δzBY", "dzBY")]),
-    pos("E_Y0B", 'B', 1, "B axis position along its axis (Y)", "Shifts everything B carries along Y, like an offset of the Y axis.", &[alias("δyBY", "dyBY")]),
-    ang("E_A0B", 'B', 3, "B axis tilt about X", "The B axis is turned about X: it is not parallel to Y in the YZ plane.", &[alias("αBY", "alphaBY")]),
-    ang("E_C0B", 'B', 5, "B axis tilt about Z", "The B axis is turned about Z: it is not parallel to Y in the XY plane.", &[alias("γBY", "gammaBY")]),
-    ang("E_B0B", 'B', 4, "B axis zero position", "B stands at this angle when the control shows 0°.", &[alias("βBY", "betaBY")]),
+    pos(
+        "E_X0B",
+        'B',
+        0,
+        "B axis position along X",
+        "The B axis line lies this far towards +X of where the control believes it is.",
+        &[alias("δxBY", "dxBY")],
+    ),
+    pos(
+        "E_Z0B",
+        'B',
+        2,
+        "B axis position along Z",
+        "The B axis line lies this far towards +Z of where the control believes it is.",
+        &[alias("δzBY", "dzBY")],
+    ),
+    pos(
+        "E_Y0B",
+        'B',
+        1,
+        "B axis position along its axis (Y)",
+        "Shifts everything B carries along Y, like an offset of the Y axis.",
+        &[alias("δyBY", "dyBY")],
+    ),
+    ang(
+        "E_A0B",
+        'B',
+        3,
+        "B axis tilt about X",
+        "The B axis is turned about X: it is not parallel to Y in the YZ plane.",
+        &[alias("αBY", "alphaBY")],
+    ),
+    ang(
+        "E_C0B",
+        'B',
+        5,
+        "B axis tilt about Z",
+        "The B axis is turned about Z: it is not parallel to Y in the XY plane.",
+        &[alias("γBY", "gammaBY")],
+    ),
+    ang(
+        "E_B0B",
+        'B',
+        4,
+        "B axis zero position",
+        "B stands at this angle when the control shows 0°.",
+        &[alias("βBY", "betaBY")],
+    ),
     // C (about Z)
-    pos("E_X0C", 'C', 0, "C axis position along X", "The C axis line lies this far towards +X of where the control believes it is.", &[alias("δxCB", "dxCB")]),
-    pos("E_Y0C", 'C', 1, "C axis position along Y", "The C axis line lies this far towards +Y of where the control believes it is.", &[]),
-    pos("E_Z0C", 'C', 2, "C axis position along its axis (Z)", "Shifts everything C carries along Z, like an offset of the Z axis.", &[]),
-    ang("E_A0C", 'C', 3, "C axis tilt about X", "The C axis is turned about X: it is not parallel to Z in the YZ plane.", &[alias("αCB", "alphaCB")]),
-    ang("E_B0C", 'C', 4, "C axis tilt about Y", "The C axis is turned about Y: it is not parallel to Z in the XZ plane.", &[]),
-    ang("E_C0C", 'C', 5, "C axis zero position", "C stands at this angle when the control shows 0°.", &[]),
+    pos(
+        "E_X0C",
+        'C',
+        0,
+        "C axis position along X",
+        "The C axis line lies this far towards +X of where the control believes it is.",
+        &[alias("δxCB", "dxCB")],
+    ),
+    pos(
+        "E_Y0C",
+        'C',
+        1,
+        "C axis position along Y",
+        "The C axis line lies this far towards +Y of where the control believes it is.",
+        &[],
+    ),
+    pos(
+        "E_Z0C",
+        'C',
+        2,
+        "C axis position along its axis (Z)",
+        "Shifts everything C carries along Z, like an offset of the Z axis.",
+        &[],
+    ),
+    ang(
+        "E_A0C",
+        'C',
+        3,
+        "C axis tilt about X",
+        "The C axis is turned about X: it is not parallel to Z in the YZ plane.",
+        &[alias("αCB", "alphaCB")],
+    ),
+    ang(
+        "E_B0C",
+        'C',
+        4,
+        "C axis tilt about Y",
+        "The C axis is turned about Y: it is not parallel to Z in the XZ plane.",
+        &[],
+    ),
+    ang(
+        "E_C0C",
+        'C',
+        5,
+        "C axis zero position",
+        "C stands at this angle when the control shows 0°.",
+        &[],
+    ),
     // squareness of the linear axes, X the reference
-    ang("E_C0Y", 'Y', 5, "Squareness of Y to X", "The Y axis is turned about Z: the angle between the X and Y motions is 90° plus this.", &[]),
-    ang("E_A0Z", 'Z', 3, "Squareness of Z to Y", "The Z axis is turned about X: it leans towards −Y (positive value) as it moves up.", &[]),
-    ang("E_B0Z", 'Z', 4, "Squareness of Z to X", "The Z axis is turned about Y: it leans towards +X (positive value) as it moves up.", &[]),
+    ang(
+        "E_C0Y",
+        'Y',
+        5,
+        "Squareness of Y to X",
+        "The Y axis is turned about Z: the angle between the X and Y motions is 90° plus this.",
+        &[],
+    ),
+    ang(
+        "E_A0Z",
+        'Z',
+        3,
+        "Squareness of Z to Y",
+        "The Z axis is turned about X: it leans towards −Y (positive value) as it moves up.",
+        &[],
+    ),
+    ang(
+        "E_B0Z",
+        'Z',
+        4,
+        "Squareness of Z to X",
+        "The Z axis is turned about Y: it leans towards +X (positive value) as it moves up.",
+        &[],
+    ),
 ];
 
 /// The entry named `name` (exact ISO spelling).
@@ -228,9 +375,8 @@ impl ErrorValues {
     pub fn from_aliases(values: &[(&str, f64)]) -> Result<Self> {
         let mut e = Self::none();
         for (symbol, v) in values {
-            let (def, a) = alias_of(symbol).ok_or_else(|| {
-                Error::field(join("errors", symbol), "not a symbol of any paper")
-            })?;
+            let (def, a) = alias_of(symbol)
+                .ok_or_else(|| Error::field(join("errors", symbol), "not a symbol of any paper"))?;
             e.set(def.name, a.sign * v)?;
         }
         Ok(e)
@@ -296,7 +442,10 @@ pub fn read_values(v: &Value, path: &str) -> Result<Value> {
 /// Reads a list of error names (schema [`crate::schema::Kind::ErrorNames`]).
 pub fn read_names(v: &Value, path: &str) -> Result<Value> {
     let list = v.as_array().ok_or_else(|| {
-        Error::field(path, "expected a list of ISO 230-1 error names, e.g. [\"E_X0B\"]")
+        Error::field(
+            path,
+            "expected a list of ISO 230-1 error names, e.g. [\"E_X0B\"]",
+        )
     })?;
     let mut seen: Vec<&str> = Vec::new();
     for (i, item) in list.iter().enumerate() {
@@ -328,8 +477,17 @@ mod tests {
                 format!("E_{}0{}", letters[d.component], d.axis),
                 "entry {i}"
             );
-            assert_eq!(d.quantity == Quantity::SmallAngle, d.component >= 3, "{}", d.name);
-            assert!(TABLE[..i].iter().all(|o| o.name != d.name), "{} twice", d.name);
+            assert_eq!(
+                d.quantity == Quantity::SmallAngle,
+                d.component >= 3,
+                "{}",
+                d.name
+            );
+            assert!(
+                TABLE[..i].iter().all(|o| o.name != d.name),
+                "{} twice",
+                d.name
+            );
         }
         // Six per rotary axis, three squareness errors.
         for axis in ['A', 'B', 'C'] {
@@ -345,7 +503,10 @@ mod tests {
         let e = read_values(&serde_json::json!({ "E_A0b": 0.01 }), "errors").unwrap_err();
         assert!(e.message.contains("Did you mean E_A0B?"), "{}", e.message);
         let e = read_values(&serde_json::json!({ "E_X0B": 6 }), "errors").unwrap_err();
-        assert_eq!(e.to_string(), "errors.E_X0B: must be between -5 mm and 5 mm, got 6");
+        assert_eq!(
+            e.to_string(),
+            "errors.E_X0B: must be between -5 mm and 5 mm, got 6"
+        );
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //!   table's rotary axes) and which the spindle (under the head's), in the order they are
 //!   stacked from the bed.
 //!
-//! # Geometry (all axes at zero, machine coordinates, mm)
+//! # MachineGeometry (all axes at zero, machine coordinates, mm)
 //! The machine origin is the *rotary centre*: on the bed-side table axis (M for table-table, K
 //! for head-table) or, for head-head, where the workpiece is set. Chain branches
 //! (`crate::chain`'s notation):
@@ -148,14 +148,14 @@ crate::choices! {
 
 crate::inputs! {
     /// The geometry that matters for the errors, mm (module docs).
-    pub struct Geometry {
+    pub struct MachineGeometry {
         /// Distance between the two rotary axes along their common perpendicular, mm.
         pub rotary_offset: f64 = "rotaryOffset" optional {
             label: "Offset between the rotary axes",
             help: "How far K's axis lies from M's along the direction square to both (X for B and C, Y for A and C, Z for A and B); 0: they intersect.",
             kind: schema::number(Quantity::Length, -2000.0, 2000.0),
             default: DefaultValue::Num(0.0),
-            group: "Geometry",
+            group: "MachineGeometry",
             kinds: &["table-table", "head-head"],
         },
         /// Table surface from the machine origin along the spindle direction, mm.
@@ -164,7 +164,7 @@ crate::inputs! {
             help: "Distance of the table surface from the machine origin (the rotary centre of a rotary table) towards the spindle at zero; negative below it.",
             kind: schema::number(Quantity::Length, -2000.0, 2000.0),
             default: DefaultValue::Num(100.0),
-            group: "Geometry",
+            group: "MachineGeometry",
         },
         /// Head's last rotary axis to the spindle nose, mm.
         pub pivot_length: f64 = "pivotLength" optional {
@@ -172,7 +172,7 @@ crate::inputs! {
             help: "From the axis of the head's tilting axis (M) to the spindle nose (gauge line), along the spindle.",
             kind: schema::number(Quantity::Length, 0.0, 5000.0),
             default: DefaultValue::Num(300.0),
-            group: "Geometry",
+            group: "MachineGeometry",
             kinds: &["head-table", "head-head"],
         },
         /// Spindle nose to tool tip, mm.
@@ -181,14 +181,14 @@ crate::inputs! {
             help: "From the spindle nose (gauge line) to the tool tip.",
             kind: schema::number(Quantity::Length, 0.0, 2000.0),
             default: DefaultValue::Num(100.0),
-            group: "Geometry",
+            group: "MachineGeometry",
         },
     }
 }
 
 crate::inputs! {
-    /// Travel and sense of rotation of the two rotary axes (angles in radians inside).
-    pub struct Travel {
+    /// RotaryTravel and sense of rotation of the two rotary axes (angles in radians inside).
+    pub struct RotaryTravel {
         /// Lowest position of K.
         pub k_from: f64 = "kFrom" optional {
             label: "{K} travel from",
@@ -267,16 +267,16 @@ crate::inputs! {
             default: DefaultValue::Str("spindle-xyz"),
             group: "Machine",
         },
-        /// Geometry, mm.
-        pub geometry: Geometry = "geometry" optional {
-            label: "Geometry",
-            kind: Kind::Object(Geometry::FIELDS),
+        /// MachineGeometry, mm.
+        pub geometry: MachineGeometry = "geometry" optional {
+            label: "MachineGeometry",
+            kind: Kind::Object(MachineGeometry::FIELDS),
             default: DefaultValue::Empty,
         },
-        /// Travel and sense of the rotary axes.
-        pub rotary: Travel = "rotary" optional {
+        /// RotaryTravel and sense of the rotary axes.
+        pub rotary: RotaryTravel = "rotary" optional {
             label: "Rotary axes",
-            kind: Kind::Object(Travel::FIELDS),
+            kind: Kind::Object(RotaryTravel::FIELDS),
             default: DefaultValue::Empty,
         },
         /// The geometric errors by ISO 230-1 name (mm; degrees at the edge, rad inside).
@@ -330,7 +330,9 @@ impl Machine {
 
     /// The letters of the machine's axes: the two rotary axes and X, Y, Z.
     pub fn has_axis(&self, letter: char) -> bool {
-        matches!(letter, 'X' | 'Y' | 'Z') || letter == self.k().letter() || letter == self.m().letter()
+        matches!(letter, 'X' | 'Y' | 'Z')
+            || letter == self.k().letter()
+            || letter == self.m().letter()
     }
 
     /// The entries of the error table that belong to this machine's axes, in table order.
@@ -400,10 +402,7 @@ impl Machine {
             motion: "linear",
             side,
             role: "",
-            description: format!(
-                "{}: linear axis, moves the {side}",
-                a.letter()
-            ),
+            description: format!("{}: linear axis, moves the {side}", a.letter()),
         };
         let rot = |letter: char, side: &'static str, role: &'static str, what: String| AxisInfo {
             name: letter.to_string(),
@@ -415,11 +414,26 @@ impl Machine {
         let mut out: Vec<AxisInfo> = table.iter().map(|a| lin(a, "table")).collect();
         match self.kind {
             MachineKind::TableTable => {
-                out.push(rot(m, "table", "M", format!("{m} (M): tilting table axis on the bed, carries {k}")));
-                out.push(rot(k, "table", "K", format!("{k} (K): rotary table on {m}, carries the workpiece")));
+                out.push(rot(
+                    m,
+                    "table",
+                    "M",
+                    format!("{m} (M): tilting table axis on the bed, carries {k}"),
+                ));
+                out.push(rot(
+                    k,
+                    "table",
+                    "K",
+                    format!("{k} (K): rotary table on {m}, carries the workpiece"),
+                ));
             }
             MachineKind::HeadTable => {
-                out.push(rot(k, "table", "K", format!("{k} (K): rotary table, carries the workpiece")));
+                out.push(rot(
+                    k,
+                    "table",
+                    "K",
+                    format!("{k} (K): rotary table, carries the workpiece"),
+                ));
             }
             MachineKind::HeadHead => {}
         }
@@ -427,11 +441,26 @@ impl Machine {
         match self.kind {
             MachineKind::TableTable => {}
             MachineKind::HeadTable => {
-                out.push(rot(m, "spindle", "M", format!("{m} (M): head axis, tilts the spindle")));
+                out.push(rot(
+                    m,
+                    "spindle",
+                    "M",
+                    format!("{m} (M): head axis, tilts the spindle"),
+                ));
             }
             MachineKind::HeadHead => {
-                out.push(rot(k, "spindle", "K", format!("{k} (K): head axis on the ram, carries {m}")));
-                out.push(rot(m, "spindle", "M", format!("{m} (M): head axis on {k}, tilts the spindle")));
+                out.push(rot(
+                    k,
+                    "spindle",
+                    "K",
+                    format!("{k} (K): head axis on the ram, carries {m}"),
+                ));
+                out.push(rot(
+                    m,
+                    "spindle",
+                    "M",
+                    format!("{m} (M): head axis on {k}, tilts the spindle"),
+                ));
             }
         }
         out
@@ -493,8 +522,9 @@ impl Machine {
         self.validate("machine")?;
         let mut chain = self.nominal_chain();
         for (name, value) in &self.errors.0 {
-            let def = errors::find(name)
-                .ok_or_else(|| Error::field(format!("machine.errors.{name}"), "unknown error name"))?;
+            let def = errors::find(name).ok_or_else(|| {
+                Error::field(format!("machine.errors.{name}"), "unknown error name")
+            })?;
             let link = chain.index_of(&def.axis.to_string()).ok_or_else(|| {
                 Error::field(
                     format!("machine.errors.{name}"),
@@ -656,7 +686,9 @@ impl Model {
                         (x[0].abs() * 1e9).round(),
                     )
                 };
-                key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal)
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
             }),
         };
         let [k, m] = chosen.ok_or_else(|| self.unreachable(&sol.solutions))?;
@@ -677,7 +709,13 @@ impl Model {
         let d = |x: f64| format!("{:.4}°", x.to_degrees()).replace(".0000°", "°");
         let needs: Vec<String> = solutions
             .iter()
-            .map(|s| format!("{kl} = {}, {ml} = {}", d(s.k / lay.k_factor), d(s.m / lay.m_factor)))
+            .map(|s| {
+                format!(
+                    "{kl} = {}, {ml} = {}",
+                    d(s.k / lay.k_factor),
+                    d(s.m / lay.m_factor)
+                )
+            })
             .collect();
         Error::field(
             "",
@@ -713,7 +751,11 @@ pub fn fit(a: f64, lo: f64, hi: f64, near: Option<f64>) -> Option<f64> {
         Some(p) => nearest(p),
         None => {
             let canonical = a.rem_euclid(TAU);
-            let canonical = if TAU - canonical < 1e-12 { 0.0 } else { canonical };
+            let canonical = if TAU - canonical < 1e-12 {
+                0.0
+            } else {
+                canonical
+            };
             if canonical >= lo - tol && canonical <= hi + tol {
                 canonical
             } else {

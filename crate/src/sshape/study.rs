@@ -1,20 +1,163 @@
-//! The S-shape study as the page and scripts use it: one set of inputs (machine, tool, model
-//! options), and the computations built from [`super::part`], [`super::overcut`],
+//! The S-shape study as the page and scripts use it: its inputs (the machine, the tool, the
+//! model options), and the computations built from [`super::part`], [`super::overcut`],
 //! [`super::machine`] and [`super::identify`].
 
-use super::identify::{self, Fit};
+use super::identify::{self, Fit, DEFAULT_RTOL};
 use super::machine::{
-    defect_matrix, measurement_poses, DefectModel, Errors, Machine, PointPose, ERROR_NAMES,
+    defect_matrix, measurement_poses, DefectPoint, DefectReference, OnMachine, PathBranch,
+    PointPose,
 };
 use super::overcut::{eq6_max, overcut_map, Basis, OvercutMap, ToolPath};
 use super::part::{MeasurementPoint, Part, SurfaceId, N_POINTS};
-use crate::error::{check_range, Error, Result};
+use crate::error::{Error, Result};
+use crate::machine::errors::{ErrorDef, ErrorValues};
+use crate::machine::Machine;
+use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
 use nalgebra::DMatrix;
+use serde_json::Value;
 
 /// Name of the tool-radius parameter in a fit: `ΔR = R' − R_tool`, mm.
 pub const RADIUS_NAME: &str = "dR";
-/// Largest accepted error value: 1 mm for `E_X0B`, 0.01 rad for the angles.
-pub const MAX_ERROR: [f64; 8] = [0.01, 0.01, 0.01, 0.01, 0.01, 1.0, 0.01, 0.01];
+
+crate::inputs! {
+    /// The end mill of eq 2.
+    pub struct SShapeTool {
+        /// SShapeTool radius, mm.
+        pub r_tool: f64 = "rTool" optional {
+            label: "Tool radius",
+            help: "Radius of the flank end mill (the paper: 10 mm).",
+            kind: schema::positive(Quantity::Length, 50.0),
+            default: DefaultValue::Num(10.0),
+            group: "Tool",
+        },
+        /// Tip to the tool section touching the top curve, mm.
+        pub l_tool: f64 = "lTool" optional {
+            label: "Tool length to the top curve",
+            help: "From the tool tip to the section that touches the top curve (eq 2); more than the part's 30 mm height (the paper: 35 mm).",
+            kind: schema::Kind::Number { quantity: Quantity::Length, min: 30.0, max: 500.0, exclusive_min: true },
+            default: DefaultValue::Num(35.0),
+            group: "Tool",
+        },
+    }
+}
+
+impl SShapeTool {
+    /// The tool path of eq 2 for this tool.
+    pub fn path(&self) -> ToolPath {
+        ToolPath {
+            r_tool: self.r_tool,
+            l_tool: self.l_tool,
+        }
+    }
+}
+
+crate::inputs! {
+    /// The model options of the machining defect.
+    pub struct SShapeModel {
+        /// Inverse-kinematics branch along the path.
+        pub branch: PathBranch = "branch" optional {
+            label: "Inverse kinematics along the path",
+            help: "Which of the two solutions the machine uses; where the tool lies along the rotary table's axis (the middle of the S) that axis keeps its previous angle.",
+            kind: Kind::Choice(PathBranch::CHOICES),
+            default: DefaultValue::Str("paper"),
+            group: "Model",
+        },
+        /// Reference pose of eq 14.
+        pub reference: DefectReference = "reference" optional {
+            label: "Defect subtracted (eq 14)",
+            help: "The defect at this pose is subtracted: where the work offset was set.",
+            kind: Kind::Choice(DefectReference::CHOICES),
+            default: DefaultValue::Str("workOrigin"),
+            group: "Model",
+        },
+        /// SShapeTool point eq 14 moves.
+        pub point: DefectPoint = "point" optional {
+            label: "Tool point moved",
+            help: "Eq 14 moves the tool tip; the contact point adds the tool's tilt.",
+            kind: Kind::Choice(DefectPoint::CHOICES),
+            default: DefaultValue::Str("tip"),
+            group: "Model",
+        },
+    }
+}
+
+crate::inputs! {
+    /// What every S-shape computation on a machine needs.
+    pub struct SShapeCase {
+        /// The machine and its errors.
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// The tool.
+        pub tool: SShapeTool = "tool" optional {
+            label: "Tool", kind: Kind::Object(SShapeTool::FIELDS), default: DefaultValue::Empty,
+        },
+        /// The model options.
+        pub model: SShapeModel = "model" optional {
+            label: "Model", kind: Kind::Object(SShapeModel::FIELDS), default: DefaultValue::Empty,
+        },
+    }
+}
+
+crate::inputs! {
+    /// The defects' own inputs (with a [`SShapeCase`]).
+    pub struct SShapeDefectsInput {
+        /// SShapeTool-radius error `R' − R`, mm.
+        pub d_r: f64 = "dR" optional {
+            label: "Tool radius error R′ − R",
+            help: "Positive: the real tool is larger than programmed, so the surface moves in.",
+            kind: schema::number(Quantity::SmallLength, -1.0, 1.0),
+            default: DefaultValue::Num(0.0),
+            group: "Errors",
+        },
+    }
+}
+
+crate::inputs! {
+    /// The identification's own inputs (with a [`SShapeCase`]).
+    pub struct SShapeIdentifyInput {
+        /// The measurement file.
+        pub csv: String = "csv" {
+            label: "Measured deviations (CSV)",
+            help: "Header curve,point,deviation_mm (or deviation_um); 100 rows: top/bottom, 1–50 (1–25 surface A, 26–50 B); positive = material left.",
+            kind: Kind::Text { max_len: 1_000_000 },
+            group: "Identification",
+        },
+        /// The errors to identify; all the machine's when left out.
+        pub parameters: Option<Vec<String>> = "parameters" optional {
+            label: "Errors to identify",
+            help: "The machine's errors the fit may use; left out: all of them. Those the part cannot separate are reported as groups.",
+            kind: Kind::ErrorNames,
+            group: "Identification",
+        },
+        /// Fit a tool-radius error too.
+        pub radius_term: bool = "radiusTerm" optional {
+            label: "Fit a tool-radius error too",
+            help: "Adds R′ − R to the unknowns (it moves every point along its normal by −sin θ per mm).",
+            kind: Kind::Flag,
+            default: DefaultValue::Flag(true),
+            group: "Identification",
+        },
+        /// Relative singular-value threshold of the rank decision.
+        pub rtol: f64 = "rtol" optional {
+            label: "Rank threshold (relative singular value)",
+            help: "Directions below it count as not identifiable (0.01: condition number 100).",
+            kind: schema::Kind::Number { quantity: Quantity::Number, min: 1e-12, max: 0.5, exclusive_min: false },
+            default: DefaultValue::Num(DEFAULT_RTOL),
+            group: "Identification",
+        },
+    }
+}
+
+impl SShapeCase {
+    /// Reads a case and the export's own inputs from one object: the keys of `B` go to `B`,
+    /// the rest to the case.
+    pub fn read_with<B: Inputs>(value: &Value) -> Result<(SShapeCase, B)> {
+        let (case, own): (SShapeCase, B) = schema::read_split(value, "")?;
+        case.machine.validate("machine")?;
+        Ok((case, own))
+    }
+}
 
 /// Everything the eq 14 model needs, computed once for a machine, tool and model.
 #[derive(Debug, Clone)]
@@ -23,26 +166,29 @@ pub struct Design {
     pub part: Part,
     /// The tool path.
     pub path: ToolPath,
-    /// The machine.
-    pub machine: Machine,
+    /// The part on the machine.
+    pub on: OnMachine,
     /// The model options.
-    pub model: DefectModel,
+    pub model: SShapeModel,
     /// The 100 points with their machine poses.
     pub poses: Vec<PointPose>,
-    /// Eq 14 sensitivities: row per point, column per error (mm per mm or per rad).
-    pub rows: Vec<[f64; 8]>,
+    /// Eq 14 sensitivities: row per point, column per machine error (mm per mm or per rad).
+    pub rows: Vec<Vec<f64>>,
     /// Deviation per mm of tool-radius error: `−sin θ` at each point.
     pub radius: Vec<f64>,
 }
 
 impl Design {
-    /// Builds the model for pivot distance `l0` (mm), the tool, and the options.
-    pub fn new(l0: f64, path: ToolPath, model: DefectModel) -> Result<Self> {
+    /// Builds the model for a machine (its errors are not used here), a tool and the options.
+    pub fn new(machine: &Machine, tool: &SShapeTool, model: &SShapeModel) -> Result<Self> {
         let part = Part::standard()?;
-        let machine = Machine::new(l0)?;
+        let path = tool.path();
+        let mut nominal = machine.clone();
+        nominal.errors = ErrorValues::none();
+        let on = OnMachine::new(&nominal)?;
         let points = Part::standard_points()?;
-        let poses = measurement_poses(&machine, &path, &part, points, model.branch)?;
-        let rows = defect_matrix(&machine, &poses, &model)?;
+        let poses = measurement_poses(&on, &path, &part, points, model.branch)?;
+        let rows = defect_matrix(&on, &poses, model.reference, model.point)?;
         let radius = poses
             .iter()
             .map(|pp| {
@@ -54,12 +200,17 @@ impl Design {
         Ok(Self {
             part,
             path,
-            machine,
-            model,
+            on,
+            model: model.clone(),
             poses,
             rows,
             radius,
         })
+    }
+
+    /// The machine's errors, the columns of [`Self::rows`].
+    pub fn errors(&self) -> &[&'static ErrorDef] {
+        &self.on.errors
     }
 
     /// The measurement points.
@@ -67,56 +218,98 @@ impl Design {
         self.poses.iter().map(|p| p.point).collect()
     }
 
-    /// The deviation at each point (mm) for errors `xi` and a tool-radius error `dr` (mm).
-    pub fn simulate(&self, xi: &Errors, dr: f64) -> Result<Vec<f64>> {
-        check_errors(xi)?;
-        check_range("dR", dr, -1.0, 1.0, "mm")?;
-        Ok(self
-            .rows
+    /// The deviation at each point (mm) for the machine's errors and a tool-radius error `dr`
+    /// (mm): eq 14 applied to every error, plus `−sin θ·dr`.
+    pub fn simulate(&self, errors: &ErrorValues, dr: f64) -> Vec<f64> {
+        let xi: Vec<f64> = self.errors().iter().map(|d| errors.get(d.name)).collect();
+        self.rows
             .iter()
             .zip(&self.radius)
-            .map(|(row, r)| row.iter().zip(xi).map(|(a, x)| a * x).sum::<f64>() + r * dr)
-            .collect())
+            .map(|(row, r)| row.iter().zip(&xi).map(|(a, x)| a * x).sum::<f64>() + r * dr)
+            .collect()
     }
 
-    /// Least-squares identification of the 8 errors (and `dR` when `radius_term`) from
-    /// measured deviations (mm, list order).
-    pub fn identify(&self, measured: &[f64], radius_term: bool, rtol: f64) -> Result<Fit> {
+    /// Least-squares identification of the errors `parameters` (all the machine's when `None`)
+    /// and `dR` when `radius_term`, from measured deviations (mm, list order).
+    pub fn identify(
+        &self,
+        measured: &[f64],
+        parameters: Option<&[String]>,
+        radius_term: bool,
+        rtol: f64,
+    ) -> Result<Fit> {
         if measured.len() != N_POINTS {
             return Err(Error::field(
                 "deviations",
                 format!("expected {N_POINTS} values, got {}", measured.len()),
             ));
         }
-        let p = if radius_term { 9 } else { 8 };
+        let columns: Vec<usize> = match parameters {
+            None => (0..self.errors().len()).collect(),
+            Some(names) => names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| {
+                    self.on.error_index(n).ok_or_else(|| {
+                        Error::field(
+                            format!("parameters[{i}]"),
+                            format!("{n} is not an error of this machine"),
+                        )
+                    })
+                })
+                .collect::<Result<_>>()?,
+        };
+        let p = columns.len() + usize::from(radius_term);
+        if p == 0 {
+            return Err(Error::field(
+                "parameters",
+                "choose at least one error to identify",
+            ));
+        }
         let a = DMatrix::from_fn(N_POINTS, p, |r, c| {
-            if c < 8 {
-                self.rows[r][c]
+            if c < columns.len() {
+                self.rows[r][columns[c]]
             } else {
                 self.radius[r]
             }
         });
-        let mut names: Vec<String> = ERROR_NAMES.iter().map(|s| s.to_string()).collect();
+        let mut names: Vec<String> = columns
+            .iter()
+            .map(|&c| self.errors()[c].name.to_string())
+            .collect();
         if radius_term {
             names.push(RADIUS_NAME.to_string());
         }
         identify::fit(&a, &names, measured, rtol)
     }
-}
 
-/// Checks the 8 error values (finite, within [`MAX_ERROR`]).
-pub fn check_errors(xi: &Errors) -> Result<()> {
-    for (k, v) in xi.iter().enumerate() {
-        let unit = if k == 5 { "mm" } else { "rad" };
-        check_range(
-            &format!("errors.{}", ERROR_NAMES[k]),
-            *v,
-            -MAX_ERROR[k],
-            MAX_ERROR[k],
-            unit,
-        )?;
+    /// The cosine between the sensitivity columns of two errors (−1: they act alike but for
+    /// sign); `None` when either is not an error of the machine or has no effect.
+    pub fn column_cosine(&self, a: &str, b: &str) -> Option<f64> {
+        let (i, j) = (self.on.error_index(a)?, self.on.error_index(b)?);
+        let col = |k: usize| self.rows.iter().map(move |r| r[k]);
+        let dot: f64 = col(i).zip(col(j)).map(|(x, y)| x * y).sum();
+        let na = col(i).map(|x| x * x).sum::<f64>().sqrt();
+        let nb = col(j).map(|x| x * x).sum::<f64>().sqrt();
+        (na > 0.0 && nb > 0.0).then(|| dot / (na * nb))
     }
-    Ok(())
+
+    /// Pairs of errors whose columns are nearly parallel (|cos| ≥ `min`), most alike first.
+    pub fn alike_pairs(&self, min: f64) -> Vec<(&'static str, &'static str, f64)> {
+        let e = self.errors();
+        let mut out = Vec::new();
+        for i in 0..e.len() {
+            for j in i + 1..e.len() {
+                if let Some(c) = self.column_cosine(e[i].name, e[j].name) {
+                    if c.abs() >= min {
+                        out.push((e[i].name, e[j].name, c));
+                    }
+                }
+            }
+        }
+        out.sort_by(|a, b| b.2.abs().total_cmp(&a.2.abs()));
+        out
+    }
 }
 
 /// The overcut maps of both surfaces, and the maxima of eq 6 with the paper's sign of `N`

@@ -8,7 +8,7 @@
 //! engine's alias table would flip every height the tests compare with closed forms).
 #![allow(dead_code)]
 
-use fiveaxis::cubic::{self, Analysis, Grid, HeightMap, Options, Piece, ZonePlane};
+use fiveaxis::cubic::{self, Analysis, CubicGrid, CubicPiece, HeightMap, Options, ZonePlane};
 use fiveaxis::machine::errors::ErrorValues;
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
@@ -22,7 +22,12 @@ pub struct PaperError {
     pub angular: bool,
 }
 
-const fn e(symbol: &'static str, key: &'static str, iso: &'static str, angular: bool) -> PaperError {
+const fn e(
+    symbol: &'static str,
+    key: &'static str,
+    iso: &'static str,
+    angular: bool,
+) -> PaperError {
     PaperError {
         symbol,
         key,
@@ -112,8 +117,8 @@ impl Default for CubicSetup {
 }
 
 impl CubicSetup {
-    pub fn piece(&self) -> Piece {
-        Piece::from_value(
+    pub fn piece(&self) -> CubicPiece {
+        CubicPiece::from_value(
             &json!({
                 "workpieceHeight": self.workpiece_height, "workpieceX": self.workpiece_x,
                 "workpieceY": self.workpiece_y, "zoneSize": self.zone_size,
@@ -133,17 +138,13 @@ impl CubicSetup {
     }
 }
 
-/// The paper's machine: B on the bed, C on B, X Y Z on the spindle, with the set-up's table
-/// height and C offset, and the errors.
+/// The paper's machine (the page's preset): B on the bed, C on B, X Y Z on the spindle, with the
+/// set-up's table height and C offset, and the errors.
 pub fn machine(setup: &CubicSetup, errors: &GeometricErrors) -> Machine {
-    let mut m = Machine::from_value(
-        &json!({
-            "kind": "table-table", "type": "CBZ", "linear": "spindle-xyz",
-            "geometry": { "rotaryOffset": setup.c_offset, "tableHeight": setup.table_above_b, "toolLength": 0 },
-        }),
-        "machine",
-    )
-    .unwrap();
+    let mut v = super::machine_preset("B/C tilting table, vertical spindle (Li et al. 2021)");
+    v["geometry"]["rotaryOffset"] = json!(setup.c_offset);
+    v["geometry"]["tableHeight"] = json!(setup.table_above_b);
+    let mut m = Machine::from_value(&v, "machine").unwrap();
     m.errors = errors.iso();
     m
 }
@@ -234,6 +235,6 @@ pub fn height_map(
         &machine(setup, e),
         &setup.piece(),
         o,
-        &Grid { nx, ny: Some(ny) },
+        &CubicGrid { nx, ny: Some(ny) },
     )
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod chanal;
 pub mod li;
 
 /// A small deterministic generator (xorshift64*), so tests need no extra crate and never flake.
@@ -40,4 +41,22 @@ pub fn close(a: f64, b: f64, tol: f64, what: &str) {
         "{what}: {a} vs {b} (diff {:e}, tol {tol:e})",
         (a - b).abs()
     );
+}
+
+/// The machine object of the preset in `public/presets/machines.json` whose name starts with
+/// `prefix` (the presets the page offers).
+pub fn machine_preset(prefix: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../public/presets/machines.json"
+    ))
+    .expect("public/presets/machines.json");
+    let all: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    all["presets"]
+        .as_array()
+        .expect("a list of presets")
+        .iter()
+        .find(|p| p["name"].as_str().is_some_and(|n| n.starts_with(prefix)))
+        .unwrap_or_else(|| panic!("no machine preset named {prefix}…"))["machine"]
+        .clone()
 }

@@ -34,6 +34,12 @@
 //! refined by safeguarded Newton steps on `g' = 0` inside its bracket (golden-section search where
 //! the bracket does not change sign), to `u` within 1e-13.
 
+mod inputs;
+pub use inputs::{
+    AngleSpan, MoveEnd, MoveStart, NonlinearCase, NonlinearGridInput, NonlinearMoveInput,
+    SweepKInput, SweepMInput, TypeCompareInput,
+};
+
 use crate::error::{check_count, check_positive, check_range, Result};
 use crate::geometry::angle_between;
 use crate::rotary::{Group, Pose, RotaryType};

@@ -1,0 +1,241 @@
+//! The inputs of the nonlinear-error study: the machine (its rotary-axis type and pivot), the
+//! length `L`, and per export the move or the sweep. Angles are the machine's commands (degrees
+//! at the edge); with ISO 841 senses they are the study's θk, θm (a reversed axis flips the sign,
+//! [`NonlinearCase::angles`]).
+
+use super::MAX_LENGTH_MM;
+use crate::error::{Error, Result};
+use crate::machine::Machine;
+use crate::rotary::{Pose, RotaryType};
+use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
+use serde_json::Value;
+
+/// Largest accepted axis angle, degrees (ten turns).
+const ANGLE: f64 = 3600.0;
+
+crate::inputs! {
+    /// What every export of the study needs: the machine and `L`.
+    pub struct NonlinearCase {
+        /// The machine (its type, senses and pivot).
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// `L`, mm; the machine's when left out.
+        pub length: Option<f64> = "length" optional {
+            label: "Tool length / pivot distance L",
+            help: "Distance of the tool point from the axis it swings about. Left empty: the machine's pivot length plus tool length (head), or its table surface's distance from the rotary centre (table-table).",
+            kind: schema::positive(Quantity::Length, MAX_LENGTH_MM),
+            group: "Move",
+        },
+    }
+}
+
+crate::inputs! {
+    /// The axis angles at the start of a move.
+    pub struct MoveStart {
+        /// K, degrees at the edge.
+        pub k: f64 = "k" optional {
+            label: "Start {K}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE),
+            default: DefaultValue::Num(0.0), group: "Move",
+        },
+        /// M, degrees at the edge.
+        pub m: f64 = "m" optional {
+            label: "Start {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE),
+            default: DefaultValue::Num(10.0), group: "Move",
+        },
+    }
+}
+
+crate::inputs! {
+    /// The axis angles at the end of a move.
+    pub struct MoveEnd {
+        /// K, degrees at the edge.
+        pub k: f64 = "k" optional {
+            label: "End {K}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE),
+            default: DefaultValue::Num(30.0), group: "Move",
+        },
+        /// M, degrees at the edge.
+        pub m: f64 = "m" optional {
+            label: "End {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE),
+            default: DefaultValue::Num(25.0), group: "Move",
+        },
+    }
+}
+
+crate::inputs! {
+    /// One move (with a [`NonlinearCase`]).
+    pub struct NonlinearMoveInput {
+        /// MoveStart angles.
+        pub start: MoveStart = "start" optional {
+            label: "Start", kind: Kind::Object(MoveStart::FIELDS), default: DefaultValue::Empty,
+        },
+        /// MoveEnd angles.
+        pub end: MoveEnd = "end" optional {
+            label: "End", kind: Kind::Object(MoveEnd::FIELDS), default: DefaultValue::Empty,
+        },
+        /// Points of the δ(u) curve.
+        pub samples: usize = "samples" optional {
+            label: "Points of the δ(u) curve", kind: Kind::Count { min: 2, max: 100_000 },
+            default: DefaultValue::Num(201.0), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// A sweep of the start angle of K (Fig 4), with a [`NonlinearCase`].
+    pub struct SweepKInput {
+        /// MoveStart angle of M.
+        pub theta_m: f64 = "thetaM" {
+            label: "Start {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Increment of K.
+        pub d_k: f64 = "dK" {
+            label: "Increment of {K}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Increment of M.
+        pub d_m: f64 = "dM" {
+            label: "Increment of {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// First start angle of K.
+        pub from: f64 = "from" {
+            label: "Start {K} from", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Last start angle of K.
+        pub to: f64 = "to" {
+            label: "Start {K} to", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Points.
+        pub n: usize = "n" {
+            label: "Points", kind: Kind::Count { min: 2, max: 100_000 }, shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// A sweep of the start angle of M, one curve per increment ratio (Fig 7), with a [`NonlinearCase`].
+    pub struct SweepMInput {
+        /// Increment of M.
+        pub d_m: f64 = "dM" {
+            label: "Increment of {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Ratios Δθk/Δθm.
+        pub ratios: Vec<f64> = "ratios" {
+            label: "Increment ratios Δθk/Δθm (Fig 7)",
+            help: "One curve per ratio of the two axes' increments, comma separated.",
+            kind: Kind::NumberList { quantity: Quantity::Number, min: -100.0, max: 100.0, max_len: 8 },
+            default: DefaultValue::Str("0.5, 2, 3, 5"),
+            group: "Sweeps",
+        },
+        /// First start angle of M.
+        pub from: f64 = "from" {
+            label: "Start {M} from", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Last start angle of M.
+        pub to: f64 = "to" {
+            label: "Start {M} to", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Points.
+        pub n: usize = "n" {
+            label: "Points", kind: Kind::Count { min: 2, max: 100_000 }, shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// A range of increments, degrees at the edge.
+    pub struct AngleSpan {
+        /// First value.
+        pub from: f64 = "from" {
+            label: "from", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Last value.
+        pub to: f64 = "to" {
+            label: "to", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// A grid of increments (Figs 3, 5, 8), with a [`NonlinearCase`].
+    pub struct NonlinearGridInput {
+        /// MoveStart angle of M.
+        pub theta_m: f64 = "thetaM" {
+            label: "Start {M}", kind: schema::number(Quantity::Angle, -ANGLE, ANGLE), shown: false,
+        },
+        /// Increments of K (columns).
+        pub d_k: AngleSpan = "dK" {
+            label: "Increments of {K}", kind: Kind::Object(AngleSpan::FIELDS), shown: false,
+        },
+        /// Increments of M (rows).
+        pub d_m: AngleSpan = "dM" {
+            label: "Increments of {M}", kind: Kind::Object(AngleSpan::FIELDS), shown: false,
+        },
+        /// Columns.
+        pub nx: usize = "nx" {
+            label: "Grid points per side (maps)",
+            help: "361 gives 0.5° steps over ±90°.",
+            kind: Kind::Count { min: 2, max: 2001 },
+            default: DefaultValue::Num(61.0),
+            group: "Sweeps",
+        },
+        /// Rows.
+        pub ny: usize = "ny" {
+            label: "Grid rows", kind: Kind::Count { min: 2, max: 2001 }, shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// The same move on the twelve types, with a [`NonlinearCase`].
+    pub struct TypeCompareInput {
+        /// MoveStart angles.
+        pub start: MoveStart = "start" optional {
+            label: "Start", kind: Kind::Object(MoveStart::FIELDS), default: DefaultValue::Empty,
+        },
+        /// MoveEnd angles.
+        pub end: MoveEnd = "end" optional {
+            label: "End", kind: Kind::Object(MoveEnd::FIELDS), default: DefaultValue::Empty,
+        },
+    }
+}
+
+impl NonlinearCase {
+    /// Reads a case and the export's own inputs from one object (the keys of `B` go to `B`).
+    pub fn read_with<B: Inputs>(value: &Value) -> Result<(NonlinearCase, B)> {
+        let (case, own): (NonlinearCase, B) = schema::read_split(value, "")?;
+        case.machine.validate("machine")?;
+        Ok((case, own))
+    }
+
+    /// The machine's rotary-axis type.
+    pub fn rtype(&self) -> RotaryType {
+        self.machine.rotary_type
+    }
+
+    /// `L`: given, or the machine's ([`Machine::swing_length`]).
+    pub fn length(&self) -> Result<f64> {
+        match self.length {
+            Some(l) => Ok(l),
+            None => self.machine.swing_length().ok_or_else(|| {
+                Error::field(
+                    "length",
+                    "this machine's table surface is at its rotary centre, so it gives no distance: enter L",
+                )
+            }),
+        }
+    }
+
+    /// The study's angles `(θk, θm)` of the commands `k`, `m` (rad): the sign of a reversed axis
+    /// flipped, so that `V = R_K(θk)·R_M(θm)·e_H` holds (see [`crate::machine`]).
+    pub fn angles(&self, k: f64, m: f64) -> Pose {
+        let r = &self.machine.rotary;
+        let s = |rev: bool| if rev { -1.0 } else { 1.0 };
+        Pose::new(s(r.k_reversed) * k, s(r.m_reversed) * m)
+    }
+
+    /// The factors `θ = f·command` of K and M.
+    pub fn factors(&self) -> (f64, f64) {
+        let p = self.angles(1.0, 1.0);
+        (p.k, p.m)
+    }
+}
