@@ -905,6 +905,7 @@ mod tests {
         assert_eq!(o.size, 16.0);
         assert_eq!(o.n, 3);
         assert_eq!(o.colour, Colour::Green);
+        assert_eq!(Colour::Red.value(), "red");
         assert!((o.inner.tilt - 0.5f64.to_radians()).abs() < 1e-18);
         assert_eq!(o.extra, None);
         let o: Outer = Outer::from_value(

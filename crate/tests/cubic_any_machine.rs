@@ -56,6 +56,7 @@ fn machine(text: &str) -> Machine {
 }
 
 /// Hand-derived first-order height sensitivity (module docs), per mm or per rad.
+#[allow(clippy::too_many_arguments)]
 fn hand(m: &Machine, def: &ErrorDef, a: f64, c: f64, x: f64, y: f64, face: f64, r: f64) -> f64 {
     let n = Vector3::z();
     let (w, t) = unit_error(def);

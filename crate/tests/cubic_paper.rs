@@ -15,9 +15,7 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
-use common::li::{
-    height_map, machine, run, try_run, CubicSetup, GeometricErrors, PaperAnalysis, ERRORS,
-};
+use common::li::{height_map, machine, run, try_run, CubicSetup, GeometricErrors, ERRORS};
 use common::{close, Rng};
 use fiveaxis::cubic::{CubicReference, Options, ZONES};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};

@@ -150,10 +150,11 @@ fn nominal_kinematics_follow_the_papers_tan_relations() {
         // The tool axis in workpiece coordinates is (sin B cos C, −sin B sin C, cos B).
         let v = Vector3::new(p.b.sin() * p.c.cos(), -p.b.sin() * p.c.sin(), p.b.cos());
         assert!((v - axis).norm() < 1e-12);
-        // The other branch gives the same tool pose with B ≤ 0 (when it continues from there).
+        // The other branch gives the same tool pose with B ≤ 0 (when it continues from there;
+        // C within the machine's ±360°).
         let prev = AxisPose {
             b: -p.b,
-            c: p.c + std::f64::consts::PI,
+            c: fiveaxis::geometry::wrap_pi(p.c + std::f64::consts::PI),
             ..p
         };
         let q = inverse(&m, &tip, &axis, PathBranch::Continuous, Some(&prev));

@@ -1,7 +1,7 @@
 //! Chanal et al. (2022) in their own terms, for the S-shape tests: their head-B / table-C machine
 //! (Section 5.2) as a machine of the engine, its 8 errors in the order of eq 12's `ξ`, and poses
 //! as `(X, Y, Z, B, C)`.
-#![allow(dead_code)]
+#![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
 use fiveaxis::machine::errors::ErrorValues;
 use fiveaxis::machine::Machine;

@@ -45,6 +45,7 @@ pub fn close(a: f64, b: f64, tol: f64, what: &str) {
 
 /// The machine object of the preset in `public/presets/machines.json` whose name starts with
 /// `prefix` (the presets the page offers).
+#[allow(clippy::expect_used)]
 pub fn machine_preset(prefix: &str) -> serde_json::Value {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
