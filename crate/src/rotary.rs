@@ -81,6 +81,7 @@ impl RotaryAxis {
 
 /// Group I (home orientation along K's axis) or Group II (along the third axis).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub enum Group {
     /// H parallel to the axis of K: `ABX ACX BCY BAY CAZ CBZ`.
     I,

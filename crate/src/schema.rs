@@ -25,6 +25,7 @@ use serde_json::{Map, Value};
 /// What a number is. It decides the unit at the edge (mm or degrees), the conversion into the
 /// engine (degrees to radians) and, on the page, the unit shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub enum Quantity {
     /// A length of the machine or the part, mm.
@@ -96,6 +97,7 @@ impl Quantity {
 
 /// One option of a choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub struct Choice {
     /// The value at the edge, e.g. `"table-table"`.
     pub value: &'static str,
@@ -143,7 +145,8 @@ pub enum Kind {
     Errors,
     /// A list of ISO 230-1 error names (e.g. the errors to identify), no repeats.
     ErrorNames,
-    /// A list of 1 to `max_len` numbers of `quantity` in `[min, max]`, none of them zero.
+    /// A list of `min_len` to `max_len` numbers of `quantity` in `[min, max]` (none of them
+    /// zero when `nonzero`).
     NumberList {
         /// What each is.
         quantity: Quantity,
@@ -151,8 +154,12 @@ pub enum Kind {
         min: f64,
         /// Largest accepted value.
         max: f64,
+        /// Fewest values.
+        min_len: usize,
         /// Most values.
         max_len: usize,
+        /// Zero is refused.
+        nonzero: bool,
     },
 }
 
@@ -548,7 +555,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// The default of a field that was left out, in engine units.
 fn default_value(f: &Field, path: &str) -> Result<Value> {
     Ok(match (f.kind, f.default) {
-        (Kind::Object(fields), _) => read_object(fields, &Value::Null, path)?,
+        (Kind::Object(fields), DefaultValue::Empty) => read_object(fields, &Value::Null, path)?,
         (Kind::Number { quantity, .. }, DefaultValue::Num(v)) => json_number(quantity.to_engine(v)),
         (Kind::Count { .. }, DefaultValue::Num(v)) => Value::from(v as u64),
         (_, DefaultValue::Num(v)) => json_number(v),
@@ -690,22 +697,29 @@ fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
             quantity,
             min,
             max,
+            min_len,
             max_len,
+            nonzero,
         } => {
             let list = v.as_array().ok_or_else(|| {
                 Error::field(path, format!("expected a list of numbers, got {}", what(v)))
             })?;
-            if list.is_empty() || list.len() > max_len {
+            if list.len() < min_len || list.len() > max_len {
+                let count = if min_len == max_len {
+                    format!("{min_len}")
+                } else {
+                    format!("{min_len} to {max_len}")
+                };
                 return Err(Error::field(
                     path,
-                    format!("expected 1 to {max_len} values, got {}", list.len()),
+                    format!("expected {count} values, got {}", list.len()),
                 ));
             }
             let mut out = Vec::with_capacity(list.len());
             for (i, item) in list.iter().enumerate() {
                 let p = format!("{path}[{i}]");
                 let x = check_number(&p, item, quantity, min, max)?;
-                if x == 0.0 {
+                if nonzero && x == 0.0 {
                     return Err(Error::field(p, "must not be zero"));
                 }
                 out.push(json_number(quantity.to_engine(x)));
@@ -720,7 +734,7 @@ fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
 /// A field as the page and scripts see it (the schema the binding exports): the nested objects
 /// are flattened into dotted paths.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct FieldInfo {
     /// Dotted path in the input object, e.g. `"setup.zoneSize"`.
@@ -733,15 +747,12 @@ pub struct FieldInfo {
     /// `"errorNames"`.
     pub kind: String,
     /// For numbers: what it is (decides the unit shown).
-    #[cfg_attr(feature = "ts", tsify(optional))]
     pub quantity: Option<Quantity>,
     /// API unit: `"mm"`, `"deg"` or `""`.
     pub unit: String,
     /// Smallest accepted value (API units), for numbers and counts.
-    #[cfg_attr(feature = "ts", tsify(optional))]
     pub min: Option<f64>,
     /// Largest accepted value (API units), for numbers, counts and texts (bytes).
-    #[cfg_attr(feature = "ts", tsify(optional))]
     pub max: Option<f64>,
     /// `min` itself is refused.
     pub exclusive_min: bool,

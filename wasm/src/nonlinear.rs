@@ -1,116 +1,89 @@
-//! Exports of the nonlinear-error study (see [`crate::nonlinear`]).
+//! Exports of the nonlinear-error study (see `fiveaxis::nonlinear`). Every input is the machine
+//! (its type, senses and pivot), optionally `L`, and the export's own fields, in one object.
 
-use super::{
-    check_deg, check_span, degrees, f64_array, input, js_error, output, parse_type, PoseIn,
+use crate::{f64_array, js_error, json, output};
+use fiveaxis::nonlinear::{
+    self, Move, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, Reference, SweepKInput,
+    SweepMInput, TypeCompareInput,
 };
-use crate::error::Error;
-use crate::nonlinear::{self, Move, Reference};
+use fiveaxis::rotary::{Group, RotaryType};
+use fiveaxis::schema::Inputs;
+use fiveaxis::Error;
 use js_sys::Float64Array;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
-#[wasm_bindgen(typescript_custom_section)]
-const TS_TYPES: &'static str = r#"
-export interface NonlinearMoveInput {
-  type: RotaryTypeName | string;
-  /** Tool length or pivot distance L, mm (> 0). */
-  length: number;
-  start: PoseDeg;
-  end: PoseDeg;
-  /** Points of the returned δ(u) curve, default 201. */
-  samples?: number;
+fn read<B: Inputs>(value: &JsValue) -> Result<(NonlinearCase, B), JsError> {
+    NonlinearCase::read_with(&json(value)?).map_err(js_error)
 }
-export interface NonlinearMoveResult {
-  /** Exact maximum error δ, mm. */ max: number;
-  /** u ∈ [0, 1] of the maximum. */ uAtMax: number;
-  /** δ(0.5) from the vectors, mm. */ atHalf: number;
-  /** Eq 25 (Group I) or eq 30 (Group II), mm; null for coincident/opposite ends. */ approx: number | null;
-  /** (max - approx) / max. */ approxShortfall: number | null;
-  /** Eq 26, mm, when the move starts at the pole; else null. */ closedForm: number | null;
-  reference: ReferenceKind;
-  /** |V0 × V1|. */ planeSine: number;
-  /** Angle between start and end tool orientation, degrees. */ sweepAngle: number;
-  startVector: number[]; endVector: number[]; normal: number[];
-  u: Float64Array;
-  /** δ(u), mm. */ delta: Float64Array;
+
+/// `L` of the case, or the machine's.
+fn length(c: &NonlinearCase) -> Result<f64, JsError> {
+    c.length().map_err(js_error)
 }
-export interface SweepKInput {
-  type: RotaryTypeName | string; length: number;
-  /** Start angle of M, degrees. */ thetaM: number;
-  dK: number; dM: number; from: number; to: number; n: number;
-}
-export interface SweepKResult { k: Float64Array; max: Float64Array }
-export interface SweepMInput {
-  type: RotaryTypeName | string; length: number;
-  dM: number; ratios: number[]; from: number; to: number; n: number;
-}
-export interface SweepMResult {
-  m: Float64Array;
-  curves: { ratio: number; exact: Float64Array; approx: (number | null)[] }[];
-}
-export interface Range { from: number; to: number }
-export interface GridInput {
-  type: RotaryTypeName | string; length: number; thetaM: number;
-  dK: Range; dM: Range; nx: number; ny: number;
-}
-export interface GridResult {
-  nx: number; ny: number;
-  /** Δθk per column, degrees. */ dK: Float64Array;
-  /** Δθm per row, degrees. */ dM: Float64Array;
-  /** Row-major ny × nx: entry [iy * nx + ix], mm. */ max: Float64Array;
-  /** Row-major like max; null where the error is zero. */ uAtMax: (number | null)[];
-}
-export interface CompareInput { length: number; start: PoseDeg; end: PoseDeg }
-export interface TypeComparison {
-  type: RotaryTypeName; group: "I" | "II"; max: number; uAtMax: number;
-  approx: number | null; reference: ReferenceKind;
-}
-"#;
 
 /// One move: the δ(u) curve, its exact maximum and the paper's approximations.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct NonlinearMoveResult {
+    /// The machine's rotary-axis type.
+    #[serde(rename = "type")]
+    pub rtype: String,
+    /// `L` used, mm (given, or the machine's).
+    pub length: f64,
+    /// Exact maximum error δ, mm.
+    pub max: f64,
+    /// u ∈ [0, 1] of the maximum.
+    pub u_at_max: f64,
+    /// δ(0.5) from the vectors, mm.
+    pub at_half: f64,
+    /// Eq 25 (Group I) or eq 30 (Group II), mm; null for coincident or opposite ends.
+    pub approx: Option<f64>,
+    /// (max − approx)/max.
+    pub approx_shortfall: Option<f64>,
+    /// Eq 26, mm, when the move starts at the pole; else null.
+    pub closed_form: Option<f64>,
+    /// How the reference plane was defined.
+    pub reference: Reference,
+    /// |V0 × V1|.
+    pub plane_sine: f64,
+    /// Angle between the start and end tool orientations, degrees.
+    pub sweep_angle: f64,
+    /// V0, workpiece coordinates.
+    pub start_vector: [f64; 3],
+    /// V1.
+    pub end_vector: [f64; 3],
+    /// Unit normal of the reference plane.
+    pub normal: [f64; 3],
+    /// Samples of u.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub u: Float64Array,
+    /// δ(u), mm.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub delta: Float64Array,
+}
+
+/// One move of the machine's rotary axes from `start` to `end` (commands, degrees).
 #[wasm_bindgen(js_name = nonlinearMove, unchecked_return_type = "NonlinearMoveResult")]
 pub fn nonlinear_move(
-    #[wasm_bindgen(unchecked_param_type = "NonlinearMoveInput")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NonlinearCase & NonlinearMoveInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    #[derive(Deserialize)]
-    struct In {
-        #[serde(rename = "type")]
-        rtype: String,
-        length: f64,
-        start: PoseIn,
-        end: PoseIn,
-        #[serde(default)]
-        samples: Option<usize>,
-    }
-    #[derive(Serialize)]
-    #[serde(rename_all = "camelCase")]
-    struct Out {
-        max: f64,
-        u_at_max: f64,
-        at_half: f64,
-        approx: Option<f64>,
-        approx_shortfall: Option<f64>,
-        closed_form: Option<f64>,
-        reference: Reference,
-        plane_sine: f64,
-        sweep_angle: f64,
-        start_vector: [f64; 3],
-        end_vector: [f64; 3],
-        normal: [f64; 3],
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        u: Float64Array,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        delta: Float64Array,
-    }
-    let i: In = input(value)?;
+    let (c, i): (_, NonlinearMoveInput) = read(&value)?;
+    let l = length(&c)?;
     let mv = Move::new(
-        parse_type(&i.rtype)?,
-        i.start.radians("start")?,
-        i.end.radians("end")?,
+        c.rtype(),
+        c.angles(i.start.k, i.start.m),
+        c.angles(i.end.k, i.end.m),
     );
-    let a = nonlinear::analyze(mv, i.length, i.samples.unwrap_or(201)).map_err(js_error)?;
-    output(&Out {
+    let a = nonlinear::analyze(mv, l, i.samples).map_err(js_error)?;
+    output(&NonlinearMoveResult {
+        rtype: c.rtype().name(),
+        length: l,
         max: a.max,
         u_at_max: a.u_at_max,
         at_half: a.at_half,
@@ -128,93 +101,99 @@ pub fn nonlinear_move(
     })
 }
 
-/// Fig 4: maximum error against the start angle of K (the paper: constant).
+/// Fig 4: the maximum error against the start angle of K.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+pub struct SweepKResult {
+    /// Start commands of K, degrees.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub k: Float64Array,
+    /// Exact maximum error, mm.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub max: Float64Array,
+}
+
+/// Fig 4: the maximum error against the start angle of K (the paper: constant).
 #[wasm_bindgen(js_name = nonlinearSweepK, unchecked_return_type = "SweepKResult")]
 pub fn nonlinear_sweep_k(
-    #[wasm_bindgen(unchecked_param_type = "SweepKInput")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NonlinearCase & SweepKInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    #[derive(Deserialize)]
-    #[serde(rename_all = "camelCase")]
-    struct In {
-        #[serde(rename = "type")]
-        rtype: String,
-        length: f64,
-        theta_m: f64,
-        d_k: f64,
-        d_m: f64,
-        from: f64,
-        to: f64,
-        n: usize,
-    }
-    #[derive(Serialize)]
-    struct Out {
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        k: Float64Array,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        max: Float64Array,
-    }
-    let i: In = input(value)?;
-    let t = parse_type(&i.rtype)?;
-    let range = check_span("range", i.from, i.to)?;
+    let (c, i): (_, SweepKInput) = read(&value)?;
+    let (fk, fm) = c.factors();
     let max = nonlinear::sweep_start_k(
-        t,
-        i.length,
-        check_deg("thetaM", i.theta_m)?,
-        check_deg("dK", i.d_k)?,
-        check_deg("dM", i.d_m)?,
-        range,
+        c.rtype(),
+        length(&c)?,
+        fm * i.theta_m,
+        fk * i.d_k,
+        fm * i.d_m,
+        (fk * i.from, fk * i.to),
         i.n,
     )
     .map_err(js_error)?;
-    let k = nonlinear::linspace(i.from, i.to, i.n);
-    output(&Out {
+    let k = nonlinear::linspace(i.from.to_degrees(), i.to.to_degrees(), i.n);
+    output(&SweepKResult {
         k: f64_array(&k),
         max: f64_array(&max),
     })
 }
 
-/// Fig 7: maximum error against the start angle of M, one curve per ratio Δθk/Δθm.
+/// One curve of [`SweepMResult`].
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+pub struct RatioCurve {
+    /// Δθk/Δθm.
+    pub ratio: f64,
+    /// Exact maximum error, mm.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub exact: Float64Array,
+    /// The u = 0.5 approximation, mm (null where undefined).
+    pub approx: Vec<Option<f64>>,
+}
+
+/// Fig 7: the maximum error against the start angle of M.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+pub struct SweepMResult {
+    /// Start commands of M, degrees.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub m: Float64Array,
+    /// One curve per ratio.
+    pub curves: Vec<RatioCurve>,
+}
+
+/// Fig 7: the maximum error against the start angle of M, one curve per ratio Δθk/Δθm.
 #[wasm_bindgen(js_name = nonlinearSweepM, unchecked_return_type = "SweepMResult")]
 pub fn nonlinear_sweep_m(
-    #[wasm_bindgen(unchecked_param_type = "SweepMInput")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NonlinearCase & SweepMInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    #[derive(Deserialize)]
-    #[serde(rename_all = "camelCase")]
-    struct In {
-        #[serde(rename = "type")]
-        rtype: String,
-        length: f64,
-        d_m: f64,
-        ratios: Vec<f64>,
-        from: f64,
-        to: f64,
-        n: usize,
-    }
-    #[derive(Serialize)]
-    struct Curve {
-        ratio: f64,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        exact: Float64Array,
-        approx: Vec<Option<f64>>,
-    }
-    #[derive(Serialize)]
-    struct Out {
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        m: Float64Array,
-        curves: Vec<Curve>,
-    }
-    let i: In = input(value)?;
-    let t = parse_type(&i.rtype)?;
-    let range = check_span("range", i.from, i.to)?;
-    let curves =
-        nonlinear::sweep_start_m(t, i.length, check_deg("dM", i.d_m)?, &i.ratios, range, i.n)
-            .map_err(js_error)?;
-    output(&Out {
-        m: f64_array(&nonlinear::linspace(i.from, i.to, i.n)),
+    let (c, i): (_, SweepMInput) = read(&value)?;
+    let (fk, fm) = c.factors();
+    // Δθk = ratio·Δθm in commands; in the study's angles the ratio takes both senses.
+    let ratios: Vec<f64> = i.ratios.iter().map(|r| r * fk * fm).collect();
+    let curves = nonlinear::sweep_start_m(
+        c.rtype(),
+        length(&c)?,
+        fm * i.d_m,
+        &ratios,
+        (fm * i.from, fm * i.to),
+        i.n,
+    )
+    .map_err(js_error)?;
+    output(&SweepMResult {
+        m: f64_array(&nonlinear::linspace(
+            i.from.to_degrees(),
+            i.to.to_degrees(),
+            i.n,
+        )),
         curves: curves
             .into_iter()
-            .map(|c| Curve {
-                ratio: c.ratio,
+            .zip(&i.ratios)
+            .map(|(c, r)| RatioCurve {
+                ratio: *r,
                 exact: f64_array(&c.exact),
                 approx: c.approx,
             })
@@ -222,78 +201,109 @@ pub fn nonlinear_sweep_m(
     })
 }
 
+/// Figs 3, 5, 8: the maximum error and its u over a grid of increments.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct GridResult {
+    /// Columns.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+    /// Increment of K per column (commands), degrees.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub d_k: Float64Array,
+    /// Increment of M per row (commands), degrees.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub d_m: Float64Array,
+    /// Row-major ny × nx (`[iy * nx + ix]`), mm.
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    #[tsify(type = "Float64Array")]
+    pub max: Float64Array,
+    /// Row-major like `max`; null where the error is zero.
+    pub u_at_max: Vec<Option<f64>>,
+}
+
 /// Figs 3, 5, 8: maximum error and its u over a grid of increments Δθk × Δθm.
 #[wasm_bindgen(js_name = nonlinearGrid, unchecked_return_type = "GridResult")]
 pub fn nonlinear_grid(
-    #[wasm_bindgen(unchecked_param_type = "GridInput")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NonlinearCase & NonlinearGridInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    #[derive(Deserialize)]
-    struct RangeIn {
-        from: f64,
-        to: f64,
+    let (c, i): (_, NonlinearGridInput) = read(&value)?;
+    let (fk, fm) = c.factors();
+    if i.d_k.from == i.d_k.to || i.d_m.from == i.d_m.to {
+        return Err(js_error(Error::field(
+            if i.d_k.from == i.d_k.to { "dK" } else { "dM" },
+            "the range is empty: 'from' equals 'to'",
+        )));
     }
-    #[derive(Deserialize)]
-    #[serde(rename_all = "camelCase")]
-    struct In {
-        #[serde(rename = "type")]
-        rtype: String,
-        length: f64,
-        theta_m: f64,
-        d_k: RangeIn,
-        d_m: RangeIn,
-        nx: usize,
-        ny: usize,
-    }
-    #[derive(Serialize)]
-    #[serde(rename_all = "camelCase")]
-    struct Out {
-        nx: usize,
-        ny: usize,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        d_k: Float64Array,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        d_m: Float64Array,
-        #[serde(with = "serde_wasm_bindgen::preserve")]
-        max: Float64Array,
-        u_at_max: Vec<Option<f64>>,
-    }
-    let i: In = input(value)?;
-    let t = parse_type(&i.rtype)?;
     let g = nonlinear::sweep_increments(
-        t,
-        i.length,
-        check_deg("thetaM", i.theta_m)?,
-        check_span("dK", i.d_k.from, i.d_k.to)?,
-        check_span("dM", i.d_m.from, i.d_m.to)?,
+        c.rtype(),
+        length(&c)?,
+        fm * i.theta_m,
+        (fk * i.d_k.from, fk * i.d_k.to),
+        (fm * i.d_m.from, fm * i.d_m.to),
         i.nx,
         i.ny,
     )
     .map_err(js_error)?;
-    output(&Out {
+    let deg = |a: &[f64], f: f64| -> Vec<f64> { a.iter().map(|x| (x / f).to_degrees()).collect() };
+    output(&GridResult {
         nx: g.nx,
         ny: g.ny,
-        d_k: f64_array(&degrees(&g.d_k)),
-        d_m: f64_array(&degrees(&g.d_m)),
+        d_k: f64_array(&deg(&g.d_k, fk)),
+        d_m: f64_array(&deg(&g.d_m, fm)),
         max: f64_array(&g.max),
         u_at_max: g.u_at_max,
     })
 }
 
-/// The same move of K and M on each of the twelve types.
+/// One row of [`nonlinear_compare_types`].
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct TypeComparison {
+    /// The type.
+    #[serde(rename = "type")]
+    pub rtype: String,
+    /// Its group.
+    pub group: Group,
+    /// Exact maximum error, mm.
+    pub max: f64,
+    /// u of the maximum.
+    pub u_at_max: f64,
+    /// Eq 25/30, mm.
+    pub approx: Option<f64>,
+    /// Reference used.
+    pub reference: Reference,
+}
+
+/// The same move of K and M (the study's angles) on each of the twelve types.
 #[wasm_bindgen(js_name = nonlinearCompareTypes, unchecked_return_type = "TypeComparison[]")]
 pub fn nonlinear_compare_types(
-    #[wasm_bindgen(unchecked_param_type = "CompareInput")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NonlinearCase & TypeCompareInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
-    #[derive(Deserialize)]
-    struct In {
-        length: f64,
-        start: PoseIn,
-        end: PoseIn,
-    }
-    let i: In = input(value)?;
-    let rows = nonlinear::compare_types(i.length, i.start.radians("start")?, i.end.radians("end")?)
-        .map_err(js_error)?;
-    output(&rows)
+    let (c, i): (_, TypeCompareInput) = read(&value)?;
+    let rows = nonlinear::compare_types(
+        length(&c)?,
+        c.angles(i.start.k, i.start.m),
+        c.angles(i.end.k, i.end.m),
+    )
+    .map_err(js_error)?;
+    let out: Vec<TypeComparison> = rows
+        .into_iter()
+        .map(|r| TypeComparison {
+            rtype: r.rtype.name(),
+            group: r.group,
+            max: r.max,
+            u_at_max: r.u_at_max,
+            approx: r.approx,
+            reference: r.reference,
+        })
+        .collect();
+    output(&out)
 }
 
 /// Bulk: the exact maximum error (mm) of many moves of one type. `moves` is a `Float64Array`
@@ -303,17 +313,18 @@ pub fn nonlinear_compare_types(
 /// JavaScript types of `&str`, `f64` or slice parameters, and a wrong type must give an error.
 #[wasm_bindgen(js_name = nonlinearMaxErrors)]
 pub fn nonlinear_max_errors(
-    #[wasm_bindgen(unchecked_param_type = "RotaryTypeName | string")] rtype: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "RotaryType")] rtype: JsValue,
     #[wasm_bindgen(unchecked_param_type = "number")] length: JsValue,
     #[wasm_bindgen(unchecked_param_type = "Float64Array")] moves: JsValue,
 ) -> Result<Float64Array, JsError> {
-    let rtype: String = input(rtype)
-        .map_err(|_| js_error(Error::field("type", "expected a type name such as \"CAZ\"")))?;
-    let t = parse_type(&rtype)?;
+    let name = rtype
+        .as_string()
+        .ok_or_else(|| js_error(Error::field("type", "expected a type name such as \"CAZ\"")))?;
+    let t = RotaryType::parse(&name).map_err(js_error)?;
     let length = length
         .as_f64()
         .ok_or_else(|| js_error(Error::field("length", "expected a number of mm")))?;
-    crate::error::check_positive("length", length, nonlinear::MAX_LENGTH_MM, "mm")
+    fiveaxis::error::check_positive("length", length, nonlinear::MAX_LENGTH_MM, "mm")
         .map_err(js_error)?;
     let moves = moves
         .dyn_into::<Float64Array>()
@@ -330,11 +341,20 @@ pub fn nonlinear_max_errors(
             format!("length must be a multiple of 4, got {}", moves.len()),
         )));
     }
+    let lim = nonlinear::MAX_ANGLE_DEG;
     let mut quads = Vec::with_capacity(moves.len() / 4);
     for (n, c) in moves.chunks_exact(4).enumerate() {
         let mut q = [0.0; 4];
         for (j, v) in c.iter().enumerate() {
-            q[j] = check_deg(&format!("moves[{}]", 4 * n + j), *v)?;
+            fiveaxis::error::check_range(
+                &format!("moves[{}]", 4 * n + j),
+                *v,
+                -lim,
+                lim,
+                "degrees",
+            )
+            .map_err(js_error)?;
+            q[j] = v.to_radians();
         }
         quads.push(q);
     }

@@ -286,6 +286,15 @@ impl CubicInput {
         Ok(input)
     }
 
+    /// Reads and checks the inputs of the height map: the test's and the grid's keys in one
+    /// object.
+    pub fn read_with_grid(value: &Value) -> Result<(Self, CubicGrid)> {
+        let (input, grid): (Self, CubicGrid) = schema::read_split(value, "")?;
+        input.machine.validate("machine")?;
+        input.setup.validate()?;
+        Ok((input, grid))
+    }
+
     /// The options of the evaluation.
     pub fn options(&self) -> Options {
         Options {

@@ -39,6 +39,7 @@ pub const MAX_ANGLE_ERROR: f64 = 5.0;
 
 /// Location error (position-independent) or error motion (a function of the axis position).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub enum ErrorKind {
     /// `E_X0B`: a constant displacement of the axis frame.
@@ -49,6 +50,7 @@ pub enum ErrorKind {
 
 /// A paper's symbol for an error, and how its value relates to the ISO one.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct Alias {
     /// The symbol as printed, e.g. `"δxBY"`.
@@ -63,6 +65,7 @@ pub struct Alias {
 
 /// One entry of the error table.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct ErrorDef {
     /// The ISO 230-1 name, e.g. `"E_X0B"`.

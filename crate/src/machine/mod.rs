@@ -290,8 +290,101 @@ crate::inputs! {
     }
 }
 
+crate::inputs! {
+    /// Rotary-axis commands, degrees at the edge.
+    pub struct AxisAngles {
+        /// K.
+        pub k: f64 = "k" {
+            label: "{K}", kind: schema::number(Quantity::Angle, -3600.0, 3600.0), shown: false,
+        },
+        /// M.
+        pub m: f64 = "m" {
+            label: "{M}", kind: schema::number(Quantity::Angle, -3600.0, 3600.0), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// The machine at a pose, for its drawing ([`schematic::schematic`]).
+    pub struct SchematicInput {
+        /// The machine.
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// K's command.
+        pub k: f64 = "k" optional {
+            label: "{K} in the drawing",
+            help: "Where K stands in the drawing of the machine.",
+            kind: schema::number(Quantity::Angle, -3600.0, 3600.0),
+            default: DefaultValue::Num(0.0),
+            group: "Drawing",
+        },
+        /// M's command.
+        pub m: f64 = "m" optional {
+            label: "{M} in the drawing",
+            help: "Where M stands in the drawing; tilt it to see which parts move with it.",
+            kind: schema::number(Quantity::Angle, -3600.0, 3600.0),
+            default: DefaultValue::Num(0.0),
+            group: "Drawing",
+        },
+        /// Tool tip above the table centre, mm.
+        pub standoff: f64 = "standoff" optional {
+            label: "Tool tip from the table centre",
+            kind: schema::number(Quantity::Length, 0.0, 5000.0),
+            default: DefaultValue::Num(30.0),
+            shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// The tool direction at given commands.
+    pub struct ToolVectorInput {
+        /// The machine.
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// K's command.
+        pub k: f64 = "k" {
+            label: "{K}", kind: schema::number(Quantity::Angle, -3600.0, 3600.0), shown: false,
+        },
+        /// M's command.
+        pub m: f64 = "m" {
+            label: "{M}", kind: schema::number(Quantity::Angle, -3600.0, 3600.0), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// Inverse kinematics of a tool direction ([`Model::inverse`]).
+    pub struct InverseInput {
+        /// The machine.
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// Tool direction `(i, j, k)` in workpiece coordinates (any length).
+        pub vector: Vec<f64> = "vector" {
+            label: "Tool vector (i, j, k)",
+            help: "Workpiece coordinates, from the tip towards the spindle; any length.",
+            kind: Kind::NumberList { quantity: Quantity::Number, min: -1e6, max: 1e6, min_len: 3, max_len: 3, nonzero: false },
+            default: DefaultValue::Str("0.5, 0, 0.8660254"),
+            group: "Tool vector → axis angles",
+        },
+        /// Which solution.
+        pub rule: BranchRule = "rule" optional {
+            label: "Solution", kind: Kind::Choice(BranchRule::CHOICES),
+            default: DefaultValue::Str("nearest"), shown: false,
+        },
+        /// The pose to continue from (commands, degrees at the edge).
+        pub previous: Option<AxisAngles> = "previous" optional {
+            label: "Previous pose", kind: Kind::Object(AxisAngles::FIELDS), shown: false,
+        },
+    }
+}
+
 /// An axis of a built machine, in chain order, for descriptions and the schematic.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct AxisInfo {
     /// `"X"` … `"C"`.

@@ -10,6 +10,7 @@ use serde::Serialize;
 
 /// One axis of the drawing.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct DrawnAxis {
     /// `"X"` … `"C"`.
@@ -30,6 +31,7 @@ pub struct DrawnAxis {
 
 /// The machine at one pose, for a drawing (module docs).
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct Schematic {
     /// The axes in chain order: table side from the bed up, then spindle side.

@@ -122,7 +122,7 @@ crate::inputs! {
         pub ratios: Vec<f64> = "ratios" {
             label: "Increment ratios Δθk/Δθm (Fig 7)",
             help: "One curve per ratio of the two axes' increments, comma separated.",
-            kind: Kind::NumberList { quantity: Quantity::Number, min: -100.0, max: 100.0, max_len: 8 },
+            kind: Kind::NumberList { quantity: Quantity::Number, min: -100.0, max: 100.0, min_len: 1, max_len: 8, nonzero: true },
             default: DefaultValue::Str("0.5, 2, 3, 5"),
             group: "Sweeps",
         },

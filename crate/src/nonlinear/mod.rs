@@ -58,6 +58,7 @@ pub const MAX_LENGTH_MM: f64 = 1.0e5;
 
 /// How the reference plane of a move was defined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "lowercase")]
 pub enum Reference {
     /// The plane of `V0` and `V1` (the normal case).

@@ -128,6 +128,7 @@ const N_BOTTOM_B: [[f64; 2]; 16] = [
 
 /// Surface A (control points P over Q) or B (M over N).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub enum SurfaceId {
     /// The surface through P (top) and Q (bottom).
     A,
@@ -150,6 +151,7 @@ impl SurfaceId {
 
 /// A measurement curve: TOP (z = 25 mm) or BOTTOM (z = 11 mm).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "lowercase")]
 pub enum Curve {
     /// z = 25 mm.
@@ -379,6 +381,7 @@ fn frame_from(c0: &CurvePoint, c1: &CurvePoint, v: f64, outward: f64) -> Frame {
 
 /// One of the 100 measurement points.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct MeasurementPoint {
     /// TOP or BOTTOM.

@@ -149,6 +149,47 @@ crate::inputs! {
     }
 }
 
+crate::inputs! {
+    /// The part's surfaces for a drawing.
+    pub struct SShapePartInput {
+        /// Points along u.
+        pub nu: usize = "nu" optional {
+            label: "Drawing points along the S", kind: Kind::Count { min: 2, max: 2001 },
+            default: DefaultValue::Num(131.0), shown: false,
+        },
+        /// Points over the height.
+        pub nv: usize = "nv" optional {
+            label: "Drawing points over the height", kind: Kind::Count { min: 2, max: 101 },
+            default: DefaultValue::Num(7.0), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// The overcut maps: the tool and the grid.
+    pub struct SShapeOvercutInput {
+        /// The tool.
+        pub tool: SShapeTool = "tool" optional {
+            label: "Tool", kind: Kind::Object(SShapeTool::FIELDS), default: DefaultValue::Empty,
+        },
+        /// Points along u.
+        pub nu: usize = "nu" optional {
+            label: "Overcut map: points along u",
+            help: "261 puts every knot on the grid.",
+            kind: Kind::Count { min: 14, max: 1001 },
+            default: DefaultValue::Num(261.0),
+            group: "Overcut map",
+        },
+        /// Points over the height.
+        pub nv: usize = "nv" optional {
+            label: "Points over the height",
+            kind: Kind::Count { min: 2, max: 61 },
+            default: DefaultValue::Num(11.0),
+            group: "Overcut map",
+        },
+    }
+}
+
 impl SShapeCase {
     /// Reads a case and the export's own inputs from one object: the keys of `B` go to `B`,
     /// the rest to the case.

@@ -1,0 +1,345 @@
+//! Every export refuses what it does not know, with a message that starts with the path of the
+//! offending input: an unknown key at the top and inside the machine, a misspelt error name, a
+//! `NaN`, a value of the wrong kind. One test per export, as WebAssembly in headless Node.
+#![cfg(target_arch = "wasm32")]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+use common::{error_message, js, jv, preset, SAMPLE, TRUNNION};
+use fiveaxis_wasm as fa;
+use serde_json::{json, Value};
+use wasm_bindgen::JsValue;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+/// `base` with `key` set to `value` (a nested path "a.b" walks into objects).
+fn with(base: &Value, path: &str, value: Value) -> JsValue {
+    let mut v = base.clone();
+    let mut at = &mut v;
+    let parts: Vec<&str> = path.split('.').collect();
+    for p in &parts[..parts.len() - 1] {
+        at = at
+            .as_object_mut()
+            .expect("an object")
+            .entry(p.to_string())
+            .or_insert_with(|| json!({}));
+    }
+    at.as_object_mut()
+        .expect("an object")
+        .insert(parts[parts.len() - 1].to_string(), value);
+    jv(&v)
+}
+
+/// The checks every export with a machine gets: an unknown key at the top, in the machine's
+/// geometry, a misspelt error and an error of an axis the machine lacks.
+fn refuses<F: Fn(JsValue) -> Result<JsValue, wasm_bindgen::JsError>>(f: F, base: Value) {
+    f(jv(&base)).expect("the base input is valid");
+    let m = error_message(f(with(&base, "colour", json!(1))));
+    assert!(
+        m.starts_with("colour: unknown input; expected one of"),
+        "{m}"
+    );
+    if base.get("machine").is_some() {
+        let m = error_message(f(with(&base, "machine.geometry.tableHeigth", json!(5))));
+        assert!(
+            m.starts_with("machine.geometry.tableHeigth: unknown input"),
+            "{m}"
+        );
+        assert!(m.contains("Did you mean \"tableHeight\"?"), "{m}");
+        let m = error_message(f(with(&base, "machine.errors", json!({ "E_A0b": 0.01 }))));
+        assert!(
+            m.starts_with("machine.errors.E_A0b: unknown error name"),
+            "{m}"
+        );
+        assert!(m.contains("Did you mean E_A0B?"), "{m}");
+        let m = error_message(f(with(&base, "machine.errors", json!({ "E_Y0B": 0.01 }))));
+        assert!(
+            m.starts_with("machine.errors.E_Y0B: this machine has no B axis"),
+            "{m}"
+        );
+        let m = error_message(f(with(&base, "machine.refrence", json!("x"))));
+        assert!(m.starts_with("machine.refrence: unknown input"), "{m}");
+    }
+}
+
+fn trunnion() -> Value {
+    preset(TRUNNION)
+}
+
+#[wasm_bindgen_test]
+fn cubic_test_refuses_unknown_inputs() {
+    refuses(fa::cubic_test, json!({ "machine": trunnion() }));
+    let m = error_message(fa::cubic_test(with(
+        &json!({}),
+        "setup.zonesize",
+        json!(16),
+    )));
+    assert!(
+        m.starts_with("setup.zonesize: unknown input") && m.contains("\"zoneSize\""),
+        "{m}"
+    );
+    // A paper's symbol is refused with its ISO name and sign.
+    let m = error_message(fa::cubic_test(js(
+        r#"{"machine":{"errors":{"dxBY":0.01}}}"#,
+    )));
+    assert!(
+        m.starts_with("machine.errors.dxBY: dxBY is the symbol δxBY")
+            && m.contains("E_X0B = −δxBY"),
+        "{m}"
+    );
+    // NaN cannot be written in JSON: set it directly.
+    let obj = js(r#"{"setup":{"pick":0.1}}"#);
+    let setup = js_sys::Reflect::get(&obj, &"setup".into()).expect("setup");
+    js_sys::Reflect::set(&setup, &"pick".into(), &JsValue::from_f64(f64::NAN)).expect("set");
+    assert_eq!(
+        error_message(fa::cubic_test(obj)),
+        "setup.pick: must be a finite number, got NaN"
+    );
+    assert!(error_message(fa::cubic_test(js(r#"{"transform":"yes"}"#)))
+        .starts_with("transform: expected true or false"));
+}
+
+#[wasm_bindgen_test]
+fn cubic_height_map_refuses_unknown_inputs() {
+    refuses(
+        fa::cubic_height_map,
+        json!({ "machine": trunnion(), "nx": 8, "ny": 8 }),
+    );
+    let m = error_message(fa::cubic_height_map(js(r#"{"nx":8,"nz":8}"#)));
+    assert!(
+        m.starts_with("nz: unknown input") && m.contains("\"ny\""),
+        "{m}"
+    );
+    assert!(error_message(fa::cubic_height_map(js(r#"{"ny":8}"#))).starts_with("nx: is required"));
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_move_refuses_unknown_inputs() {
+    refuses(
+        fa::nonlinear_move,
+        json!({ "machine": trunnion(), "start": { "k": 0, "m": 10 } }),
+    );
+    let m = error_message(fa::nonlinear_move(js(r#"{"start":{"k":0,"n":1}}"#)));
+    assert!(m.starts_with("start.n: unknown input"), "{m}");
+    assert!(error_message(fa::nonlinear_move(js(r#"{"lenght":5}"#)))
+        .contains("Did you mean \"length\"?"));
+    assert!(error_message(fa::nonlinear_move(js(r#"{"length":-5}"#)))
+        .starts_with("length: must be greater than 0 mm"));
+    assert!(
+        error_message(fa::nonlinear_move(js(r#"{"start":{"k":"ten"}}"#)))
+            .starts_with("start.k: expected a number of degrees")
+    );
+    assert!(error_message(fa::nonlinear_move(JsValue::from_f64(3.0)))
+        .starts_with("input: expected an object"));
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_sweep_k_refuses_unknown_inputs() {
+    refuses(
+        fa::nonlinear_sweep_k,
+        json!({ "machine": trunnion(), "thetaM": 10, "dK": 30, "dM": 15, "from": -180, "to": 180, "n": 5 }),
+    );
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_sweep_m_refuses_unknown_inputs() {
+    let base = json!({ "machine": trunnion(), "dM": 30, "ratios": [0.5, 2], "from": -90, "to": 90, "n": 5 });
+    refuses(fa::nonlinear_sweep_m, base.clone());
+    let m = error_message(fa::nonlinear_sweep_m(with(&base, "ratios", json!([]))));
+    assert!(m.starts_with("ratios: expected 1 to 8 values"), "{m}");
+    let m = error_message(fa::nonlinear_sweep_m(with(&base, "ratios", json!([1, 0]))));
+    assert!(m.starts_with("ratios[1]: must not be zero"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_grid_refuses_unknown_inputs() {
+    let base = json!({ "machine": trunnion(), "thetaM": 0, "dK": { "from": 0, "to": 90 }, "dM": { "from": 0, "to": 60 }, "nx": 4, "ny": 3 });
+    refuses(fa::nonlinear_grid, base.clone());
+    let m = error_message(fa::nonlinear_grid(with(&base, "dK.form", json!(0))));
+    assert!(m.starts_with("dK.form: unknown input"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_compare_types_refuses_unknown_inputs() {
+    refuses(
+        fa::nonlinear_compare_types,
+        json!({ "machine": trunnion(), "length": 1 }),
+    );
+}
+
+#[wasm_bindgen_test]
+fn nonlinear_max_errors_refuses_wrong_arguments() {
+    let moves = |v: &[f64]| JsValue::from(js_sys::Float64Array::from(v));
+    let err = |r: Result<js_sys::Float64Array, wasm_bindgen::JsError>| {
+        error_message(r.map(JsValue::from))
+    };
+    assert!(err(fa::nonlinear_max_errors(
+        "CAZ".into(),
+        2.0.into(),
+        moves(&[0.0, 1.0, 2.0])
+    ))
+    .starts_with("moves: length must be a multiple of 4"));
+    assert!(err(fa::nonlinear_max_errors(
+        "CAX".into(),
+        2.0.into(),
+        moves(&[])
+    ))
+    .starts_with("type: unknown rotary-axis type"));
+    assert!(err(fa::nonlinear_max_errors(
+        JsValue::from_f64(1.0),
+        2.0.into(),
+        moves(&[])
+    ))
+    .starts_with("type:"));
+    assert!(err(fa::nonlinear_max_errors(
+        "CAZ".into(),
+        "2".into(),
+        moves(&[])
+    ))
+    .starts_with("length:"));
+    assert!(err(fa::nonlinear_max_errors(
+        "CAZ".into(),
+        2.0.into(),
+        js_sys::Array::new().into()
+    ))
+    .starts_with("moves:"));
+    assert!(err(fa::nonlinear_max_errors(
+        "CAZ".into(),
+        2.0.into(),
+        moves(&[0.0, 0.0, 1e9, 0.0])
+    ))
+    .starts_with("moves[2]:"));
+}
+
+#[wasm_bindgen_test]
+fn sshape_part_refuses_unknown_inputs() {
+    refuses(fa::sshape_part, json!({ "nu": 10 }));
+    fa::sshape_part(JsValue::UNDEFINED).expect("no input: the defaults");
+    assert!(error_message(fa::sshape_part(js(r#"{"nu":1}"#)))
+        .starts_with("nu: must be a whole number between 2 and 2001"));
+}
+
+#[wasm_bindgen_test]
+fn sshape_overcut_refuses_unknown_inputs() {
+    refuses(
+        fa::sshape_overcut,
+        json!({ "tool": { "rTool": 10 }, "nu": 14, "nv": 2 }),
+    );
+    let m = error_message(fa::sshape_overcut(js(r#"{"tool":{"rtool":10}}"#)));
+    assert!(
+        m.starts_with("tool.rtool: unknown input") && m.contains("\"rTool\""),
+        "{m}"
+    );
+    assert!(
+        error_message(fa::sshape_overcut(js(r#"{"tool":{"lTool":30}}"#)))
+            .starts_with("tool.lTool: must be greater than 30 mm")
+    );
+}
+
+#[wasm_bindgen_test]
+fn sshape_defects_refuses_unknown_inputs() {
+    refuses(
+        fa::sshape_defects,
+        json!({ "machine": trunnion(), "dR": 0.001 }),
+    );
+    let m = error_message(fa::sshape_defects(js(
+        r#"{"model":{"refrence":"axesZero"}}"#,
+    )));
+    assert!(
+        m.starts_with("model.refrence: unknown input") && m.contains("\"reference\""),
+        "{m}"
+    );
+    assert!(error_message(fa::sshape_defects(js(
+        r#"{"model":{"reference":"axeszero"}}"#
+    )))
+    .contains("Did you mean \"axesZero\"?"));
+    assert!(error_message(fa::sshape_defects(js(r#"{"dR":2}"#)))
+        .starts_with("dR: must be between -1 mm and 1 mm"));
+}
+
+#[wasm_bindgen_test]
+fn sshape_identify_refuses_unknown_inputs() {
+    let base = json!({ "machine": trunnion(), "csv": SAMPLE });
+    refuses(fa::sshape_identify, base.clone());
+    let m = error_message(fa::sshape_identify(with(
+        &base,
+        "parameters",
+        json!(["E_X0A", "E_X0a"]),
+    )));
+    assert!(
+        m.starts_with("parameters[1]: unknown error name") && m.contains("Did you mean E_X0A?"),
+        "{m}"
+    );
+    let m = error_message(fa::sshape_identify(with(
+        &base,
+        "parameters",
+        json!(["E_X0B"]),
+    )));
+    assert!(
+        m.starts_with("parameters[0]: E_X0B is not an error of this machine"),
+        "{m}"
+    );
+    assert!(error_message(fa::sshape_identify(js(r#"{}"#))).starts_with("csv: is required"));
+}
+
+#[wasm_bindgen_test]
+fn machine_schematic_refuses_unknown_inputs() {
+    refuses(
+        fa::machine_schematic,
+        json!({ "machine": trunnion(), "m": 30 }),
+    );
+}
+
+#[wasm_bindgen_test]
+fn machine_inverse_refuses_unknown_inputs() {
+    refuses(
+        fa::machine_inverse,
+        json!({ "machine": trunnion(), "vector": [0, 0.5, 0.8] }),
+    );
+    assert!(
+        error_message(fa::machine_inverse(js(r#"{"vector":[0,1]}"#)))
+            .starts_with("vector: expected 3 values, got 2")
+    );
+    assert!(
+        error_message(fa::machine_inverse(js(r#"{"vector":[0,0,0]}"#)))
+            .starts_with("vector: the tool vector must be finite and non-zero")
+    );
+}
+
+#[wasm_bindgen_test]
+fn tool_vector_refuses_unknown_inputs() {
+    refuses(
+        fa::tool_vector,
+        json!({ "machine": trunnion(), "k": 10, "m": 20 }),
+    );
+    assert!(error_message(fa::tool_vector(js(r#"{"k":10}"#))).starts_with("m: is required"));
+}
+
+#[wasm_bindgen_test]
+fn the_schema_lists_every_exports_inputs() {
+    #[derive(serde::Deserialize)]
+    struct Field {
+        path: String,
+        unit: String,
+    }
+    #[derive(serde::Deserialize)]
+    struct Schema {
+        machine: Vec<Field>,
+        errors: Vec<serde_json::Value>,
+        exports: std::collections::BTreeMap<String, Vec<Field>>,
+    }
+    let s: Schema = common::read(fa::schema());
+    assert_eq!(s.errors.len(), 21);
+    assert!(s
+        .machine
+        .iter()
+        .any(|f| f.path == "machine.geometry.pivotLength" && f.unit == "mm"));
+    assert!(s
+        .machine
+        .iter()
+        .any(|f| f.path == "machine.rotary.kFrom" && f.unit == "deg"));
+    let cubic = &s.exports["cubicTest"];
+    assert!(cubic.iter().any(|f| f.path == "setup.zoneSize"));
+    assert!(cubic.iter().any(|f| f.path == "machine.errors"));
+    assert_eq!(s.exports.len(), 14);
+}
