@@ -44,7 +44,7 @@ function serviceWorker(): Plugin {
 }
 
 // The page lives in www/, static assets (presets, sample data) in public/, the engine package
-// that wasm-pack builds in crate/pkg/. `npm run build` writes a self-contained static folder
+// that wasm-pack builds in wasm/pkg/. `npm run build` writes a self-contained static folder
 // dist/ that any static file server can host (relative paths, no server-side code).
 export default defineConfig({
   root: 'www',
@@ -53,7 +53,7 @@ export default defineConfig({
   plugins: [serviceWorker()],
   resolve: {
     alias: {
-      '@engine': fileURLToPath(new URL('./crate/pkg/fiveaxis.js', import.meta.url)),
+      '@engine': fileURLToPath(new URL('./wasm/pkg/fiveaxis.js', import.meta.url)),
     },
   },
   worker: { format: 'es' },

@@ -756,6 +756,8 @@ pub struct FieldInfo {
     pub max: Option<f64>,
     /// `min` itself is refused.
     pub exclusive_min: bool,
+    /// For lists of numbers: fewest and most values, and whether zero is refused.
+    pub list: Option<ListInfo>,
     /// The default: a number (API units), a flag, a string, or null.
     #[cfg_attr(feature = "ts", tsify(type = "number | boolean | string | null"))]
     pub default: Value,
@@ -771,6 +773,19 @@ pub struct FieldInfo {
     pub kinds: Vec<String>,
     /// The page shows it (false: derived by the page from other inputs).
     pub shown: bool,
+}
+
+/// The limits of a list of numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
+pub struct ListInfo {
+    /// Fewest values.
+    pub min_len: usize,
+    /// Most values.
+    pub max_len: usize,
+    /// Zero is refused.
+    pub nonzero: bool,
 }
 
 /// The flattened schema of a field table (module docs), paths under `path`.
@@ -835,6 +850,19 @@ fn describe_in(fields: &[Field], path: &str, section: &str, shown: bool) -> Vec<
             min,
             max,
             exclusive_min,
+            list: match f.kind {
+                Kind::NumberList {
+                    min_len,
+                    max_len,
+                    nonzero,
+                    ..
+                } => Some(ListInfo {
+                    min_len,
+                    max_len,
+                    nonzero,
+                }),
+                _ => None,
+            },
             default: match f.default {
                 DefaultValue::Num(v) => json_number(v),
                 DefaultValue::Flag(b) => Value::Bool(b),

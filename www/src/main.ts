@@ -10,8 +10,10 @@ import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
 import { printReport, setupPrint } from './ui/print';
+import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
 const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel];
+let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();
 let active = panels[0].id;
@@ -56,7 +58,8 @@ async function show(id: string) {
     document.getElementById('panels')!.append(section);
     mounted.set(panel.id, section);
     try {
-      await panel.mount(section);
+      if (!machine) throw new Error('the machine section is not ready');
+      await panel.mount(section, machine);
       const unknown = state.applyPending(panel.prefix);
       if (unknown.length) banner(`This link has settings this version does not know; they were ignored: ${unknown.join(', ')}.`);
       section.dataset.ready = 'true';
@@ -211,6 +214,8 @@ async function restore(s: state.PageState) {
   restoring = true;
   try {
     state.apply(s);
+    const unknown = [...state.applyPending(MACHINE_PREFIX), ...state.applyPending(DRAWING_PREFIX)];
+    if (unknown.length) banner(`This link has settings this version does not know; they were ignored: ${unknown.join(', ')}.`);
     await show(panels.some((p) => p.id === s.p) ? s.p : panels[0].id);
   } finally {
     restoring = false;
@@ -226,12 +231,16 @@ function activeSection() {
 }
 
 async function start() {
+  const machineRoot = document.getElementById('machine')!;
+  machine = await mountMachine(machineRoot);
+  machineRoot.dataset.ready = 'true';
   tabs();
   setupPrint(activeSection);
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
-  // Any edit anywhere in a panel is saved (URL and local storage).
+  // Any edit anywhere in a panel or the machine is saved (URL and local storage).
   document.getElementById('panels')!.addEventListener('input', scheduleSave);
+  machineRoot.addEventListener('input', scheduleSave);
 
   let initial: state.PageState | null = null;
   try {

@@ -155,7 +155,7 @@ crate::inputs! {
             help: "How far K's axis lies from M's along the direction square to both (X for B and C, Y for A and C, Z for A and B); 0: they intersect.",
             kind: schema::number(Quantity::Length, -2000.0, 2000.0),
             default: DefaultValue::Num(0.0),
-            group: "MachineGeometry",
+            group: "Geometry",
             kinds: &["table-table", "head-head"],
         },
         /// Table surface from the machine origin along the spindle direction, mm.
@@ -164,7 +164,7 @@ crate::inputs! {
             help: "Distance of the table surface from the machine origin (the rotary centre of a rotary table) towards the spindle at zero; negative below it.",
             kind: schema::number(Quantity::Length, -2000.0, 2000.0),
             default: DefaultValue::Num(100.0),
-            group: "MachineGeometry",
+            group: "Geometry",
         },
         /// Head's last rotary axis to the spindle nose, mm.
         pub pivot_length: f64 = "pivotLength" optional {
@@ -172,7 +172,7 @@ crate::inputs! {
             help: "From the axis of the head's tilting axis (M) to the spindle nose (gauge line), along the spindle.",
             kind: schema::number(Quantity::Length, 0.0, 5000.0),
             default: DefaultValue::Num(300.0),
-            group: "MachineGeometry",
+            group: "Geometry",
             kinds: &["head-table", "head-head"],
         },
         /// Spindle nose to tool tip, mm.
@@ -181,7 +181,7 @@ crate::inputs! {
             help: "From the spindle nose (gauge line) to the tool tip.",
             kind: schema::number(Quantity::Length, 0.0, 2000.0),
             default: DefaultValue::Num(100.0),
-            group: "MachineGeometry",
+            group: "Geometry",
         },
     }
 }
@@ -269,7 +269,7 @@ crate::inputs! {
         },
         /// MachineGeometry, mm.
         pub geometry: MachineGeometry = "geometry" optional {
-            label: "MachineGeometry",
+            label: "Geometry",
             kind: Kind::Object(MachineGeometry::FIELDS),
             default: DefaultValue::Empty,
         },

@@ -1,100 +1,56 @@
-// The "Cubic-machining test" panel: Li, Sato, Shirase & Sakamoto (2021), a B/C tilting-rotary
-// table cutting a 3 × 3-zone face. Which zones come out high or low for given geometric errors.
+// The "Cubic-machining test" panel: Li, Sato, Shirase & Sakamoto (2021) on the machine of the
+// Machine section. A ball-end mill cuts a 3 × 3-zone face square to the spindle; which zones come
+// out high or low for the machine's errors, and which errors the test cannot see.
 import type { Annotations, Data, Layout, Shape } from 'plotly.js';
-import type { CubicErrorInfo, CubicInput, CubicMapResult, CubicReference, CubicResult } from '@engine';
-import { call, channel, SUPERSEDED } from '../engine/client';
-import { checkField, el, numberField, selectField, type NumberField } from '../ui/fields';
+import type { CubicInput, CubicMapResult, CubicResult, Machine } from '@engine';
+import { channel, SUPERSEDED } from '../engine/client';
+import type { MachineSection } from '../machine/section';
+import { el, numberField } from '../ui/fields';
+import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, stale, type Panel } from './panel';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
 
-/** Largest errors the engine accepts: 5 mm, 5°. */
-const MAX_ERROR = 5;
 /** Most height-map points per side shown; finer maps are averaged in blocks for display. */
 const DISPLAY_SIDE = 241;
 
-const REFERENCES: { value: CubicReference; label: string; short: string }[] = [
-  { value: 'workpiece', label: 'Workpiece frame (nominal face)', short: 'workpiece frame' },
-  { value: 'zone1-height', label: 'ZONE I’s height (Section 5.1)', short: 'relative to ZONE I’s height' },
-  { value: 'zone1-plane', label: 'ZONE I’s plane, levelled (Fig 15)', short: 'levelled on ZONE I' },
-];
+const REFERENCE_SHORT: Record<string, string> = {
+  workpiece: 'workpiece frame',
+  'zone1-height': 'relative to ZONE I’s height',
+  'zone1-plane': 'levelled on ZONE I',
+};
 
 export const cubicPanel: Panel = {
   id: 'cubic',
   prefix: 'cb',
   title: 'Cubic-machining test',
+  exports: ['cubicTest', 'cubicHeightMap'],
   mount,
 };
 
-async function mount(root: HTMLElement) {
-  const infos: CubicErrorInfo[] = await call('cubicErrors');
+async function mount(root: HTMLElement, machine: MachineSection) {
+  const schema = await loadSchema();
   const { form, results } = panelShell(
     root,
-    'Cubic-machining test: 3 × 3 zone heights on a B/C tilting-rotary table',
-    'A ball-end mill (Ø6 mm) cuts the nine 16 × 16 mm zones of a 48 × 48 mm face with the rotary axes standing still: ' +
-      'ZONE I with the tool vertical, the others tilted 30° towards the centre (Tables 1, 2). The eight geometric errors ' +
-      'of the rotary axes (Table 3) make each zone come out higher (material left, positive) or lower than nominal. ' +
-      'Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), eqs 1–15.',
+    'Cubic-machining test: 3 × 3 zone heights',
+    'A ball-end mill (Ø6 mm) cuts the nine 16 × 16 mm zones of a 48 × 48 mm face square to the spindle, with the ' +
+      'rotary axes standing still in each zone: ZONE I with the tool along the spindle, the others tilted 30° towards ' +
+      'the centre (Tables 1, 2). The machine’s geometric errors (above) make each zone come out higher (material left, ' +
+      'positive) or lower than nominal. Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), eqs 1–15, on ' +
+      'any machine.',
   );
 
-  // ---- inputs
-  const errorFields: NumberField[] = infos.map((i) =>
-    numberField({
-      id: `cb-${i.key}`,
-      label: `${i.symbol}: ${shortDescription(i)}`,
-      quantity: i.unit === 'deg' ? 'errAngle' : 'errLength',
-      value: 0,
-      min: -MAX_ERROR,
-      max: MAX_ERROR,
-      hint: `Maps onto ISO 230-1 ${i.iso} = −${i.symbol}.`,
-    }),
-  );
-  const errorSet = el('fieldset');
-  errorSet.append(el('legend', {}, 'Geometric errors (Table 3)'), presetPicker('cubic', 'cb'), ...errorFields.map((f) => f.root));
-
-  const transform = checkField(
-    'cb-transform',
-    'Workpiece transformation M_WC (eqs 10–12)',
-    true,
-    'On: the workpiece coordinate system is set at B = C = 0, so ZONE I is exact (Fig 12). Off: the workpiece frame is the erroneous table frame (Fig 10).',
-  );
-  const reference = selectField('cb-reference', 'Heights measured from', REFERENCES, 'workpiece',
-    'Section 5.1 sets the measurement frame on ZONE I: shifted to its height, or also parallel to its surface.');
-  const modelSet = el('fieldset');
-  modelSet.append(el('legend', {}, 'Model'), transform.root, reference.root);
-
-  const L = (id: string, label: string, value: number, min: number, max: number, hint?: string, positive = false) =>
-    numberField({ id, label, quantity: 'length', value, min, max, hint, positive });
-  const tableAboveB = L('cb-table', 'Table surface above the B axis', 0, -2000, 2000, 'At B = 0; negative: below the axis.');
-  const workpieceHeight = L('cb-height', 'Workpiece height (top face above the table)', 50, 0, 2000, undefined, true);
-  const cOffset = L('cb-coffset', 'C axis offset from the B axis, along X', 0, -2000, 2000, '0: B and C intersect.');
-  const workpieceX = L('cb-wx', 'Face centre from the C axis, X', 0, -2000, 2000);
-  const workpieceY = L('cb-wy', 'Face centre from the C axis, Y', 0, -2000, 2000);
-  const setupSet = el('fieldset');
-  const pairOf = (a: NumberField, b: NumberField) => {
-    const d = el('div', { class: 'pair' });
-    d.append(a.root, b.root);
-    return d;
-  };
-  setupSet.append(el('legend', {}, 'Set-up geometry'), tableAboveB.root, workpieceHeight.root, cOffset.root, pairOf(workpieceX, workpieceY));
-
-  const zoneSize = L('cb-zone', 'Zone size', 16, 1, 200, 'The face is 3 × 3 zones.');
-  const toolRadius = L('cb-radius', 'Ball-end radius r', 3, 0.05, 50);
-  const pick = L('cb-pick', 'Pick feed p', 0.1, 0.001, 200);
-  const stock = numberField({ id: 'cb-stock', label: 'Stock above the face', quantity: 'errLength', value: 0.1, min: 0, max: 50, positive: true,
-    hint: 'Depth of cut: what stays where no pass reaches.' });
-  const grid = numberField({ id: 'cb-grid', label: 'Height-map points along X', value: 193, min: 4, max: 2001, integer: true,
-    hint: '193 gives 0.25 mm steps over 48 mm. Along Y (across the passes) the map takes 4 points per pass step, so that the scallops are sampled evenly.' });
+  // ---- inputs: the shown fields of the cubic exports; the colour scale is the page's own
+  form.append(presetPicker('cubic', 'cb', machine));
+  const inputs = renderFields(cubicPanel.exports.flatMap((n) => schema.exports[n]), 'cb', form, machine.context());
   const range = numberField({ id: 'cb-range', label: 'Colour scale ± (0: automatic)', quantity: 'errLength', value: 0, min: 0, max: 50,
     hint: 'Fig 16 uses ±0.01 mm.' });
-  const pieceSet = el('fieldset');
-  pieceSet.append(el('legend', {}, 'Test piece and plots'), zoneSize.root, pairOf(toolRadius, pick), stock.root, grid.root, range.root);
-  form.append(errorSet, modelSet, setupSet, pieceSet);
+  (inputs.groups.get('Height map') ?? form).append(range.root);
 
   // ---- outputs
   const summary = el('dl', { class: 'summary', id: 'cb-summary', 'aria-live': 'polite' });
@@ -114,14 +70,8 @@ async function mount(root: HTMLElement) {
   // ---- computation
   const runTest = channel('cubicTest');
   const runMap = channel('cubicHeightMap');
-  const fieldsByPath: Record<string, NumberField> = {
-    'setup.tableAboveB': tableAboveB, 'setup.workpieceHeight': workpieceHeight, 'setup.cOffset': cOffset,
-    'setup.workpieceX': workpieceX, 'setup.workpieceY': workpieceY, 'setup.zoneSize': zoneSize,
-    'setup.toolRadius': toolRadius, 'setup.pick': pick, 'setup.stock': stock, nx: grid, ny: grid,
-  };
-  infos.forEach((i, n) => (fieldsByPath[`errors.${i.key}`] = errorFields[n]));
   /** Shows an engine error at the field it names (or over the plot when it names none). */
-  const engineError = engineErrors(fieldsByPath);
+  const engineError = engineErrors({ ...inputs.byPath, range }, machine);
 
   let lastTest: { r: CubicResult; input: CubicInput } | null = null;
   let lastMap: CubicMapResult | null = null;
@@ -135,42 +85,35 @@ async function mount(root: HTMLElement) {
   };
 
   const update = () => {
-    const errs = errorFields.map((f) => f.read());
-    const geo = [tableAboveB, workpieceHeight, cOffset, workpieceX, workpieceY, zoneSize, toolRadius, pick, stock].map((f) => f.read());
-    const n = grid.read();
+    inputs.setContext(machine.context());
+    const m = machine.current();
+    const own = inputs.read();
     const rng = range.read();
-    if (errs.some((v) => v === null) || geo.some((v) => v === null)) return; // messages at the fields; plots keep the last good input
+    if (!m || !own || rng === null) {
+      for (const p of [zonesPlot, mapPlot, sensPlot]) stale(p.p, true);
+      return;
+    }
     fixedRange = rng ? rng : null;
-    const [tab, wh, co, wx, wy, zs, tr, pk, st] = geo as number[];
-    const errors = Object.fromEntries(infos.map((i, k) => [i.key, errs[k] as number]));
-    const input: CubicInput = {
-      errors,
-      setup: { tableAboveB: tab, workpieceHeight: wh, cOffset: co, workpieceX: wx, workpieceY: wy, zoneSize: zs, toolRadius: tr, pick: pk, stock: st },
-      transform: transform.input.checked,
-      reference: reference.select.value as CubicReference,
-    };
+    const { nx, ny, ...test } = own as Record<string, unknown>;
+    const input = { ...test, machine: m as Machine } as CubicInput;
     runTest(input).then((r) => {
       if (r === SUPERSEDED) return;
       lastTest = { r, input };
       showTest(r, input);
       if (lastMap) showMap(lastMap);
     }, (e) => engineError(e, zonesPlot.p));
-    if (n !== null) {
-      // Rows at a quarter of the actual pass step, aligned with the passes (the face starts on
-      // a pass): whole scallop periods can then be averaged for display without aliasing.
-      const ny = Math.min(12 * Math.ceil(zs / pk - 1e-9) + 1, 4001, Math.floor(4e6 / n));
-      runMap({ ...input, nx: n, ny }).then((m) => {
-        if (m === SUPERSEDED) return;
-        lastMap = m;
-        showMap(m);
-      }, (e) => engineError(e, mapPlot.p));
-    }
+    runMap({ ...input, nx: nx as number, ...(ny === undefined ? {} : { ny: ny as number }) }).then((map) => {
+      if (map === SUPERSEDED) return;
+      lastMap = map;
+      showMap(map);
+    }, (e) => engineError(e, mapPlot.p));
   };
 
   const frameText = (r: CubicResult) =>
-    `${r.transform ? 'with M_WC' : 'without M_WC'}, ${REFERENCES.find((x) => x.value === r.reference)?.short ?? r.reference}`;
+    `${r.transform ? 'workpiece set at zero (M_WC)' : 'workpiece frame = table frame'}, ${REFERENCE_SHORT[r.reference] ?? r.reference}`;
 
   const showTest = (r: CubicResult, input: CubicInput) => {
+    const ctx = machine.context();
     note(zonesPlot.p, null);
     note(sensPlot.p, null);
     const zs = input.setup?.zoneSize ?? 16;
@@ -178,16 +121,21 @@ async function mount(root: HTMLElement) {
     const lo = Math.min(...heights);
     const hi = Math.max(...heights);
     const worst = Math.max(...r.zones.map((z) => Math.abs(z.height - z.linearHeight)));
+    const v = r.visibility;
+    const alike = v.alike.map((g) => g.map((x) => x.name).join(' ~ ')).join('; ');
     const items: [string, string, string][] = [
       ['cb-span', 'Zone heights', `${show('errLength', lo)} to ${show('errLength', hi)} (spread ${show('errLength', hi - lo)})`],
       ['cb-high', 'Highest / lowest zone', `${r.zones[heights.indexOf(hi)].name} / ${r.zones[heights.indexOf(lo)].name}`],
       ['cb-linear', 'Exact vs first order Σ k·ε', `differ by at most ${show('errLength', worst)}`],
+      ['cb-blind', 'Errors this test cannot see', v.invisible.length ? `${v.invisible.join(', ')} (no zone height changes${v.tiltOnly.length ? `; ${v.tiltOnly.join(', ')} only tilt zones` : ''})` : 'none'],
+      ['cb-alike', 'Errors it cannot tell apart', alike ? `${alike} (their height changes are proportional)` : 'none'],
+      ['cb-rank', 'Independent combinations the heights give', `${v.rank} of ${r.errorNames.length} errors`],
       ['cb-frame', 'Frame', frameText(r)],
     ];
     summary.replaceChildren();
-    for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
+    for (const [id, k, val] of items) summary.append(el('dt', {}, k), el('dd', { id }, val));
 
-    // 3 × 3 map: rows bottom (−Y) to top, columns left (−X) to right, like Fig 2.
+    // 3 × 3 map: rows bottom (−v) to top, columns left (−u) to right, like Fig 2.
     const R = D(colourRange());
     const at = (row: number, col: number) => r.zones.find((z) => z.row === row && z.col === col)!;
     const coords = [-zs, 0, zs];
@@ -195,8 +143,8 @@ async function mount(root: HTMLElement) {
     const rise = (s: number) => show('errLength', s * zs);
     const text = [-1, 0, 1].map((row) => [-1, 0, 1].map((col) => {
       const q = at(row, col);
-      return `ZONE ${q.name}: B = ${fmt.num(q.b, 5)}°, C = ${fmt.num(q.c, 5)}°<br>height ${show('errLength', q.height)}` +
-        ` (first order ${show('errLength', q.linearHeight)})<br>tilt: rises ${rise(q.slopeX)} along +X, ${rise(q.slopeY)} along +Y over the zone`;
+      return `ZONE ${q.name}: ${ctx.k} = ${fmt.num(q.k, 5)}°, ${ctx.m} = ${fmt.num(q.m, 5)}°<br>height ${show('errLength', q.height)}` +
+        ` (first order ${show('errLength', q.linearHeight)})<br>tilt: rises ${rise(q.slopeX)} along +${ctx.u}, ${rise(q.slopeY)} along +${ctx.v} over the zone`;
     }));
     const annotations: Partial<Annotations>[] = r.zones.map((q) => ({
       x: q.col * zs, y: q.row * zs, xref: 'x', yref: 'y', showarrow: false,
@@ -208,28 +156,32 @@ async function mount(root: HTMLElement) {
       colorscale: 'RdBu', zmin: -R, zmax: R, name: 'zone height',
       colorbar: { title: { text: titled('height', 'errLength') } },
     } as Data], {
-      xaxis: axis('X (mm)', { tickvals: coords, constrain: 'domain' }),
-      yaxis: axis('Y (mm)', { tickvals: coords, scaleanchor: 'x' }),
+      xaxis: axis(`${ctx.u} (mm)`, { tickvals: coords, constrain: 'domain' }),
+      yaxis: axis(`${ctx.v} (mm)`, { tickvals: coords, scaleanchor: 'x' }),
       annotations,
     }, 'cubic-zones');
 
-    // Sensitivities: positions (mm per mm) above, angles (per the angle unit shown) below.
+    // Sensitivities: positions (per length unit) above, angles (per angle unit) below; only the
+    // errors the heights see.
     const len = unitDef('errLength');
     const ang = unitDef('errAngle');
     const names = r.zones.map((q) => q.name);
-    const colors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
-    const data: Data[] = infos.map((info, e) => {
-      const angular = info.unit === 'deg';
+    const colors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf', '#bcbd22', '#7f7f7f', '#aec7e8', '#ff9896', '#98df8a', '#c5b0d5', '#c49c94'];
+    const n = r.errorNames.length;
+    const data: Data[] = [];
+    r.errorNames.forEach((name, e) => {
+      if (v.invisible.includes(name)) return;
+      const angular = r.errorUnits[e] === 'deg';
       const scale = angular ? len.factor / ang.factor : 1;
-      const k = r.zones.map((_, zi) => r.kHeight[zi * 8 + e] * scale);
+      const k = r.zones.map((_, zi) => r.kHeight[zi * n + e] * scale);
       const unit = angular ? `${len.label}/${ang.label}` : `${len.label}/${len.label}`;
-      return {
-        type: 'bar', x: names, y: k, name: `${info.symbol}${angular ? ' (angle)' : ''}`, marker: { color: colors[e] },
+      data.push({
+        type: 'bar', x: names, y: k, name: `${name}${angular ? ' (angle)' : ''}`, marker: { color: colors[e % colors.length] },
         xaxis: angular ? 'x2' : 'x', yaxis: angular ? 'y2' : 'y',
-        hovertemplate: `${info.symbol} on ZONE %{x}: k = %{y:.4g} ${unit}<extra></extra>`,
-      } as Data;
+        hovertemplate: `${name} on ZONE %{x}: k = %{y:.4g} ${unit}<extra></extra>`,
+      } as Data);
     });
-    draw(sensPlot.p, `Sensitivity k = E/ε of the zone heights (eq 15; ${r.transform ? 'Fig 12' : 'Fig 10'}: ${frameText(r)})`, data, {
+    draw(sensPlot.p, `Sensitivity k = E/ε of the zone heights to each error the test sees (eq 15)<br>${frameText(r)}`, data, {
       grid: { rows: 2, columns: 1, pattern: 'independent', roworder: 'top to bottom' },
       barmode: 'group',
       xaxis: axis('zone', { anchor: 'y' }),
@@ -240,6 +192,7 @@ async function mount(root: HTMLElement) {
   };
 
   const showMap = (m: CubicMapResult) => {
+    const ctx = machine.context();
     note(mapPlot.p, null);
     const R = D(colourRange());
     const passAligned = (m.ny - 1) % 12 === 0 && Math.abs((m.y[1] - m.y[0]) * 4 - m.step) < 1e-9 * m.step;
@@ -257,30 +210,21 @@ async function mount(root: HTMLElement) {
     draw(mapPlot.p, `Simulated machined face, zone averages (Fig 16(b))<br>${m.nx} × ${m.ny} points (shown ${small.x.length} × ${small.y.length}); scallops ${show('errLength', m.scallop, 3)}`, [{
       type: 'heatmap', x: small.x, y: small.y, z: small.z.map((row) => row.map(D)), colorscale: 'RdBu',
       zmin: -R, zmax: R, name: 'height', colorbar: { title: { text: titled('height', 'errLength') } },
-      hovertemplate: `X %{x:.2f} mm, Y %{y:.2f} mm<br>height %{z:.4g} ${unitDef('errLength').label}<extra></extra>`,
+      hovertemplate: `${ctx.u} %{x:.2f} mm, ${ctx.v} %{y:.2f} mm<br>height %{z:.4g} ${unitDef('errLength').label}<extra></extra>`,
     } as Data], {
-      xaxis: axis('X (mm)', { constrain: 'domain' }),
-      yaxis: axis('Y (mm)', { scaleanchor: 'x' }),
+      xaxis: axis(`${ctx.u} (mm)`, { constrain: 'domain' }),
+      yaxis: axis(`${ctx.v} (mm)`, { scaleanchor: 'x' }),
       annotations, shapes,
     }, 'cubic-height-map');
   };
 
-  for (const input of form.querySelectorAll('input, select')) input.addEventListener('input', update);
+  form.addEventListener('input', update);
+  machine.onChange(update);
   onUnitsChange(() => {
     if (lastTest) showTest(lastTest.r, lastTest.input);
     if (lastMap) showMap(lastMap);
   });
   update();
-}
-
-/** "Positional error of B-axis average line along X-axis direction" → shorter label text. */
-function shortDescription(i: CubicErrorInfo): string {
-  return i.description
-    .replace('Positional error of ', '')
-    .replace('Orientation error between ', '')
-    .replace(' average line', '')
-    .replace(' direction', '')
-    .replace(/ \(.*\)$/, '');
 }
 
 /**

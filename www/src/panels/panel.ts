@@ -1,6 +1,10 @@
 import { EngineError } from '../engine/client';
+import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
+import type { ShowsError } from '../ui/form';
 import { note } from '../ui/plot';
+
+export type { ShowsError };
 
 // A study's panel: mounted once, the first time it is shown.
 export interface Panel {
@@ -10,7 +14,9 @@ export interface Panel {
   prefix: string;
   /** Tab text. */
   title: string;
-  mount(root: HTMLElement): Promise<void>;
+  /** The engine exports whose inputs the panel renders (their shown fields, machine aside). */
+  exports: string[];
+  mount(root: HTMLElement, machine: MachineSection): Promise<void>;
 }
 
 /**
@@ -28,21 +34,23 @@ export function panelShell(root: HTMLElement, heading: string, lead: string) {
   return { form, results };
 }
 
-/** A field that can show a message (every field kind of ui/fields.ts). */
-export interface ShowsError {
-  setError(message: string | null): void;
-}
-
 /**
  * A handler for an engine error: the message goes to the field its path names (`"start.k: ..."`
- * → the field registered under `"start.k"`, without the path), or over the plot `target` when it
- * names no field of the panel. The last good plot stays either way.
+ * → the field registered under `"start.k"`, without the path), to the machine's field for a
+ * `machine.` path, or over the plot `target` when it names no field. The plot is greyed: it no
+ * longer shows what the inputs ask for.
  */
-export function engineErrors(fieldsByPath: Record<string, ShowsError>) {
+export function engineErrors(fieldsByPath: Record<string, ShowsError>, machine: MachineSection) {
   return (err: unknown, target: HTMLElement) => {
     const e = err instanceof EngineError ? err : new EngineError(String(err));
     const f = fieldsByPath[e.field];
     if (f) f.setError(e.message.slice(e.field.length + 2));
-    else note(target, e.message);
+    else if (!machine.showError(e.field, e.message)) note(target, e.message);
+    stale(target, true);
   };
+}
+
+/** Greys a plot (and its wrapper) whose inputs changed but could not be computed, or clears it. */
+export function stale(target: HTMLElement, on: boolean) {
+  (target.closest('.plot-wrap') ?? target).classList.toggle('stale', on);
 }

@@ -1,103 +1,56 @@
 // The "S-shape test piece" panel: ISO 10791-7:2020's five-axis test part after Chanal, Duc &
-// Chevalier (Precision Engineering 75, 2022): the part, the flank-milling overcut (eq 6 and the
-// exact gouge), the machining defect of a head-B / table-C machine's location errors (eq 14,
-// Fig 19) and their identification from measured deviations (Table 4, Fig 21).
+// Chevalier (Precision Engineering 75, 2022) on the machine of the Machine section: the part, the
+// flank-milling overcut (eq 6 and the exact gouge), the machining defect of the machine's errors
+// (eq 14, Fig 19) and their identification from measured deviations (Table 4, Fig 21).
 import type { Data, Layout } from 'plotly.js';
-import type { SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutResult, SShapeOvercutSurface, SShapePartResult } from '@engine';
+import type { Machine, SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutResult, SShapeOvercutSurface, SShapePartResult } from '@engine';
 import { call, channel, SUPERSEDED } from '../engine/client';
-import { checkField, el, fields, numberField, selectField, textField, type NumberField } from '../ui/fields';
+import type { MachineSection } from '../machine/section';
+import { el, fields } from '../ui/fields';
+import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, rows } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, type Panel, type ShowsError } from './panel';
+import { engineErrors, panelShell, stale, type Panel } from './panel';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
   prefix: 'ss',
   title: 'S-shape test piece',
+  exports: ['sshapeDefects', 'sshapeOvercut', 'sshapeIdentify'],
   mount,
 };
 
 const SAMPLE = 'samples/sshape-measured.csv';
-const RAD = 180 / Math.PI;
-/** Largest accepted angular error: 0.01 rad, in degrees (the engine's limit). */
-const MAX_ANGLE = 0.01 * RAD;
-/** The 8 errors of Table 3: name, quantity, default (mm or degrees: Table 4's values for simulation). */
-const ERRORS: { name: string; q: 'errLength' | 'errAngle'; value: number; hint: string }[] = [
-  { name: 'E_C0Y', q: 'errAngle', value: 0, hint: 'Squareness of Y to X (about Z).' },
-  { name: 'E_A0Z', q: 'errAngle', value: 0, hint: 'Squareness of Z to Y (about X).' },
-  { name: 'E_B0Z', q: 'errAngle', value: 0, hint: 'Squareness of Z to X (about Y).' },
-  { name: 'E_A0C', q: 'errAngle', value: 0, hint: 'Tilt of the C axis about X.' },
-  { name: 'E_B0C', q: 'errAngle', value: 0, hint: 'Tilt of the C axis about Y.' },
-  { name: 'E_X0B', q: 'errLength', value: 0.0294, hint: 'Offset of the B axis along X.' },
-  { name: 'E_A0B', q: 'errAngle', value: 3.2419e-4 * RAD, hint: 'Tilt of the B axis about X.' },
-  { name: 'E_C0B', q: 'errAngle', value: 0, hint: 'Tilt of the B axis about Z.' },
-];
-const COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22'];
-const fieldId = (name: string) => `ss-${name.toLowerCase().replace('_', '')}`;
+const COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22', '#7f7f7f', '#aec7e8', '#ffbb78', '#98df8a', '#ff9896', '#c5b0d5'];
 
-async function mount(root: HTMLElement) {
+async function mount(root: HTMLElement, machine: MachineSection) {
+  const schema = await loadSchema();
   const { form, results } = panelShell(
     root,
     'S-shape test piece (ISO 10791-7)',
-    'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill. ' +
-      'How much of the 0.12 mm tolerance the geometry itself takes (overcut of a non-developable ruled surface), what ' +
-      'eight location errors of a head-B / table-C machine do at the 100 measurement points, and which of them a ' +
-      'measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, Table 4.',
+    'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill, ' +
+      'its base on the table square to the spindle. How much of the 0.12 mm tolerance the geometry itself takes (overcut ' +
+      'of a non-developable ruled surface), what the machine’s errors (above) do at the 100 measurement points, and ' +
+      'which of them a measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, ' +
+      'Table 4, on any machine.',
   );
 
-  // ---- inputs
-  const l0 = numberField({ id: 'ss-l0', label: 'Pivot to tool tip L0', quantity: 'length', value: 499.889, min: 1, max: 5000, positive: true, hint: 'Distance from the B axis to the tool centre point (paper: 499.889 mm).' });
-  const rTool = numberField({ id: 'ss-rtool', label: 'Tool radius', quantity: 'length', value: 10, min: 0, max: 50, positive: true });
-  const lTool = numberField({ id: 'ss-ltool', label: 'Tool length to the top curve', quantity: 'length', value: 35, min: 30.000001, max: 500, hint: 'Tip to the tool section that touches the top curve (eq 2).' });
-  const branch = selectField('ss-branch', 'Inverse kinematics', [
-    { value: 'paper', label: 'B ≥ 0 (the paper’s tan B, tan C)' },
-    { value: 'continuous', label: 'Nearest the previous pose' },
-  ], 'paper', 'Where the tool is vertical (the middle of the S) C is undefined and kept from before.');
-  const reference = selectField('ss-reference', 'Defect subtracted (eq 14)', [
-    { value: 'workOrigin', label: 'Tool tip at the workpiece origin' },
-    { value: 'axesZero', label: 'All axes zero (eq 14 as printed)' },
-  ], 'workOrigin', 'The defect at this pose is subtracted: where the work offset was set.');
-  const point = selectField('ss-point', 'Tool point moved', [
-    { value: 'tip', label: 'Tool tip (eq 14)' },
-    { value: 'contact', label: 'Tool axis at the point’s height' },
-  ], 'tip');
-  const machineSet = el('fieldset');
-  machineSet.append(el('legend', {}, 'Machine and tool'), presetPicker('sshape', 'ss'), l0.root, rTool.root, lTool.root, branch.root, reference.root, point.root);
-
-  const errorFields: NumberField[] = ERRORS.map((e) =>
-    numberField({
-      id: fieldId(e.name), label: e.name, quantity: e.q, value: e.value,
-      min: e.q === 'errAngle' ? -MAX_ANGLE : -1, max: e.q === 'errAngle' ? MAX_ANGLE : 1, hint: e.hint,
-    }),
-  );
-  const dR = numberField({ id: 'ss-dr', label: 'Tool radius error R′ − R', quantity: 'errLength', value: 0, min: -1, max: 1, hint: 'Positive: the real tool is larger (the surface moves in).' });
-  const errorSet = el('fieldset');
-  const grid2 = el('div', { class: 'pair' });
-  for (const f of errorFields) grid2.append(f.root);
-  errorSet.append(el('legend', {}, 'Location errors (Table 3)'), grid2, dR.root);
-
-  const nu = numberField({ id: 'ss-nu', label: 'Overcut map: points along u', value: 261, min: 14, max: 1001, integer: true, hint: '261 puts every knot on the grid.' });
-  const nv = numberField({ id: 'ss-nv', label: 'Points over the height', value: 11, min: 2, max: 61, integer: true });
-  const mapSet = el('fieldset');
-  mapSet.append(el('legend', {}, 'Overcut map'), el('div', { class: 'pair' }));
-  mapSet.lastElementChild!.append(nu.root, nv.root);
-
-  const csv = textField('ss-csv', 'Measured deviations (CSV)', '', 6, 'Header curve,point,deviation_mm (or deviation_um); 100 rows: top/bottom, 1–50 (1–25 surface A, 26–50 B); positive = material left.');
-  csv.area.placeholder = 'curve,point,deviation_mm\ntop,1,0.0123\n…';
+  // ---- inputs: the shown fields of the S-shape exports; loading a file is the page's own
+  form.append(presetPicker('sshape', 'ss', machine));
+  const inputs = renderFields(sshapePanel.exports.flatMap((n) => schema.exports[n]), 'ss', form, machine.context());
   const sampleButton = el('button', { type: 'button', id: 'ss-load-sample' }, 'Load the sample file');
   const fileLabel = el('label', { class: 'import', for: 'ss-file' }, 'Choose a file ');
   const file = el('input', { id: 'ss-file', type: 'file', accept: '.csv,text/csv,text/plain' });
   fileLabel.append(file);
   const fileMsg = el('p', { class: 'field-hint', id: 'ss-file-msg', 'aria-live': 'polite' });
-  const radius = checkField('ss-radius', 'Fit a tool-radius error too', true);
-  const rtol = numberField({ id: 'ss-rtol', label: 'Rank threshold (relative singular value)', value: 0.01, min: 1e-12, max: 0.5, positive: true, hint: 'Directions below it count as not identifiable (0.01: condition number 100).' });
-  const identSet = el('fieldset');
   const buttons = el('div', { class: 'file-row' });
   buttons.append(sampleButton, fileLabel);
-  identSet.append(el('legend', {}, 'Identification'), buttons, fileMsg, csv.root, radius.root, rtol.root);
-  form.append(machineSet, errorSet, mapSet, identSet);
+  const identSet = inputs.groups.get('Identification');
+  identSet?.querySelector('legend')?.after(buttons, fileMsg);
+  const csvArea = form.querySelector<HTMLTextAreaElement>('#ss-csv');
+  if (csvArea) csvArea.placeholder = 'curve,point,deviation_mm\ntop,1,0.0123\n…';
 
   // ---- outputs
   const summary = el('dl', { class: 'summary', id: 'ss-summary', 'aria-live': 'polite' });
@@ -137,63 +90,58 @@ async function mount(root: HTMLElement) {
   const runDefects = channel('sshapeDefects');
   const runIdentify = channel('sshapeIdentify');
 
-  const fieldsByPath: Record<string, ShowsError> = {
-    'machine.l0': l0, 'machine.rTool': rTool, 'machine.lTool': lTool, rTool, lTool, nu, nv, dR, rtol, csv,
-  };
-  ERRORS.forEach((e, i) => (fieldsByPath[`errors.${e.name}`] = errorFields[i]));
   /** Shows an engine error at the field it names (or over the plot when it names none). */
-  const engineError = engineErrors(fieldsByPath);
+  const engineError = engineErrors(inputs.byPath, machine);
 
-  const machine = () => {
-    const v = [l0.read(), rTool.read(), lTool.read()];
-    if (v.some((x) => x === null)) return null;
-    return {
-      l0: v[0] as number, rTool: v[1] as number, lTool: v[2] as number,
-      branch: branch.select.value as 'paper' | 'continuous',
-      reference: reference.select.value as 'workOrigin' | 'axesZero',
-      point: point.select.value as 'tip' | 'contact',
-    };
+  /** The inputs, split per export. */
+  const read = () => {
+    inputs.setContext(machine.context());
+    inputs.setNames(machine.errorOptions());
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own) return null;
+    const { tool, model, dR, nu, nv, csv, parameters, radiusTerm, rtol } = own as Record<string, unknown>;
+    return { machine: m as Machine, tool, model, dR, nu, nv, csv: csv as string, parameters, radiusTerm, rtol };
   };
 
   const update = () => {
-    const m = machine();
-    const errs = errorFields.map((f) => f.read());
-    const dr = dR.read();
-    const n = [nu.read(), nv.read()];
-    if (m && n.every((x) => x !== null)) {
-      runOvercut({ rTool: m.rTool, lTool: m.lTool, nu: n[0] as number, nv: n[1] as number }).then((o) => {
-        if (o === SUPERSEDED) return;
-        lastOvercut = o;
-        showOvercut(o);
-      }, (e) => engineError(e, mapA.p));
+    const i = read();
+    if (!i) {
+      for (const p of [part3d, mapA, mapB, defects, fitPlot, residualPlot]) stale(p.p, true);
+      return;
     }
-    if (m && errs.every((x) => x !== null) && dr !== null) {
-      const errors = Object.fromEntries(ERRORS.map((e, i) => [e.name, errs[i] as number]));
-      runDefects({ machine: m, errors, dR: dr }).then((d) => {
-        if (d === SUPERSEDED) return;
-        lastDefects = d;
-        showDefects(d);
-        showPart();
-      }, (e) => engineError(e, defects.p));
-    }
+    runOvercut({ tool: i.tool, nu: i.nu, nv: i.nv } as never).then((o) => {
+      if (o === SUPERSEDED) return;
+      lastOvercut = o;
+      showOvercut(o);
+    }, (e) => engineError(e, mapA.p));
+    runDefects({ machine: i.machine, tool: i.tool, model: i.model, dR: i.dR } as never).then((d) => {
+      if (d === SUPERSEDED) return;
+      lastDefects = d;
+      showDefects(d);
+      showPart();
+    }, (e) => engineError(e, defects.p));
     identify();
   };
 
   const identify = () => {
-    const m = machine();
-    const text = csv.area.value;
-    const r = rtol.read();
-    if (!m || r === null) return;
+    const i = read();
+    if (!i) return;
+    const text = i.csv;
     if (text.trim() === '') {
-      csv.setError(null);
-      ident.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated with Table 4’s errors) to identify the errors.'));
+      inputs.byPath.csv?.setError(null);
+      ident.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated on Chanal et al.’s machine with Table 4’s errors) to identify the errors.'));
       return;
     }
-    runIdentify({ machine: m, csv: text, radiusTerm: radius.input.checked, rtol: r }).then((f) => {
+    runIdentify({ machine: i.machine, tool: i.tool, model: i.model, csv: text, parameters: i.parameters, radiusTerm: i.radiusTerm, rtol: i.rtol } as never).then((f) => {
       if (f === SUPERSEDED) return;
-      csv.setError(null);
+      inputs.byPath.csv?.setError(null);
       showIdentification(f);
-    }, (e) => engineError(e, fitPlot.p));
+    }, (e) => {
+      // A failed identification clears the previous one: its numbers belong to other inputs.
+      ident.replaceChildren(el('p', { class: 'warn' }, 'No identification: see the message at the field or above the plot.'));
+      engineError(e, fitPlot.p);
+    });
   };
 
   // ---- drawing
@@ -261,34 +209,36 @@ async function mount(root: HTMLElement) {
     note(defects.p, null);
     const x = part.points.map((_, i) => i + 1);
     const data: Data[] = [];
+    const n = d.names.length;
     d.names.forEach((name, j) => {
-      const y = Array.from({ length: 100 }, (_, k) => D(d.contributions[8 * k + j]));
+      const y = Array.from({ length: 100 }, (_, k) => D(d.contributions[n * k + j]));
       if (y.every((v) => v === 0)) return;
-      data.push({ x, y, type: 'scatter', mode: 'lines', name, line: { color: COLORS[j], width: 1.5 }, text: labels, hovertemplate: `%{text}<br>${name}: %{y:.4g} ${lu()}<extra></extra>` });
+      data.push({ x, y, type: 'scatter', mode: 'lines', name, line: { color: COLORS[j % COLORS.length], width: 1.5 }, text: labels, hovertemplate: `%{text}<br>${name}: %{y:.4g} ${lu()}<extra></extra>` });
     });
     if (Array.from(d.radius).some((v) => v !== 0)) {
-      data.push({ x, y: Array.from(d.radius, D), type: 'scatter', mode: 'lines', name: 'tool radius', line: { color: COLORS[8], width: 1.5, dash: 'dot' }, text: labels, hovertemplate: `%{text}<br>tool radius: %{y:.4g} ${lu()}<extra></extra>` });
+      data.push({ x, y: Array.from(d.radius, D), type: 'scatter', mode: 'lines', name: 'tool radius', line: { color: '#555', width: 1.5, dash: 'dot' }, text: labels, hovertemplate: `%{text}<br>tool radius: %{y:.4g} ${lu()}<extra></extra>` });
     }
     data.push({ x, y: Array.from(d.total, D), type: 'scatter', mode: 'lines+markers', name: 'total', line: { color: '#111', width: 2.5 }, marker: { size: 4 }, text: labels, hovertemplate: `%{text}<br>total: %{y:.4g} ${lu()}<extra></extra>` });
+    const ctx = machine.context();
     const singular = d.poses.map((p, i) => (p.singular ? i : -1)).filter((i) => i >= 0);
     if (singular.length) {
-      data.push({ x: singular.map((i) => i + 1), y: singular.map((i) => D(d.total[i])), type: 'scatter', mode: 'markers', name: 'tool vertical: C undefined, kept', marker: { symbol: 'x', size: 10, color: '#d62728' }, text: singular.map((i) => labels[i]), hovertemplate: '%{text}<br>tool vertical: C kept from before<extra></extra>' });
+      data.push({ x: singular.map((i) => i + 1), y: singular.map((i) => D(d.total[i])), type: 'scatter', mode: 'markers', name: `tool along ${ctx.k}: ${ctx.k} undefined, kept`, marker: { symbol: 'x', size: 10, color: '#d62728' }, text: singular.map((i) => labels[i]), hovertemplate: `%{text}<br>tool along the ${ctx.k} axis: ${ctx.k} kept from before<extra></extra>` });
     }
     const band = (x0: number, x1: number, text: string) => ({ type: 'rect', xref: 'x', yref: 'paper', x0, x1, y0: 0, y1: 1, fillcolor: text.includes('B') ? '#f6f8fa' : 'rgba(0,0,0,0)', line: { width: 0 }, layer: 'below' });
-    draw(defects.p, `Machining defect at the measurement points (eq 14, Fig 19), one line per non-zero error<br>${referenceText(reference.select.value)}; ${point.select.value === 'tip' ? 'tool tip moved' : 'axis point at the measured height moved'}`, data, {
+    draw(defects.p, `Machining defect at the measurement points (eq 14, Fig 19), one line per non-zero error<br>${referenceText(fields.get('ss-model-reference')?.text() ?? '')}; ${fields.get('ss-model-point')?.text() === 'contact' ? 'axis point at the measured height moved' : 'tool tip moved'}`, data, {
       xaxis: pointAxis(' (shaded)'),
       yaxis: axis(titled('deviation along the outward normal', 'errLength')),
       shapes: [band(25.5, 50.5, 'B'), band(75.5, 100.5, 'B'), { type: 'line', xref: 'x', yref: 'paper', x0: 50.5, x1: 50.5, y0: 0, y1: 1, line: { color: '#8c959f', width: 1, dash: 'dot' } }],
     } as Partial<Layout>, 'sshape-defects');
-    const [ca, cb] = d.pairCosines;
-    setSummary('ss-pairs', 'E_A0Z vs E_A0C, E_B0Z vs E_B0C', `cosines of their effects ${fmt.num(ca, 5)}, ${fmt.num(cb, 5)} (−1: alike but for sign, not separable)`);
-    setSummary('ss-singular', 'Tool vertical (C undefined)', `${singular.length} of 100 points: ${singular.map((i) => labels[i]).join(', ') || 'none'}`);
+    const pairs = d.alike.slice(0, 4).map((p) => `${p.a} / ${p.b} ${fmt.num(p.cosine, 4)}`).join('; ');
+    setSummary('ss-pairs', 'Errors the part can hardly tell apart', pairs ? `${pairs} (cosine of their effects; ±1: alike, not separable)` : 'none (no pair above 0.95)');
+    setSummary('ss-singular', `Tool along ${ctx.k} (${ctx.k} undefined)`, `${singular.length} of 100 points: ${singular.map((i) => labels[i]).join(', ') || 'none'}`);
     setSummary('ss-range', 'Defect of the entered errors', `${show('errLength', Math.min(...d.total))} to ${show('errLength', Math.max(...d.total))}`);
   };
 
   const showIdentification = (f: SShapeIdentifyResult) => {
     note(fitPlot.p, null);
-    const quantity = (unit: string) => (unit === '°' ? 'errAngle' : 'errLength');
+    const quantity = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
     const table = el('table', { class: 'ident-table', id: 'ss-ident-table' });
     const head = el('tr');
     for (const h of ['parameter', 'identified value', 'standard error', '']) head.append(el('th', { scope: 'col' }, h));
@@ -352,7 +302,10 @@ async function mount(root: HTMLElement) {
     file.value = '';
   });
 
-  for (const input of form.querySelectorAll('input:not([type=file]), select, textarea')) input.addEventListener('input', update);
+  form.addEventListener('input', (e) => {
+    if ((e.target as HTMLElement).id !== 'ss-file') update();
+  });
+  machine.onChange(update);
   onUnitsChange(() => {
     update();
     if (lastOvercut) showOvercut(lastOvercut);

@@ -17,7 +17,7 @@ export interface FieldHandle {
   /** Sets the text and tells the panel (an 'input' event). */
   setText(text: string): void;
   /** Sets a value given in base units (mm, degrees); for presets. */
-  setBase(value: number | string): void;
+  setBase(value: number | string | boolean | string[]): void;
 }
 
 /** Every field on the page, by id. */
@@ -44,10 +44,12 @@ export interface NumberFieldOptions {
   quantity?: Quantity;
   /** Unit text for quantity 'none' (e.g. "" for ratios and counts). */
   unit?: string;
-  /** Default, minimum and maximum in base units (mm, degrees). */
-  value: number;
+  /** Default, minimum and maximum in base units (mm, degrees); a null default: empty. */
+  value: number | null;
   min: number;
   max: number;
+  /** May be left empty: then `read()` gives undefined (the engine's default applies). */
+  optional?: boolean;
   /** Reject 0 and negative values (lengths that must be positive). */
   positive?: boolean;
   integer?: boolean;
@@ -58,8 +60,9 @@ export interface NumberField {
   readonly root: HTMLElement;
   readonly input: HTMLInputElement;
   readonly label: HTMLElement;
-  /** The value in base units, or null after showing why the text is not acceptable. */
-  read(): number | null;
+  /** The value in base units; undefined when an optional field is empty; null after showing
+   *  why the text is not acceptable. */
+  read(): number | null | undefined;
   /** Shows (or clears, with null) a message at the field. */
   setError(message: string | null): void;
 }
@@ -114,7 +117,7 @@ export function numberField(o: NumberFieldOptions): NumberField {
     unitEl.textContent = q === 'none' ? (o.unit ?? '') : d.label;
     unitEl.title = d.name;
   };
-  const defaultText = () => numberText(toDisplay(q, o.value));
+  const defaultText = () => (o.value === null ? '' : numberText(toDisplay(q, o.value)));
   input.value = defaultText();
   input.defaultValue = input.value;
   showUnit();
@@ -129,8 +132,9 @@ export function numberField(o: NumberFieldOptions): NumberField {
 
   const setError = (m: string | null) => shell.setError(input, m);
   const limit = (base: number) => `${numberText(toDisplay(q, base))}${unitEl.textContent ? ` ${unitEl.textContent}` : ''}`;
-  const read = (): number | null => {
+  const read = (): number | null | undefined => {
     const text = input.value;
+    if (text.trim() === '' && o.optional) return setError(null), undefined;
     if (text.trim() === '') return setError('Enter a value.'), null;
     const shown = parseNumber(text);
     if (shown === null) return setError(`"${text.trim()}" is not a number.`), null;
@@ -147,7 +151,7 @@ export function numberField(o: NumberFieldOptions): NumberField {
     text: () => input.value,
     defaultText,
     setText: (t) => ((input.value = t), fire(input)),
-    setBase: (v) => ((input.value = typeof v === 'number' ? numberText(toDisplay(q, v)) : v), fire(input)),
+    setBase: (v) => ((input.value = typeof v === 'number' ? numberText(toDisplay(q, v)) : String(v)), fire(input)),
   });
   return { root: shell.root, input, label: shell.label, read, setError };
 }
@@ -215,7 +219,9 @@ export function checkField(id: string, labelText: string, checked: boolean, hint
 }
 
 /** A list of numbers typed as "0.5, 2, 3, 5" (quantity none). */
-export function listField(id: string, labelText: string, value: number[], min: number, max: number, hint?: string) {
+export function listField(id: string, labelText: string, value: number[], min: number, max: number, hint?: string,
+  limits: { minLen?: number; maxLen?: number; nonzero?: boolean } = {}) {
+  const { minLen = 1, maxLen = 8, nonzero = true } = limits;
   const shell = fieldShell(id, labelText, hint);
   const input = el('input', { id, name: id, type: 'text', autocomplete: 'off', spellcheck: 'false' });
   input.value = value.join(', ');
@@ -224,13 +230,13 @@ export function listField(id: string, labelText: string, value: number[], min: n
   const setError = (m: string | null) => shell.setError(input, m);
   const read = (): number[] | null => {
     const parts = input.value.split(/[,;\s]+/).filter((p) => p !== '');
-    if (parts.length === 0) return setError('Enter at least one value.'), null;
-    if (parts.length > 8) return setError('At most 8 values.'), null;
+    if (parts.length < minLen) return setError(minLen === 1 ? 'Enter at least one value.' : `Enter ${minLen} values.`), null;
+    if (parts.length > maxLen) return setError(`At most ${maxLen} values.`), null;
     const out: number[] = [];
     for (const p of parts) {
       const v = parseNumber(p);
       if (v === null) return setError(`"${p}" is not a number.`), null;
-      if (v < min || v > max || v === 0) return setError(`Each value must be non-zero, between ${min} and ${max}.`), null;
+      if (v < min || v > max || (nonzero && v === 0)) return setError(`Each value must be${nonzero ? ' non-zero,' : ''} between ${min} and ${max}.`), null;
       out.push(v);
     }
     setError(null);
@@ -242,7 +248,7 @@ export function listField(id: string, labelText: string, value: number[], min: n
     text: () => input.value,
     defaultText: () => value.join(', '),
     setText: (t) => ((input.value = t), fire(input)),
-    setBase: (v) => ((input.value = String(v)), fire(input)),
+    setBase: (v) => ((input.value = Array.isArray(v) ? v.join(', ') : String(v)), fire(input)),
   });
   return { root: shell.root, input, read, setError };
 }
@@ -263,4 +269,76 @@ export function textField(id: string, labelText: string, value: string, rows = 6
     setBase: (v) => ((area.value = String(v)), fire(area)),
   });
   return { root: shell.root, area, label: shell.label, setError: (m: string | null) => shell.setError(area, m) };
+}
+
+/**
+ * A choice of several names (e.g. the errors to identify) as checkboxes; the options change with
+ * the machine. Its state text is "" for all of them, else the chosen names joined by commas.
+ */
+export function namesField(id: string, labelText: string, hint?: string) {
+  const root = el('fieldset', { class: 'field names', id });
+  const legend = el('legend', {}, labelText);
+  const box = el('div', { class: 'names-box' });
+  root.append(legend, box);
+  if (hint) root.append(el('div', { class: 'field-hint' }, hint));
+  const msg = el('div', { class: 'field-msg', 'aria-live': 'polite' });
+  root.append(msg);
+  // The control the page state reads and writes: a hidden input holding the text.
+  const store = el('input', { type: 'hidden', id: `${id}-value` });
+  root.append(store);
+  let options: { name: string; label: string }[] = [];
+  const chosen = (): string[] => [...box.querySelectorAll<HTMLInputElement>('input[type=checkbox]')].filter((c) => c.checked).map((c) => c.value);
+  const render = () => {
+    const picked = store.value === '' ? null : new Set(store.value.split(','));
+    box.replaceChildren();
+    for (const o of options) {
+      const cid = `${id}-${o.name}`;
+      const c = el('input', { type: 'checkbox', id: cid, value: o.name });
+      c.checked = picked === null || picked.has(o.name);
+      c.addEventListener('change', () => {
+        const all = chosen();
+        store.value = all.length === options.length ? '' : all.join(',');
+        fire(store);
+      });
+      const l = el('label', { for: cid, title: o.label }, o.name);
+      const item = el('span', { class: 'name-item' });
+      item.append(c, l);
+      box.append(item);
+    }
+  };
+  fields.set(`${id}`, {
+    id,
+    control: store,
+    text: () => store.value,
+    defaultText: () => '',
+    setText: (t) => {
+      store.value = t;
+      render();
+      fire(store);
+    },
+    setBase: (v) => {
+      store.value = Array.isArray(v) ? v.join(',') : String(v);
+      render();
+      fire(store);
+    },
+  });
+  return {
+    root,
+    label: legend,
+    /** Sets the names offered (the machine's errors), keeping the choice. */
+    setOptions(next: { name: string; label: string }[]) {
+      options = next;
+      render();
+    },
+    /** The chosen names, or undefined when all are chosen (the engine's default). */
+    read(): string[] | undefined {
+      if (store.value === '') return undefined;
+      const offered = new Set(options.map((o) => o.name));
+      return store.value.split(',').filter((n) => offered.has(n));
+    },
+    setError(m: string | null) {
+      msg.textContent = m ?? '';
+      root.classList.toggle('invalid', !!m);
+    },
+  };
 }

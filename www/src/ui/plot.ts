@@ -41,6 +41,7 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   const margin = { ...baseLayout.margin, t: 20, ...layout.margin };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
+  (el.closest('.plot-wrap') ?? el).classList.remove('stale');
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
 }
 

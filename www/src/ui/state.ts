@@ -6,9 +6,9 @@
 import { fields } from './fields';
 import { DEFAULT_UNITS, setUnits, units, type UnitPrefs, ANGLE_UNITS, LENGTH_UNITS } from './units';
 
-export const STATE_VERSION = 1;
-const STORAGE_KEY = 'fiveaxis:state:v1';
-const CASES_KEY = 'fiveaxis:cases:v1';
+export const STATE_VERSION = 2;
+const STORAGE_KEY = 'fiveaxis:state:v2';
+const CASES_KEY = 'fiveaxis:cases:v2';
 /** Above this many characters a link is compressed (deflate + base64url). */
 const PLAIN_LIMIT = 1200;
 

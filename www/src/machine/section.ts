@@ -1,0 +1,261 @@
+// The Machine section, shared by every panel: the machine's kind, rotary-axis type, linear axes,
+// geometry, travel and its ISO 230-1 errors, entered once, with a drawing of the machine from its
+// chain. Its fields come from the engine's schema (machine fields and the error table); the
+// panels read the machine from here and recompute when it changes.
+import type { ErrorDef, Machine, SchematicResult } from '@engine';
+import { channel, EngineError, SUPERSEDED } from '../engine/client';
+import { el, fields, numberField, type NumberField } from '../ui/fields';
+import { fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
+import { note } from '../ui/plot';
+import * as fmt from '../ui/format';
+import { resetPanel } from '../ui/state';
+import { drawSchematic } from './schematic';
+
+/** Field prefix of the machine's fields, and of the drawing's pose. */
+export const MACHINE_PREFIX = 'm';
+export const DRAWING_PREFIX = 'md';
+
+export interface MachinePreset {
+  name: string;
+  source?: string;
+  machine: Record<string, unknown>;
+}
+
+export interface MachineSection {
+  /** The machine input object (mm, degrees), or null when a field is invalid. */
+  current(): Machine | null;
+  /** The letters the labels use, from the last valid machine. */
+  context(): Context;
+  /** The machine's errors, for choosing which to identify. */
+  errorOptions(): { name: string; label: string }[];
+  /** Shows an engine error at the machine field its path names; false when it names none. */
+  showError(path: string, message: string): boolean;
+  /** Called after every change of the machine (once the drawing knows its letters). */
+  onChange(listener: () => void): void;
+  /** Resets the machine to the defaults, then sets the values of a machine object. */
+  apply(machine: Record<string, unknown>, reset?: boolean): void;
+  /** The machine presets (public/presets/machines.json). */
+  presets(): Promise<MachinePreset[]>;
+}
+
+let presetCache: Promise<MachinePreset[]> | null = null;
+function loadMachinePresets(): Promise<MachinePreset[]> {
+  presetCache ??= fetch('presets/machines.json').then(async (res) => {
+    if (!res.ok) throw new Error(`presets/machines.json: ${res.status} ${res.statusText}`);
+    return ((await res.json()) as { presets: MachinePreset[] }).presets;
+  });
+  return presetCache;
+}
+
+/** Every (path, value) of a nested object, paths dotted. */
+function leaves(obj: Record<string, unknown>, path = ''): [string, unknown][] {
+  const out: [string, unknown][] = [];
+  for (const [k, v] of Object.entries(obj)) {
+    const p = path ? `${path}.${k}` : k;
+    if (v && typeof v === 'object' && !Array.isArray(v)) out.push(...leaves(v as Record<string, unknown>, p));
+    else out.push([p, v]);
+  }
+  return out;
+}
+
+export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
+  const schema = await loadSchema();
+  const details = el('details', { id: 'machine-details', open: '' });
+  const summary = el('summary', { id: 'machine-summary' }, 'Machine');
+  const grid = el('div', { class: 'machine-grid' });
+  const form = el('form', { class: 'inputs machine-form', novalidate: '' });
+  form.addEventListener('submit', (e) => e.preventDefault());
+  const view = el('div', { class: 'machine-view' });
+  details.append(summary, grid);
+  grid.append(form, view);
+  root.append(details);
+
+  // ---- presets
+  const presetField = el('div', { class: 'field preset' });
+  const presetSelect = el('select', { id: 'm-preset-menu' });
+  const presetNote = el('div', { class: 'field-hint', 'aria-live': 'polite' });
+  presetSelect.append(el('option', { value: '' }, 'Choose a machine…'));
+  presetField.append(el('label', { for: 'm-preset-menu' }, 'Machine preset'), presetSelect, presetNote);
+  const resetButton = el('button', { type: 'button', id: 'machine-reset', class: 'small' }, 'Reset the machine');
+  form.append(presetField);
+
+  // ---- the machine's own fields (the schema's paths without "machine.")
+  const own = schema.machine.filter((f) => f.kind !== 'errors').map((f) => ({ ...f, path: f.path.slice('machine.'.length) }));
+  const machineForm: RenderedForm = renderFields(own, MACHINE_PREFIX, form);
+
+  // ---- errors: one field per entry of the table, grouped by axis, shown for the machine's axes
+  const errorSets = new Map<string, HTMLFieldSetElement>();
+  const errorFields = new Map<string, { def: ErrorDef; field: NumberField }>();
+  const errorBox = el('div', { class: 'errors' });
+  errorBox.append(el('h3', {}, 'Geometric errors (ISO 230-1)'), el('p', { class: 'field-hint' },
+    'Location errors of the axes: where each axis line lies and how it is turned, relative to where the control believes. Leave a value at 0 when it is not known. Positions in the small-length unit, angles in the small-angle unit chosen above.'));
+  for (const def of schema.errors) {
+    const group = ['X', 'Y', 'Z'].includes(def.axis) ? 'linear' : def.axis;
+    let set = errorSets.get(group);
+    if (!set) {
+      set = el('fieldset', { class: 'error-set' });
+      set.dataset.axis = group;
+      set.append(el('legend', {}, group === 'linear' ? 'Linear axes: squareness' : `${group} axis`));
+      errorSets.set(group, set);
+      errorBox.append(set);
+    }
+    const aliases = def.aliases.map((a) => `${a.symbol} of ${a.source}: ${def.name} = ${a.sign < 0 ? '−' : ''}${a.symbol}`).join('; ');
+    const f = numberField({
+      id: fieldId(MACHINE_PREFIX, `errors.${def.name}`),
+      label: `${def.name}: ${def.label}`,
+      quantity: def.quantity === 'smallAngle' ? 'errAngle' : 'errLength',
+      value: 0,
+      min: -def.limit,
+      max: def.limit,
+    });
+    f.root.title = aliases ? `${def.description} (${aliases})` : def.description;
+    f.root.dataset.error = def.name;
+    set.append(f.root);
+    errorFields.set(def.name, { def, field: f });
+  }
+  const errorNote = el('p', { class: 'field-hint', id: 'machine-errors-note', 'aria-live': 'polite' });
+  errorBox.append(errorNote);
+  form.append(errorBox, resetButton);
+
+  // ---- the drawing
+  const roles = el('p', { class: 'roles', id: 'machine-roles', 'aria-live': 'polite' });
+  const plotWrap = el('div', { class: 'plot-wrap' });
+  const plot = el('div', { class: 'plot tall', id: 'machine-schematic' });
+  plotWrap.append(plot);
+  const poseBox = el('div', { class: 'inputs drawing-pose' });
+  const drawingFields = schema.exports.machineSchematic.filter((f) => !f.path.startsWith('machine.'));
+  const drawingForm = renderFields(drawingFields, DRAWING_PREFIX, poseBox);
+  view.append(roles, plotWrap, poseBox);
+
+  let ctx: Context = { k: '', m: '', u: 'u', v: 'v', kind: '' };
+  let axes: string[] = [];
+  const listeners: (() => void)[] = [];
+
+  const machineFields = () => [...errorFields.values()];
+
+  /**
+   * The kind and the rotary axes as chosen right now (from the type's letters: K, M, then the
+   * spindle direction), so that fields of another kind and errors of axes the machine lacks are
+   * hidden before the machine is read. The face letters come with the drawing.
+   */
+  const syncChoice = () => {
+    const kind = fields.get(fieldId(MACHINE_PREFIX, 'kind'))?.text() ?? ctx.kind;
+    const type = fields.get(fieldId(MACHINE_PREFIX, 'type'))?.text() ?? `${ctx.k}${ctx.m}`;
+    if (kind === ctx.kind && type[0] === ctx.k && type[1] === ctx.m) return;
+    ctx = { ...ctx, kind, k: type[0], m: type[1] };
+    machineForm.setContext(ctx);
+    drawingForm.setContext(ctx);
+    axes = [ctx.k, ctx.m];
+    for (const [group, set] of errorSets) {
+      set.hidden = !(group === 'linear' || axes.includes(group));
+      const role = group === ctx.k ? ' (K, nearer the workpiece)' : group === ctx.m ? ' (M, nearer the tool)' : '';
+      set.querySelector('legend')!.textContent = group === 'linear' ? 'Linear axes: squareness' : `${group} axis${role}`;
+    }
+  };
+
+  const current = (): Machine | null => {
+    syncChoice();
+    const m = machineForm.read();
+    let ok = m !== null;
+    const errors: Record<string, number> = {};
+    for (const { def, field } of machineFields()) {
+      if (field.root.closest('fieldset')?.hidden) continue;
+      const v = field.read();
+      if (v === null) ok = false;
+      else if (typeof v === 'number' && v !== 0) errors[def.name] = v;
+    }
+    if (!ok || !m) return null;
+    m.errors = errors;
+    return m as Machine;
+  };
+
+  /** The letters of the type as the schematic gave them, and which error groups to show. */
+  const applyContext = (r: SchematicResult) => {
+    ctx = { ...ctx, k: r.k, m: r.m, u: r.face[0], v: r.face[1] };
+    machineForm.setContext(ctx);
+    drawingForm.setContext(ctx);
+    // Values entered for axes this machine does not have are kept but not used: say so.
+    const unused = machineFields().filter(({ def, field }) => !axes.includes(def.axis) && !['X', 'Y', 'Z'].includes(def.axis) && (field.read() ?? 0) !== 0);
+    errorNote.textContent = unused.length
+      ? `Kept but not used (this machine has no such axis): ${unused.map((u) => u.def.name).join(', ')}.`
+      : '';
+    const entered = machineFields().filter(({ def, field }) => (axes.includes(def.axis) || ['X', 'Y', 'Z'].includes(def.axis)) && (field.read() ?? 0) !== 0);
+    const kindText = { 'table-table': 'table-table', 'head-table': 'head-table', 'head-head': 'head-head' }[ctx.kind] ?? ctx.kind;
+    summary.textContent = `Machine: ${kindText}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}`;
+    roles.textContent = `${r.axes.filter((a) => a.motion === 'rotary').map((a) => a.description).join('. ')}. Group ${r.group}. ${r.swingLength === null ? '' : `Pivot to tool tip (the nonlinear study's L): ${fmt.num(r.swingLength)} mm.`}`;
+  };
+
+  const runSchematic = channel('machineSchematic');
+  const update = async () => {
+    const m = current();
+    const pose = drawingForm.read();
+    if (!m || !pose) return;
+    await runSchematic({ machine: m, ...pose }).then((r) => {
+      if (r === SUPERSEDED) return;
+      note(plot, null);
+      details.classList.remove('stale');
+      applyContext(r);
+      void drawSchematic(plot, r, `The machine as entered, ${fill('{K}', ctx)} at ${fmt.num(Number(pose.k ?? 0))}° and ${fill('{M}', ctx)} at ${fmt.num(Number(pose.m ?? 0))}°`);
+      for (const l of listeners) l();
+    }, (e) => {
+      const err = e instanceof EngineError ? e : new EngineError(String(e));
+      if (!section.showError(err.field, err.message)) note(plot, err.message);
+    });
+  };
+
+  const section: MachineSection = {
+    current,
+    context: () => ctx,
+    errorOptions: () =>
+      machineFields()
+        .filter(({ def }) => axes.includes(def.axis) || ['X', 'Y', 'Z'].includes(def.axis))
+        .map(({ def }) => ({ name: def.name, label: `${def.label}: ${def.description}` })),
+    showError(path, message) {
+      const text = message.slice(path.length + 2);
+      if (path.startsWith('machine.errors.')) {
+        const f = errorFields.get(path.slice('machine.errors.'.length));
+        if (f) return f.field.setError(text), true;
+      }
+      const f = machineForm.byPath[path.slice('machine.'.length)];
+      if (path.startsWith('machine.') && f) return f.setError(text), true;
+      return false;
+    },
+    onChange(l) {
+      listeners.push(l);
+    },
+    apply(machine, reset = true) {
+      if (reset) resetPanel(MACHINE_PREFIX);
+      for (const [path, value] of leaves(machine)) {
+        fields.get(fieldId(MACHINE_PREFIX, path))?.setBase(value as number | string | boolean);
+      }
+    },
+    presets: loadMachinePresets,
+  };
+
+  loadMachinePresets().then((presets) => {
+    presets.forEach((p, i) => presetSelect.append(el('option', { value: String(i) }, p.name)));
+    presetSelect.addEventListener('change', () => {
+      const p = presets[Number(presetSelect.value)];
+      if (!p || presetSelect.value === '') return;
+      section.apply(p.machine);
+      presetNote.textContent = p.source ? `Source: ${p.source}` : '';
+      presetSelect.value = '';
+    });
+  }, (err) => (presetNote.textContent = `Presets unavailable: ${String(err)}`));
+  resetButton.addEventListener('click', () => {
+    resetPanel(MACHINE_PREFIX);
+    resetPanel(DRAWING_PREFIX);
+  });
+
+  // Any edit: mark what the machine fed as stale until the new machine is computed.
+  let timer: number | undefined;
+  const onInput = () => {
+    if (!current()) details.classList.add('stale');
+    clearTimeout(timer);
+    timer = window.setTimeout(() => void update(), 60);
+  };
+  form.addEventListener('input', onInput);
+  poseBox.addEventListener('input', onInput);
+  await update();
+  return section;
+}
