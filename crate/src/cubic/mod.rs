@@ -209,6 +209,7 @@ crate::inputs! {
             label: "Height-map points along {U}",
             help: "193 gives 0.25 mm steps over 48 mm.",
             kind: Kind::Count { min: 4, max: MAX_GRID_SIDE },
+            default: DefaultValue::Num(193.0),
             group: "Height map",
         },
         /// Points along the second axis; automatic when left out.

@@ -19,7 +19,9 @@ let printing = false;
 function inputRows(section: HTMLElement, prefix: string): [string, string][] {
   const rows: [string, string][] = [];
   for (const f of fields.values()) {
-    if (!f.id.startsWith(`${prefix}-`) || !section.contains(f.control)) continue;
+    if (!f.id.startsWith(`${prefix}-`) || !section.contains(f.control) || f.control.closest('[hidden]')) continue;
+    // Of the machine's errors only those entered.
+    if (f.id.startsWith('m-errors-') && Number(f.text()) === 0) continue;
     const label = section.querySelector(`label[for="${f.id}"]`)?.textContent?.trim() ?? f.id;
     const c = f.control;
     let value: string;
@@ -44,7 +46,12 @@ async function enter(section: HTMLElement, prefix: string) {
   const box = el('section', { class: 'print-inputs', 'aria-hidden': 'true' });
   const dl = el('dl');
   for (const [k, v] of inputRows(section, prefix)) dl.append(el('dt', {}, k), el('dd', {}, v));
-  box.append(el('h3', {}, 'Inputs'), dl, el('p', {}, `Printed ${new Date().toLocaleString()} from ${location.href.split('#')[0]}`));
+  // The machine the panel computed for (the Machine section is not printed).
+  const machineRoot = document.getElementById('machine');
+  const mdl = el('dl');
+  if (machineRoot) for (const [k, v] of inputRows(machineRoot, 'm')) mdl.append(el('dt', {}, k), el('dd', {}, v));
+  const summary = document.getElementById('machine-summary')?.textContent ?? 'Machine';
+  box.append(el('h3', {}, summary), mdl, el('h3', {}, 'Inputs'), dl, el('p', {}, `Printed ${new Date().toLocaleString()} from ${location.href.split('#')[0]}`));
   section.querySelector('.panel-grid')?.before(box);
   const P = await loadPlotly();
   const graphs = [...section.querySelectorAll<Graph>('.js-plotly-plot')];
