@@ -1,13 +1,15 @@
 // `npm run bench`: times the engine's heavy kernels natively (crate/examples/bench.rs, release
-// build) and as WebAssembly in Node (the release package crate/pkg) on the same inputs, and
+// build) and as WebAssembly in Node (the release package wasm/pkg) on the same inputs, and
 // prints both times and their ratio. Best of 3 runs each.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import * as fa from '../crate/pkg/fiveaxis.js';
+import * as fa from '../wasm/pkg/fiveaxis.js';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
-fa.initSync({ module: readFileSync(new URL('../crate/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+fa.initSync({ module: readFileSync(new URL('../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+const presets = JSON.parse(readFileSync(new URL('../public/presets/machines.json', import.meta.url), 'utf8')).presets;
+const preset = (name) => structuredClone(presets.find((p) => p.name.startsWith(name)).machine);
 
 /** Same formula as crate/examples/bench.rs. */
 function moves(n) {
@@ -39,32 +41,40 @@ const mv = moves(1_000_000);
 wasm['nonlinear: exact max of 10^6 moves'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
 wasm['nonlinear: 361x361 increment grid'] = time(
   3,
-  () => fa.nonlinearGrid({ type: 'CAZ', length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
+  () => fa.nonlinearGrid({ machine: { type: 'CAZ' }, length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
   (g) => total(g.max),
 );
 
-const table5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
-wasm['cubic: height map 961x961 (Table 5)'] = time(3, () => fa.cubicHeightMap({ errors: table5, nx: 961, ny: 961 }), (m) => total(m.height));
+// Li et al.'s Table 5 in ISO names (E = −ε of the paper), on their machine's preset.
+const li = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
+wasm['cubic: height map 961x961 (Table 5)'] = time(3, () => fa.cubicHeightMap({ machine: li, nx: 961, ny: 961 }), (m) => total(m.height));
 // S-shape: the same inputs as crate/examples/bench.rs.
-const ssMachine = (l0) => ({ l0, rTool: 10, lTool: 35 });
+const chanal = (pivot) => {
+  const m = preset('B swivel head, C rotary table, Y under the table');
+  m.geometry.pivotLength = pivot;
+  m.errors = { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI };
+  return m;
+};
 wasm['sshape: overcut maps of A and B (eq 6 + exact), 261 x 16'] = time(
   3,
-  () => fa.sshapeOvercut({ rTool: 10, lTool: 35, nu: 261, nv: 16 }),
+  () => fa.sshapeOvercut({ tool: { rTool: 10, lTool: 35 }, nu: 261, nv: 16 }),
   (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
 );
 let ssRun = 0;
 wasm['sshape: eq 14 model (IK along both paths) + defects'] = time(
   3,
-  () => fa.sshapeDefects({ machine: ssMachine(499.889 + 0.001 * ++ssRun), errors: { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI } }),
+  () => fa.sshapeDefects({ machine: chanal(399.889 + 0.001 * ++ssRun) }),
   (d) => total(d.total),
 );
 const ssCsv = readFileSync(new URL('../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
-fa.sshapeDefects({ machine: ssMachine(499.889), errors: {} }); // builds the model once, as the page does
+const paper = ['E_C0Y', 'E_A0Z', 'E_B0Z', 'E_A0C', 'E_B0C', 'E_X0B', 'E_A0B', 'E_C0B'];
+fa.sshapeDefects({ machine: chanal(399.889) }); // builds the model once, as the page does
 wasm['sshape: identification of the 100-point sample (parse + SVD fit), 100 times'] = time(
   3,
   () => {
     let fit;
-    for (let i = 0; i < 100; i++) fit = fa.sshapeIdentify({ machine: ssMachine(499.889), csv: ssCsv });
+    for (let i = 0; i < 100; i++) fit = fa.sshapeIdentify({ machine: chanal(399.889), csv: ssCsv, parameters: paper });
     return fit;
   },
   (f) => f.rms,

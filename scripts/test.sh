@@ -21,7 +21,7 @@ step "native engine tests"
 cargo test --workspace --release -q
 
 step "wasm tests in headless Node (wasm-bindgen-test)"
-wasm-pack test --node crate --test 'wasm_*'
+wasm-pack test --node wasm --test 'wasm_*'
 
 step "build the page"
 npm run --silent build

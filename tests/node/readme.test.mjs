@@ -1,0 +1,77 @@
+// The README's examples, run as a Node script runs them, each checked against a value derived
+// here independently of the engine (closed forms written out below).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify } from '../../wasm/pkg/fiveaxis.js';
+
+initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
+const rad = (d) => (d * Math.PI) / 180;
+
+const machine = { kind: 'table-table', type: 'CAZ', geometry: { tableHeight: 100 }, rotary: { mFrom: -120, mTo: 30 }, errors: { E_Z0A: -0.02, E_A0C: 0.001 } };
+
+test('README: a nonlinear move on an A/C trunnion, L from the machine', () => {
+  const r = nonlinearMove({ machine, start: { k: 0, m: 0 }, end: { k: 30, m: 50 } });
+  assert.equal(r.length, 100);
+  // From the pole (θm = 0) the error is L·|sin(u·Δθm)·sin((1 − u)·Δθk)|: its maximum by a fine
+  // search here.
+  let best = 0;
+  for (let i = 0; i <= 100000; i++) {
+    const u = i / 100000;
+    best = Math.max(best, 100 * Math.abs(Math.sin(u * rad(50)) * Math.sin((1 - u) * rad(30))));
+  }
+  assert.ok(Math.abs(r.max - best) < 1e-6, `${r.max} vs ${best}`);
+  assert.ok(Math.abs(r.max - 10.94) < 0.005);
+});
+
+test('README: the cubic test on the trunnion, II-1 by hand', () => {
+  const c = cubicTest({ machine });
+  const z = c.zones[1];
+  assert.equal(z.name, 'II-1');
+  // Tool (0.5, 0, √3/2) = R_Z(C)·R_X(A)·e_z: A = 30°, C = 90°.
+  assert.ok(Math.abs(z.k - 90) < 1e-9 && Math.abs(z.m - 30) < 1e-9);
+  // Workpiece set at zero: an error (ω, t) of A moves the workpiece point P0 by
+  // (ω − Qᵀω)×P0 + (t − Qᵀt), Qᵀ = R_Z(c)·R_X(a); one of C by the same with R_Z(c) alone.
+  // E_Z0A (t = e_z): z of t − Qᵀt = 1 − cos a. E_A0C (ω = e_x): z of (ω − R_Z(c)ω)×P0 =
+  // (1 − cos c)·y + sin c·x at the zone centre (x, y) = (−16, 0).
+  const [a, cc] = [rad(30), rad(90)];
+  const first = -0.02 * (1 - Math.cos(a)) + rad(0.001) * ((1 - Math.cos(cc)) * 0 + Math.sin(cc) * -16);
+  assert.ok(Math.abs(z.linearHeight - first) < 1e-12, `${z.linearHeight} vs ${first}`);
+  assert.ok(Math.abs(z.height - -0.00296) < 5e-6);
+  // C's axial position and zero position move nothing: t = e_z and ω = e_z are kept by R_Z(c).
+  for (const name of ['E_Z0C', 'E_C0C']) assert.ok(c.visibility.invisible.includes(name), name);
+  assert.equal(c.kHeight.length, 9 * c.errorNames.length);
+});
+
+test('README: Li et al.\'s Table 5 machine', () => {
+  const li = structuredClone(presets[0].machine);
+  li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
+  const r = cubicTest({ machine: li });
+  assert.equal(r.zones[1].k, 0);
+  assert.ok(Math.abs(r.zones[1].m - 30) < 1e-9);
+  // First order at II-1 (C = 0°) in the paper's terms: −sin 30°·δxBY + (cos 30° − 1)·δzBY.
+  const ii1 = -0.5 * 0.0146 + (Math.cos(rad(30)) - 1) * -0.0142;
+  assert.ok(Math.abs(r.zones[1].linearHeight - ii1) < 1e-12);
+  assert.ok(Math.abs(r.zones[1].height - -0.0053976) < 1e-7);
+  const n = r.errorNames.length;
+  assert.ok(Math.abs(r.kHeight[n + r.errorNames.indexOf('E_X0B')] - 0.5) < 1e-12);
+});
+
+test('README: the S-shape on Chanal et al.\'s machine', () => {
+  const chanal = presets[1].machine;
+  const d = sshapeDefects({ machine: { ...chanal, errors: { E_X0B: 0.0294, E_A0B: 0.018575 } } });
+  assert.equal(d.total.length, 100);
+  const csv = readFileSync(new URL('../../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
+  const paper = ['E_C0Y', 'E_A0Z', 'E_B0Z', 'E_A0C', 'E_B0C', 'E_X0B', 'E_A0B', 'E_C0B'];
+  const f = sshapeIdentify({ machine: chanal, csv, parameters: paper });
+  const x0b = f.estimates.find((e) => e.name === 'E_X0B');
+  // The sample was simulated with Table 4's E_X0B = 0.0294 mm.
+  assert.ok(Math.abs(x0b.value - 0.0294) < 4 * x0b.stdError);
+  assert.equal(f.estimates[0].unit, 'deg');
+  // All 15 errors: the part cannot separate them all; E_X0B falls into a group.
+  const all = sshapeIdentify({ machine: chanal, csv });
+  assert.equal(all.estimates.length, 16);
+  assert.ok(all.rank < 16);
+  assert.ok(all.groups.some((g) => g.members.includes('E_X0B')));
+});
