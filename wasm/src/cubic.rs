@@ -7,10 +7,9 @@
 //! zones in the order of `zones`, errors in the order of `errorNames` (the machine's errors in
 //! the order of the error table).
 
-use crate::{f64_array, js_error, json, output, unit};
+use crate::{f64_array, js_error, json, output, unit, Series};
 use fiveaxis::cubic::{self, CubicInput, CubicReference, ZonePlane};
 use fiveaxis::schema::Quantity;
-use js_sys::Float64Array;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -90,21 +89,13 @@ pub struct CubicResult {
     /// Their units: "mm" or "deg".
     pub error_units: Vec<String>,
     /// Sensitivity k = E/ε (eq 15) of the height, 9 × n zone-major: mm/mm or mm/degree.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub k_height: Float64Array,
+    pub k_height: Series,
     /// Sensitivities of the slopes along u, 9 × n: per mm or per degree.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub k_slope_x: Float64Array,
+    pub k_slope_x: Series,
     /// Along v.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub k_slope_y: Float64Array,
+    pub k_slope_y: Series,
     /// Exact height with only that error at its entered value, 9 × n, mm (0 where it is 0).
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub single: Float64Array,
+    pub single: Series,
     /// What the test can and cannot see.
     pub visibility: CubicVisibility,
     /// The workpiece set at zero (M_WC).
@@ -223,17 +214,11 @@ pub struct CubicMapResult {
     /// Rows (along v).
     pub ny: usize,
     /// Grid coordinates along u, mm (−1.5·zoneSize to 1.5·zoneSize).
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub x: Float64Array,
+    pub x: Series,
     /// Along v, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub y: Float64Array,
+    pub y: Series,
     /// Heights, mm, row-major ny × nx: `(x[ix], y[iy])` is `[iy * nx + ix]`. Scallops included.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub height: Float64Array,
+    pub height: Series,
     /// Average height of each zone (order of cubicTest's zones), mm.
     pub zone_average: Vec<f64>,
     /// The zones in the same order.

@@ -32,6 +32,7 @@ use js_sys::{Array, ArrayBuffer, Float64Array, Object, Reflect};
 use serde::Serialize;
 use serde_json::{Map, Value};
 use std::fmt::Display;
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
@@ -113,9 +114,21 @@ pub(crate) fn output<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
     value.serialize(&ser).map_err(js_error)
 }
 
-/// A `Float64Array` copy of `values`.
-pub(crate) fn f64_array(values: &[f64]) -> Float64Array {
-    Float64Array::from(values)
+/// A series of numbers that crosses to JavaScript as a `Float64Array` (one copy, no per-number
+/// conversion).
+#[derive(Tsify)]
+#[tsify(type = "Float64Array")]
+pub struct Series(pub Float64Array);
+
+impl Serialize for Series {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde_wasm_bindgen::preserve::serialize(&self.0, s)
+    }
+}
+
+/// A `Float64Array` copy of `values`, for a result object.
+pub(crate) fn f64_array(values: &[f64]) -> Series {
+    Series(Float64Array::from(values))
 }
 
 /// `"mm"` or `"deg"` for an error's quantity.

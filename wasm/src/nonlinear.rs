@@ -1,7 +1,7 @@
 //! Exports of the nonlinear-error study (see `fiveaxis::nonlinear`). Every input is the machine
 //! (its type, senses and pivot), optionally `L`, and the export's own fields, in one object.
 
-use crate::{f64_array, js_error, json, output};
+use crate::{f64_array, js_error, json, output, Series};
 use fiveaxis::nonlinear::{
     self, Move, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, Reference, SweepKInput,
     SweepMInput, TypeCompareInput,
@@ -59,13 +59,9 @@ pub struct NonlinearMoveResult {
     /// Unit normal of the reference plane.
     pub normal: [f64; 3],
     /// Samples of u.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub u: Float64Array,
+    pub u: Series,
     /// δ(u), mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub delta: Float64Array,
+    pub delta: Series,
 }
 
 /// One move of the machine's rotary axes from `start` to `end` (commands, degrees).
@@ -106,13 +102,9 @@ pub fn nonlinear_move(
 #[tsify(missing_as_null, hashmap_as_object)]
 pub struct SweepKResult {
     /// Start commands of K, degrees.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub k: Float64Array,
+    pub k: Series,
     /// Exact maximum error, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub max: Float64Array,
+    pub max: Series,
 }
 
 /// Fig 4: the maximum error against the start angle of K (the paper: constant).
@@ -146,9 +138,7 @@ pub struct RatioCurve {
     /// Δθk/Δθm.
     pub ratio: f64,
     /// Exact maximum error, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub exact: Float64Array,
+    pub exact: Series,
     /// The u = 0.5 approximation, mm (null where undefined).
     pub approx: Vec<Option<f64>>,
 }
@@ -158,9 +148,7 @@ pub struct RatioCurve {
 #[tsify(missing_as_null, hashmap_as_object)]
 pub struct SweepMResult {
     /// Start commands of M, degrees.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub m: Float64Array,
+    pub m: Series,
     /// One curve per ratio.
     pub curves: Vec<RatioCurve>,
 }
@@ -211,17 +199,11 @@ pub struct GridResult {
     /// Rows.
     pub ny: usize,
     /// Increment of K per column (commands), degrees.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub d_k: Float64Array,
+    pub d_k: Series,
     /// Increment of M per row (commands), degrees.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub d_m: Float64Array,
+    pub d_m: Series,
     /// Row-major ny × nx (`[iy * nx + ix]`), mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub max: Float64Array,
+    pub max: Series,
     /// Row-major like `max`; null where the error is zero.
     pub u_at_max: Vec<Option<f64>>,
 }
@@ -362,5 +344,5 @@ pub fn nonlinear_max_errors(
         .into_iter()
         .map(|v| v * length)
         .collect();
-    Ok(f64_array(&values))
+    Ok(Float64Array::from(values.as_slice()))
 }

@@ -1,7 +1,7 @@
 //! Exports of the S-shape study (see `fiveaxis::sshape`). Lengths in mm, angles in degrees (the
 //! machine's angular errors too; a sensitivity to one is per degree), like every export.
 
-use crate::{f64_array, js_error, json, output, unit};
+use crate::{f64_array, js_error, json, output, unit, Series};
 use fiveaxis::schema::{Inputs, Quantity};
 use fiveaxis::sshape::identify::{combination_text, parse_measurements};
 use fiveaxis::sshape::overcut::OvercutMap;
@@ -10,7 +10,6 @@ use fiveaxis::sshape::study::{
     self, Design, SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput,
     SShapePartInput, RADIUS_NAME,
 };
-use js_sys::Float64Array;
 use serde::Serialize;
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -60,17 +59,11 @@ pub struct SShapeSurfaceMesh {
     pub nv: usize,
     /// Row-major nv × nu (`[iv * nu + iu]`), mm, part coordinates; u from 0 to 1 along the S,
     /// v from the base (z = 0) to the top (z = 30).
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub x: Float64Array,
+    pub x: Series,
     /// y, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub y: Float64Array,
+    pub y: Series,
     /// z, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub z: Float64Array,
+    pub z: Series,
 }
 
 /// The part for a 3D view.
@@ -142,17 +135,11 @@ pub struct SShapeOvercutSurface {
     /// "A" or "B".
     pub id: SurfaceId,
     /// Eq 6 with the paper's T, mm, row-major nv × nu.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub eq6_paper: Float64Array,
+    pub eq6_paper: Series,
     /// Eq 6 with T⊥, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub eq6: Float64Array,
+    pub eq6: Series,
     /// The exact signed deviation δ (negative = gouge), mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub exact: Float64Array,
+    pub exact: Series,
     /// Largest eq 6 with the paper's T, mm.
     pub max_eq6_paper: f64,
     /// Largest eq 6 with T⊥, mm.
@@ -185,13 +172,9 @@ pub struct SShapeOvercutResult {
     /// Points over the height.
     pub nv: usize,
     /// Grid: u from 0 to 1.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub u: Float64Array,
+    pub u: Series,
     /// z = 30·v, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub z: Float64Array,
+    pub z: Series,
     /// A, then B.
     pub surfaces: Vec<SShapeOvercutSurface>,
     /// Eq 6 maxima on surface B with the paper's N = R × T (tool on B's side facing A):
@@ -273,29 +256,19 @@ pub struct SShapeDefectsResult {
     pub units: Vec<String>,
     /// Per point (list order): the deviation along the outward normal from all errors and dR,
     /// mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub total: Float64Array,
+    pub total: Series,
     /// Row-major 100 × n: the contribution of each error at each point, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub contributions: Float64Array,
+    pub contributions: Series,
     /// Row-major 100 × n: mm per mm or mm per degree (Fig 19).
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub sensitivity: Float64Array,
+    pub sensitivity: Series,
     /// Per point: deviation from dR alone, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub radius: Float64Array,
+    pub radius: Series,
     /// The machine's axes in chain order (the order of each pose's values).
     pub axes: Vec<String>,
     /// Machine axes when the tool cuts each point.
     pub poses: Vec<SShapePose>,
     /// Height of each point on the tool above its tip, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub height: Float64Array,
+    pub height: Series,
     /// Pairs of errors the part can hardly tell apart (|cosine| ≥ 0.95), most alike first.
     pub alike: Vec<AlikePair>,
 }
@@ -429,17 +402,11 @@ pub struct SShapeIdentifyResult {
     /// The threshold used.
     pub rtol: f64,
     /// Per point, list order, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub measured: Float64Array,
+    pub measured: Series,
     /// The fitted deviation per point, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub fitted: Float64Array,
+    pub fitted: Series,
     /// Measured minus fitted, mm.
-    #[serde(with = "serde_wasm_bindgen::preserve")]
-    #[tsify(type = "Float64Array")]
-    pub residuals: Float64Array,
+    pub residuals: Series,
     /// RMS of the residuals, mm.
     pub rms: f64,
     /// Largest |residual|, mm.

@@ -99,7 +99,8 @@ const fn alias(symbol: &'static str, ascii: &'static str) -> Alias {
     }
 }
 
-const fn pos(
+/// An entry of the table: a position (`component` 0..3, mm) or an orientation (3..6, degrees).
+const fn def(
     name: &'static str,
     axis: char,
     component: usize,
@@ -107,34 +108,22 @@ const fn pos(
     description: &'static str,
     aliases: &'static [Alias],
 ) -> ErrorDef {
+    let angle = component >= 3;
     ErrorDef {
         name,
         axis,
         component,
         kind: ErrorKind::Location,
-        quantity: Quantity::SmallLength,
-        limit: MAX_POSITION_ERROR,
-        label,
-        description,
-        aliases,
-    }
-}
-
-const fn ang(
-    name: &'static str,
-    axis: char,
-    component: usize,
-    label: &'static str,
-    description: &'static str,
-    aliases: &'static [Alias],
-) -> ErrorDef {
-    ErrorDef {
-        name,
-        axis,
-        component,
-        kind: ErrorKind::Location,
-        quantity: Quantity::SmallAngle,
-        limit: MAX_ANGLE_ERROR,
+        quantity: if angle {
+            Quantity::SmallAngle
+        } else {
+            Quantity::SmallLength
+        },
+        limit: if angle {
+            MAX_ANGLE_ERROR
+        } else {
+            MAX_POSITION_ERROR
+        },
         label,
         description,
         aliases,
@@ -145,7 +134,7 @@ const fn ang(
 /// position along it, two tilts, the zero position), then the squareness of the linear axes.
 pub const TABLE: [ErrorDef; 21] = [
     // A (about X)
-    pos(
+    def(
         "E_Y0A",
         'A',
         1,
@@ -153,7 +142,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The A axis line lies this far towards +Y of where the control believes it is.",
         &[],
     ),
-    pos(
+    def(
         "E_Z0A",
         'A',
         2,
@@ -161,7 +150,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The A axis line lies this far towards +Z of where the control believes it is.",
         &[],
     ),
-    pos(
+    def(
         "E_X0A",
         'A',
         0,
@@ -169,7 +158,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "Shifts everything A carries along X, like an offset of the X axis.",
         &[],
     ),
-    ang(
+    def(
         "E_B0A",
         'A',
         4,
@@ -177,7 +166,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The A axis is turned about Y: it is not parallel to X in the XZ plane.",
         &[],
     ),
-    ang(
+    def(
         "E_C0A",
         'A',
         5,
@@ -185,7 +174,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The A axis is turned about Z: it is not parallel to X in the XY plane.",
         &[],
     ),
-    ang(
+    def(
         "E_A0A",
         'A',
         3,
@@ -194,7 +183,7 @@ pub const TABLE: [ErrorDef; 21] = [
         &[],
     ),
     // B (about Y)
-    pos(
+    def(
         "E_X0B",
         'B',
         0,
@@ -202,7 +191,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The B axis line lies this far towards +X of where the control believes it is.",
         &[alias("δxBY", "dxBY")],
     ),
-    pos(
+    def(
         "E_Z0B",
         'B',
         2,
@@ -210,7 +199,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The B axis line lies this far towards +Z of where the control believes it is.",
         &[alias("δzBY", "dzBY")],
     ),
-    pos(
+    def(
         "E_Y0B",
         'B',
         1,
@@ -218,7 +207,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "Shifts everything B carries along Y, like an offset of the Y axis.",
         &[alias("δyBY", "dyBY")],
     ),
-    ang(
+    def(
         "E_A0B",
         'B',
         3,
@@ -226,7 +215,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The B axis is turned about X: it is not parallel to Y in the YZ plane.",
         &[alias("αBY", "alphaBY")],
     ),
-    ang(
+    def(
         "E_C0B",
         'B',
         5,
@@ -234,7 +223,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The B axis is turned about Z: it is not parallel to Y in the XY plane.",
         &[alias("γBY", "gammaBY")],
     ),
-    ang(
+    def(
         "E_B0B",
         'B',
         4,
@@ -243,7 +232,7 @@ pub const TABLE: [ErrorDef; 21] = [
         &[alias("βBY", "betaBY")],
     ),
     // C (about Z)
-    pos(
+    def(
         "E_X0C",
         'C',
         0,
@@ -251,7 +240,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The C axis line lies this far towards +X of where the control believes it is.",
         &[alias("δxCB", "dxCB")],
     ),
-    pos(
+    def(
         "E_Y0C",
         'C',
         1,
@@ -259,7 +248,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The C axis line lies this far towards +Y of where the control believes it is.",
         &[],
     ),
-    pos(
+    def(
         "E_Z0C",
         'C',
         2,
@@ -267,7 +256,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "Shifts everything C carries along Z, like an offset of the Z axis.",
         &[],
     ),
-    ang(
+    def(
         "E_A0C",
         'C',
         3,
@@ -275,7 +264,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The C axis is turned about X: it is not parallel to Z in the YZ plane.",
         &[alias("αCB", "alphaCB")],
     ),
-    ang(
+    def(
         "E_B0C",
         'C',
         4,
@@ -283,7 +272,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The C axis is turned about Y: it is not parallel to Z in the XZ plane.",
         &[],
     ),
-    ang(
+    def(
         "E_C0C",
         'C',
         5,
@@ -292,7 +281,7 @@ pub const TABLE: [ErrorDef; 21] = [
         &[],
     ),
     // squareness of the linear axes, X the reference
-    ang(
+    def(
         "E_C0Y",
         'Y',
         5,
@@ -300,7 +289,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The Y axis is turned about Z: the angle between the X and Y motions is 90° plus this.",
         &[],
     ),
-    ang(
+    def(
         "E_A0Z",
         'Z',
         3,
@@ -308,7 +297,7 @@ pub const TABLE: [ErrorDef; 21] = [
         "The Z axis is turned about X: it leans towards −Y (positive value) as it moves up.",
         &[],
     ),
-    ang(
+    def(
         "E_B0Z",
         'Z',
         4,
@@ -479,12 +468,6 @@ mod tests {
                 d.name,
                 format!("E_{}0{}", letters[d.component], d.axis),
                 "entry {i}"
-            );
-            assert_eq!(
-                d.quantity == Quantity::SmallAngle,
-                d.component >= 3,
-                "{}",
-                d.name
             );
             assert!(
                 TABLE[..i].iter().all(|o| o.name != d.name),

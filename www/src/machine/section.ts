@@ -8,6 +8,7 @@ import { el, fields, numberField, type NumberField } from '../ui/fields';
 import { fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
 import { note } from '../ui/plot';
 import * as fmt from '../ui/format';
+import { leaves } from '../ui/presets';
 import { resetPanel } from '../ui/state';
 import { drawSchematic } from './schematic';
 
@@ -45,17 +46,6 @@ function loadMachinePresets(): Promise<MachinePreset[]> {
     return ((await res.json()) as { presets: MachinePreset[] }).presets;
   });
   return presetCache;
-}
-
-/** Every (path, value) of a nested object, paths dotted. */
-function leaves(obj: Record<string, unknown>, path = ''): [string, unknown][] {
-  const out: [string, unknown][] = [];
-  for (const [k, v] of Object.entries(obj)) {
-    const p = path ? `${path}.${k}` : k;
-    if (v && typeof v === 'object' && !Array.isArray(v)) out.push(...leaves(v as Record<string, unknown>, p));
-    else out.push([p, v]);
-  }
-  return out;
 }
 
 export async function mountMachine(root: HTMLElement): Promise<MachineSection> {

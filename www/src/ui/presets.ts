@@ -28,7 +28,7 @@ export async function loadPresets(panel: string): Promise<Preset[]> {
 }
 
 /** Every (path, value) of a nested object, paths dotted; lists are values. */
-function leaves(obj: Record<string, unknown>, path = ''): [string, unknown][] {
+export function leaves(obj: Record<string, unknown>, path = ''): [string, unknown][] {
   const out: [string, unknown][] = [];
   for (const [k, v] of Object.entries(obj)) {
     const p = path ? `${path}.${k}` : k;
