@@ -29,6 +29,8 @@ export interface MachineSection {
   context(): Context;
   /** The machine's errors, for choosing which to identify. */
   errorOptions(): { name: string; label: string }[];
+  /** The machine's pivot-to-tool-tip distance (the nonlinear study's L), mm, or null. */
+  swingLength(): number | null;
   /** Shows an engine error at the machine field its path names; false when it names none. */
   showError(path: string, message: string): boolean;
   /** Called after every change of the machine (once the drawing knows its letters). */
@@ -119,6 +121,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
 
   let ctx: Context = { k: '', m: '', u: 'u', v: 'v', kind: '' };
   let axes: string[] = [];
+  let swing: number | null = null;
   const listeners: (() => void)[] = [];
 
   const machineFields = () => [...errorFields.values()];
@@ -162,6 +165,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   /** The letters of the type as the schematic gave them, and which error groups to show. */
   const applyContext = (r: SchematicResult) => {
     ctx = { ...ctx, k: r.k, m: r.m, u: r.face[0], v: r.face[1] };
+    swing = r.swingLength;
     machineForm.setContext(ctx);
     drawingForm.setContext(ctx);
     // Values entered for axes this machine does not have are kept but not used: say so.
@@ -196,6 +200,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   const section: MachineSection = {
     current,
     context: () => ctx,
+    swingLength: () => swing,
     errorOptions: () =>
       machineFields()
         .filter(({ def }) => axes.includes(def.axis) || ['X', 'Y', 'Z'].includes(def.axis))

@@ -74,9 +74,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const engineError = engineErrors(inputs.byPath, machine);
   const allPlots = [curve, sweepK, sweepM, mapMax, mapU, compare];
 
+  const lengthInput = form.querySelector<HTMLInputElement>('#nl-length');
   const update = () => {
     const ctx = machine.context();
     inputs.setContext(ctx);
+    const swing = machine.swingLength();
+    if (lengthInput) lengthInput.placeholder = swing === null ? 'enter L (this machine gives none)' : `empty: the machine's ${fmt.num(swing)}`;
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) {
