@@ -1,13 +1,15 @@
 // Property test of the exported API: arbitrary JSON-ish inputs (NaN, ±Infinity, huge numbers,
 // negative lengths, wrong types, missing and extra fields) never panic and always give either a
-// result made of finite numbers or a JavaScript Error with a message.
+// result made of finite numbers or a JavaScript Error with a message. Every study gets a machine:
+// one of the page's presets (public/presets/machines.json), sometimes of another kind or type,
+// with random errors of its axes.
 //   FUZZ_CASES=1000000 FUZZ_SEED=7 node --test tests/node/fuzz.test.mjs   (longer runs)
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import * as fa from '../../crate/pkg/fiveaxis.js';
+import * as fa from '../../wasm/pkg/fiveaxis.js';
 
-const bytes = readFileSync(new URL('../../crate/pkg/fiveaxis_bg.wasm', import.meta.url));
+const bytes = readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url));
 fa.initSync({ module: bytes });
 
 const CASES = Number(process.env.FUZZ_CASES ?? 100_000);
@@ -26,24 +28,54 @@ function rng(seed) {
 }
 
 const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
+const KINDS = ['table-table', 'head-table', 'head-head'];
+const MACHINES = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets.map((p) => p.machine);
+const SCHEMA = fa.schema();
+const ERROR_TABLE = SCHEMA.errors;
+/** The machine kinds each geometry input applies to (empty: all). */
+const GEOMETRY_KINDS = Object.fromEntries(SCHEMA.machine.filter((f) => f.path.startsWith('machine.geometry.')).map((f) => [f.path.split('.')[2], f.kinds]));
 // Templates: how a valid input looks. Leaves are generators of plausible values.
+const pick = (list) => (r) => list[Math.floor(r() * list.length)];
 const angle = (r) => (r() - 0.5) * 720;
 const small = (lo, hi) => (r) => Math.round(lo + r() * (hi - lo));
+const maybe = (gen, p = 0.7) => (r) => (r() < p ? gen(r) : undefined);
 const pose = { k: angle, m: angle };
-// The cubic test: errors up to ±1 mm / ±1° (the engine accepts ±5), a set-up, the switches.
-const err = (r) => (r() - 0.5) * 2;
+/** The errors a machine of this type can have: its rotary axes' and the squareness errors. */
+const errorsOf = (type) => ERROR_TABLE.filter((e) => e.axis === type[0] || e.axis === type[1] || ['X', 'Y', 'Z'].includes(e.axis));
+/**
+ * A machine: one of the page's presets (sometimes with another kind or type), with up to five
+ * of its errors at random values, mostly up to ±1 mm / ±1°, sometimes up to the limit (±5).
+ */
+function machine(r) {
+  const m = structuredClone(pick(MACHINES)(r));
+  if (r() < 0.2) {
+    // Another kind: without the geometry that does not apply to it (the engine refuses that).
+    m.kind = pick(KINDS)(r);
+    for (const g of Object.keys(m.geometry)) if (GEOMETRY_KINDS[g].length && !GEOMETRY_KINDS[g].includes(m.kind)) delete m.geometry[g];
+  }
+  if (r() < 0.2) m.type = pick(TYPES)(r);
+  const names = errorsOf(m.type);
+  const errors = {};
+  for (let i = Math.floor(r() * 6); i > 0; i--) {
+    const e = pick(names)(r);
+    errors[e.name] = (r() - 0.5) * 2 * (r() < 0.1 ? e.limit : 1);
+  }
+  m.errors = errors;
+  return m;
+}
+const length = maybe((r) => r() * 500);
+// The cubic test: a machine, a set-up, the switches.
 const cubicCase = {
-  errors: { dxBY: err, dyBY: err, dzBY: err, alphaBY: err, betaBY: err, gammaBY: err, alphaCB: err, dxCB: err },
-  setup: { tableAboveB: (r) => (r() - 0.5) * 200, workpieceHeight: (r) => r() * 100, cOffset: (r) => (r() - 0.5) * 100, zoneSize: (r) => 2 + r() * 20, pick: (r) => 0.3 + r() * 2, stock: (r) => r() },
+  machine,
+  setup: {
+    workpieceHeight: (r) => r() * 100, workpieceX: (r) => (r() - 0.5) * 100, workpieceY: (r) => (r() - 0.5) * 100,
+    zoneSize: (r) => 2 + r() * 20, toolRadius: (r) => 0.5 + r() * 5, pick: (r) => 0.3 + r() * 2, stock: (r) => r(),
+  },
   transform: (r) => r() < 0.5,
-  reference: (r) => ['workpiece', 'zone1-height', 'zone1-plane'][Math.floor(r() * 3)],
+  reference: pick(['workpiece', 'zone1-height', 'zone1-plane']),
 };
-// The S-shape machine: a few values only, so that the engine's small cache of designs is used.
-const pick = (list) => (r) => list[Math.floor(r() * list.length)];
-const SSHAPE_MACHINE = {
-  l0: pick([499.889, 350]), rTool: pick([10, 8]), lTool: 35,
-  branch: pick(['paper', 'continuous']), reference: pick(['workOrigin', 'axesZero']), point: 'tip',
-};
+const tool = { rTool: (r) => 5 + 10 * r(), lTool: (r) => 31 + 30 * r() };
+const model = { branch: pick(['paper', 'continuous']), reference: pick(['workOrigin', 'axesZero']), point: pick(['tip', 'contact']) };
 /** A measurement file of 100 rows, sometimes with one line damaged, dropped or repeated. */
 function sshapeCsv(r) {
   const lines = ['curve,point,deviation_mm'];
@@ -56,32 +88,42 @@ function sshapeCsv(r) {
   else if (q < 0.4) lines[i] = lines[i].replace(/\d$/, 'x');
   return lines.join('\n');
 }
+/** The identification: a machine and a choice among its errors (or all of them). */
+function sshapeIdentifyCase(r) {
+  const m = machine(r);
+  const names = errorsOf(m.type).map((e) => e.name).filter(() => r() < 0.5);
+  return build({ tool, model, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()) }, r, { machine: m, ...(r() < 0.5 ? { parameters: names } : {}) });
+}
 export const SPECS = {
+  schema: { args: [] },
   rotaryTypes: { args: [] },
-  machineLayout: { args: [(r) => TYPES[Math.floor(r() * 12)], (r) => ['table-table', 'head-head', 'head-table'][Math.floor(r() * 3)]] },
-  toolVector: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], k: angle, m: angle }] },
-  inverseKinematics: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], vector: [(r) => r() - 0.5, (r) => r() - 0.5, (r) => r() - 0.5], previous: pose }] },
-  nonlinearMove: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], length: (r) => r() * 500, start: pose, end: pose, samples: small(2, 300) }] },
-  nonlinearSweepK: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], length: (r) => r() * 500, thetaM: angle, dK: angle, dM: angle, from: angle, to: angle, n: small(2, 40) }] },
-  nonlinearSweepM: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], length: (r) => r() * 500, dM: angle, ratios: [(r) => r() * 6 - 3, (r) => r() * 6 - 3], from: angle, to: angle, n: small(2, 40) }] },
-  nonlinearGrid: { args: [{ type: (r) => TYPES[Math.floor(r() * 12)], length: (r) => r() * 500, thetaM: angle, dK: { from: angle, to: angle }, dM: { from: angle, to: angle }, nx: small(2, 12), ny: small(2, 12) }] },
-  nonlinearCompareTypes: { args: [{ length: (r) => r() * 500, start: pose, end: pose }] },
-  nonlinearMaxErrors: { args: [(r) => TYPES[Math.floor(r() * 12)], (r) => r() * 500, (r) => new Float64Array(Array.from({ length: 4 * small(0, 5)(r) }, () => angle(r)))] },
-  cubicErrors: { args: [] },
+  machineSchematic: { args: [{ machine, k: maybe(angle), m: maybe(angle), standoff: maybe((r) => r() * 200) }] },
+  machineInverse: { args: [{ machine, vector: [(r) => r() - 0.5, (r) => r() - 0.5, (r) => r() - 0.5], previous: maybe((r) => ({ k: angle(r), m: angle(r) })), rule: maybe(pick(['smallest-tilt', 'nearest'])) }] },
+  toolVector: { args: [{ machine, k: angle, m: angle }] },
+  nonlinearMove: { args: [{ machine, length, start: pose, end: pose, samples: small(2, 300) }] },
+  nonlinearSweepK: { args: [{ machine, length, thetaM: angle, dK: angle, dM: angle, from: angle, to: angle, n: small(2, 40) }] },
+  nonlinearSweepM: { args: [{ machine, length, dM: angle, ratios: [(r) => r() * 6 - 3, (r) => r() * 6 - 3], from: angle, to: angle, n: small(2, 40) }] },
+  nonlinearGrid: { args: [{ machine, length, thetaM: angle, dK: { from: angle, to: angle }, dM: { from: angle, to: angle }, nx: small(2, 12), ny: small(2, 12) }] },
+  nonlinearCompareTypes: { args: [{ machine, length, start: pose, end: pose }] },
+  nonlinearMaxErrors: { args: [pick(TYPES), (r) => r() * 500, (r) => new Float64Array(Array.from({ length: 4 * small(0, 5)(r) }, () => angle(r)))] },
   cubicTest: { args: [cubicCase] },
-  cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: small(4, 24) }] },
+  cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: maybe(small(4, 24)) }] },
   sshapePart: { args: [{ nu: small(2, 30), nv: small(2, 6) }] },
-  sshapeOvercut: { args: [{ rTool: (r) => 5 + 10 * r(), lTool: (r) => 31 + 30 * r(), nu: small(2, 6), nv: small(2, 3) }] },
-  sshapeDefects: { args: [{ machine: SSHAPE_MACHINE, errors: { E_X0B: (r) => (r() - 0.5) * 0.1, E_A0B: (r) => (r() - 0.5) * 0.05, E_A0Z: (r) => (r() - 0.5) * 0.05 }, dR: (r) => (r() - 0.5) * 0.04 }] },
-  sshapeIdentify: { args: [{ machine: SSHAPE_MACHINE, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()) }] },
+  sshapeOvercut: { args: [{ tool, nu: small(14, 20), nv: small(2, 3) }] },
+  sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },
+  sshapeIdentify: { args: [sshapeIdentifyCase] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];
 
-function build(t, r) {
+/** A value from a template (`extra`: fields given as they are); undefined fields are left out. */
+function build(t, r, extra = {}) {
   if (typeof t === 'function') return t(r);
   if (Array.isArray(t)) return t.map((x) => build(x, r));
-  if (t && typeof t === 'object') return Object.fromEntries(Object.entries(t).map(([k, v]) => [k, build(v, r)]));
+  if (t && typeof t === 'object') {
+    const out = Object.fromEntries(Object.entries(t).map(([k, v]) => [k, build(v, r)]).filter(([, v]) => v !== undefined));
+    return Object.assign(out, extra);
+  }
   return t;
 }
 
@@ -147,13 +189,23 @@ test(`fuzz: ${CASES} cases over the exported API (seed ${SEED})`, () => {
       assert.ok(SPECS[name], `export ${name} has no fuzz spec: add one`);
     }
   }
-  const counts = { ok: 0, error: 0 };
+  const counts = { ok: 0, error: 0, repeated: 0 };
+  // Mutations often reduce an input to the same few values ([], [{}], [null]): the engine is
+  // deterministic, so an input already tried is not run again (some, such as the overcut maps
+  // at their default grid, take a fifth of a second).
+  const tried = new Set();
   for (let i = 0; i < CASES; i++) {
     const name = names[Math.floor(r() * names.length)];
     let args = build(SPECS[name].args, r);
     const mutations = r() < 0.2 ? 0 : 1 + Math.floor(r() * 3);
     for (let m = 0; m < mutations; m++) args = mutate(args, r);
     if (!Array.isArray(args)) args = [args];
+    const key = `${name}(${exactly(args)})`;
+    if (tried.has(key)) {
+      counts.repeated++;
+      continue;
+    }
+    tried.add(key);
     let result;
     try {
       result = fa[name](...args);
@@ -171,6 +223,18 @@ test(`fuzz: ${CASES} cases over the exported API (seed ${SEED})`, () => {
   // Both outcomes must be exercised, or the generator is broken.
   assert.ok(counts.ok > CASES * 0.05 && counts.error > CASES * 0.05, JSON.stringify(counts));
 });
+
+/** The input as text that tells apart everything the engine could (−0 from 0, a string from a
+ *  number, a typed array from a list, undefined from null). */
+function exactly(args) {
+  return JSON.stringify(args, function (k, v) {
+    const raw = this[k];
+    if (typeof raw === 'number') return Object.is(raw, -0) ? '#-0' : Number.isFinite(raw) ? raw : `#${raw}`;
+    if (typeof raw === 'string') return `'${raw}`;
+    if (ArrayBuffer.isView(raw)) return { '#typed': Array.from(raw) };
+    return raw === undefined ? '#undefined' : v;
+  });
+}
 
 function describe(args) {
   return JSON.stringify(args, (_, v) => (typeof v === 'number' && !Number.isFinite(v) ? String(v) : ArrayBuffer.isView(v) ? Array.from(v) : v === undefined ? '<undefined>' : v));
