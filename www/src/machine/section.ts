@@ -194,6 +194,9 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     }, (e) => {
       const err = e instanceof EngineError ? e : new EngineError(String(e));
       if (!section.showError(err.field, err.message)) note(plot, err.message);
+      // The panels try this machine too: the engine refuses it there as well, and they grey
+      // the plots it fed.
+      for (const l of listeners) l();
     });
   };
 
@@ -245,7 +248,11 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   // Any edit: mark what the machine fed as stale until the new machine is computed.
   let timer: number | undefined;
   const onInput = () => {
-    if (!current()) details.classList.add('stale');
+    if (!current()) {
+      details.classList.add('stale');
+      // No machine now: the panels grey the plots it fed (they read current() as null).
+      for (const l of listeners) l();
+    }
     clearTimeout(timer);
     timer = window.setTimeout(() => void update(), 60);
   };

@@ -202,7 +202,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['nl-eq26', 'Closed form at the pole (eq 26)', r.closedForm === null
         ? `not applicable: the move does not start at θm = ${group === 'I' ? '0°' : '±90°'}`
         : show('errLength', r.closedForm)],
-      ['nl-length', 'L (tool point from its pivot)', `${fmt.num(L)} mm`],
+      ['nl-used-length', 'L (tool point from its pivot)', `${fmt.num(L)} mm`],
       ['nl-sweep', 'Angle between start and end tool', fmt.degrees(r.sweepAngle, 5)],
       ['nl-ref', 'Reference', referenceText(r)],
       ['nl-v0', 'Start tool vector V0', fmt.vector(r.startVector)],
