@@ -1,20 +1,36 @@
-// The "Cubic-machining test" panel in Debian's Chromium: a preset fills the errors, the 3 × 3
-// map shows the engine's zone heights on the zones, and bad input shows a message at the field
-// while the last good plots stay.
+// The "Cubic-machining test" panel in Debian's Chromium: a preset sets the machine (Li et al.'s,
+// with Table 5's errors in the Machine section), the 3 × 3 map shows the engine's zone heights
+// on the zones with Table 2's angles, and bad input shows a message at the field (of the panel
+// or of the machine) while the last good plots stay, greyed.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import * as fa from '../../crate/pkg/fiveaxis.js';
+import * as fa from '../../wasm/pkg/fiveaxis.js';
 import { ARTIFACTS, waitPlotted, withPage } from './harness.mjs';
 
-fa.initSync({ module: readFileSync(new URL('../../crate/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
-const TABLE5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
+const MACHINES = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
+const LI = MACHINES.find((p) => p.name === 'B/C tilting table, vertical spindle (Li et al. 2021)').machine;
+/** Table 5 of Li et al. in the paper's symbols (mm, degrees), and as ISO errors: E = −ε. */
+const T5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
+const ISO = {
+  E_X0B: -T5.dxBY, E_Y0B: -T5.dyBY, E_Z0B: -T5.dzBY, E_A0B: -T5.alphaBY,
+  E_B0B: -T5.betaBY, E_C0B: -T5.gammaBY, E_A0C: -T5.alphaCB, E_X0C: -T5.dxCB,
+};
+/** Li et al.'s Table 2: (C, B) per zone, degrees. */
+const TABLE_2 = { I: [0, 0], 'II-1': [0, 30], 'II-2': [90, 30], 'II-3': [180, 30], 'II-4': [270, 30], 'III-1': [45, 30], 'III-2': [135, 30], 'III-3': [225, 30], 'III-4': [315, 30] };
+const rad = (d) => (d * Math.PI) / 180;
 const PLOTS = ['cb-zones', 'cb-map', 'cb-sens'];
 
-/** The 3 × 3 heat map's values (rows bottom to top) and the texts written on the zones. */
+/** The 3 × 3 heat map's values (rows bottom to top), the texts on the zones and the hover texts. */
 const zonesShown = (page) =>
-  page.$eval('#cb-zones', (gd) => ({ z: gd.data[0].z.map((r) => Array.from(r)), text: gd.layout.annotations.map((a) => a.text) }));
+  page.$eval('#cb-zones', (gd) => ({
+    z: gd.data[0].z.map((r) => Array.from(r)),
+    text: gd.layout.annotations.map((a) => a.text),
+    hover: gd.data[0].text.flat(),
+  }));
+const option = (page, menu, start) => page.$eval(`#${menu}`, (s, start) => [...s.options].find((o) => o.text.startsWith(start))?.value, start);
 
 /** Waits until every plot has been drawn more often than in `before`, then for quiet. */
 async function redrawn(page, before) {
@@ -22,23 +38,28 @@ async function redrawn(page, before) {
   await page.waitForTimeout(300);
 }
 const counts = async (page) => Object.fromEntries(await Promise.all(PLOTS.map(async (id) => [id, await waitPlotted(page, id)])));
+const allStale = (page, on, ids = PLOTS) =>
+  page.waitForFunction(([ids, on]) => ids.every((id) => document.getElementById(id)?.closest('.plot-wrap')?.classList.contains('stale') === on), [ids, on]);
 
 test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 × 3 map; bad input shows a message', async () => {
   await withPage({ viewport: { width: 1400, height: 1900 } }, async ({ page, url }) => {
-    await page.goto(`${url}#v=1&p=cubic`);
+    await page.goto(`${url}#v=2&p=cubic`);
     await page.waitForSelector('#panel-cubic[data-ready=true]');
     // Zero errors: every zone at 0.
     let before = await counts(page);
-    assert.ok((await zonesShown(page)).z.flat().every((v) => Math.abs(v) < 1e-9));
+    assert.ok((await zonesShown(page)).z.flat().every((v) => Math.abs(v) < 1e-6));
 
-    // Choose the Table 5 machine from the preset menu (µm shown: the default unit).
-    const option = await page.$eval('#cb-preset-menu', (s) => [...s.options].find((o) => o.text.startsWith('Table 5: '))?.value);
-    await page.selectOption('#cb-preset-menu', option);
+    // Choose the Table 5 machine from the preset menu: it sets Li et al.'s machine and its
+    // errors in the Machine section (µm and degrees shown: the default units).
+    await page.selectOption('#cb-preset-menu', await option(page, 'cb-preset-menu', 'Table 5: '));
     await redrawn(page, before);
-    assert.equal(await page.inputValue('#cb-dxBY'), '14.6');
-    assert.equal(await page.inputValue('#cb-alphaCB'), '-0.00017');
-    // Independent of the page: the engine called directly with the paper's values.
-    const r = fa.cubicTest({ errors: TABLE5 });
+    await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-14.6');
+    assert.equal(await page.inputValue('#m-errors-E_A0C'), '0.00017');
+    assert.equal(await page.inputValue('#m-errors-E_Z0B'), '14.2');
+    assert.equal(await page.inputValue('#m-geometry-tableHeight'), '0');
+    assert.equal(await page.inputValue('#m-type'), 'CBZ');
+    // Independent of the page: the engine called directly with the paper's values (mm, degrees).
+    const r = fa.cubicTest({ machine: { ...LI, errors: ISO } });
     const shown = await zonesShown(page);
     for (const zone of r.zones) {
       const v = shown.z[zone.row + 1][zone.col + 1];
@@ -48,16 +69,30 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
       assert.ok(label, zone.name);
       const written = Number(label.split('<br>')[1].replace(/[^0-9.eE+-]/g, ''));
       assert.ok(Math.abs(written - zone.height * 1000) <= 0.006 * Math.max(1, Math.abs(zone.height * 1000)), `${zone.name}: ${label}`);
+      // The hover text names the zone's C and B commands: Table 2.
+      const [c, b] = TABLE_2[zone.name];
+      assert.ok(shown.hover.some((t) => t.startsWith(`ZONE ${zone.name}: C = ${c}°, B = ${b}°`)), `${zone.name}: Table 2's C = ${c}°, B = ${b}°`);
     }
+    // II-1 against the first-order closed form: −sin 30°·δxBY + (cos 30° − 1)·δzBY.
+    const ii1 = (-0.5 * T5.dxBY + (Math.cos(rad(30)) - 1) * T5.dzBY) * 1000;
+    assert.ok(Math.abs(shown.z[1][0] - ii1) < 1e-3, `II-1 ${shown.z[1][0]} µm vs ${ii1}`);
     // The height map's zone averages are on it too, and the summary names the extremes.
     const mapTexts = await page.$eval('#cb-map', (gd) => gd.layout.annotations.map((a) => a.text));
     assert.equal(mapTexts.length, 9);
     const hs = r.zones.map((z) => z.height);
     const extremes = `${r.zones[hs.indexOf(Math.max(...hs))].name} / ${r.zones[hs.indexOf(Math.min(...hs))].name}`;
     assert.equal(await page.textContent('#cb-high'), extremes);
-    // The sensitivity chart: 8 errors × 9 zones.
-    const bars = await page.$eval('#cb-sens', (gd) => gd.data.map((t) => t.y.length));
-    assert.deepEqual(bars, [9, 9, 9, 9, 9, 9, 9, 9]);
+    // What the test cannot see (Section 4.3): δyBY and δxCB.
+    const blind = await page.textContent('#cb-blind');
+    assert.ok(blind.includes('E_Y0B') && blind.includes('E_X0C'), blind);
+    // The sensitivity chart: one bar series of 9 zones per error the heights see; E_X0B's at
+    // II-1 is sin 30° (µm per µm).
+    const bars = await page.$eval('#cb-sens', (gd) => gd.data.map((t) => ({ name: t.name, x: Array.from(t.x), y: Array.from(t.y) })));
+    const seen = r.errorNames.filter((n) => !r.visibility.invisible.includes(n));
+    assert.deepEqual(bars.map((b) => b.name.replace(' (angle)', '')), seen);
+    assert.ok(bars.every((b) => b.y.length === 9));
+    const x0b = bars.find((b) => b.name === 'E_X0B');
+    assert.ok(Math.abs(x0b.y[x0b.x.indexOf('II-1')] - 0.5) < 1e-9, `${x0b.y}`);
     await page.screenshot({ path: `${ARTIFACTS}cubic.png`, fullPage: true });
     for (const id of PLOTS) await page.locator(`#${id}`).screenshot({ path: `${ARTIFACTS}${id}.png` });
 
@@ -68,27 +103,58 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     const zoneI = (await zonesShown(page)).z[1][1];
     assert.ok(Math.abs(zoneI + 14.2) < 0.01, `ZONE I ${zoneI}`);
 
-    // Bad input: a message at the field; the plots keep their last good data.
+    // Bad input in the Machine section: a message at the field, the plots keep their last good
+    // data, greyed.
     const last = await zonesShown(page);
-    await page.fill('#cb-dzBY', 'abc');
-    await page.waitForFunction(() => /not a number/.test(document.querySelector('#cb-dzBY')?.closest('.field')?.textContent ?? ''));
-    assert.equal(await page.getAttribute('#cb-dzBY', 'aria-invalid'), 'true');
-    await page.fill('#cb-dzBY', '-14.2');
-    await page.fill('#cb-alphaBY', '9');
-    await page.waitForFunction(() => /between/.test(document.querySelector('#cb-alphaBY')?.closest('.field')?.textContent ?? ''));
-    await page.fill('#cb-alphaBY', '-0.0023');
-    await page.waitForTimeout(500);
-    // A pick feed larger than the ball: the engine refuses it, its message appears at the
-    // field, and no plot is redrawn.
     before = await counts(page);
-    await page.fill('#cb-pick', '7');
-    await page.waitForFunction(() => /diameter/.test(document.querySelector('#cb-pick')?.closest('.field')?.textContent ?? ''));
+    await page.fill('#m-errors-E_Z0B', 'abc');
+    await page.waitForFunction(() => /not a number/.test(document.querySelector('#m-errors-E_Z0B')?.closest('.field')?.textContent ?? ''));
+    assert.equal(await page.getAttribute('#m-errors-E_Z0B', 'aria-invalid'), 'true');
+    await allStale(page, true);
+    await page.fill('#m-errors-E_Z0B', '14.2');
+    await page.fill('#m-errors-E_A0B', '9');
+    await page.waitForFunction(() => /between/.test(document.querySelector('#m-errors-E_A0B')?.closest('.field')?.textContent ?? ''));
+    await allStale(page, true);
+    assert.deepEqual(await counts(page), before);
+    assert.deepEqual(await zonesShown(page), last);
+    await page.fill('#m-errors-E_A0B', '0.0023');
+    await redrawn(page, before);
+    await allStale(page, false);
+    assert.deepEqual(await zonesShown(page), last);
+    // A pick feed larger than the ball: the engine refuses it, its message appears at the
+    // field, and no plot is redrawn; the two it refused are greyed.
+    before = await counts(page);
+    await page.fill('#cb-setup-pick', '7');
+    await page.waitForFunction(() => /diameter/.test(document.querySelector('#cb-setup-pick')?.closest('.field')?.textContent ?? ''));
     await page.waitForTimeout(300);
     assert.deepEqual(await counts(page), before);
     assert.deepEqual(await zonesShown(page), last);
-    await page.fill('#cb-pick', '0.1');
+    await allStale(page, true, ['cb-zones', 'cb-map']);
+    await page.fill('#cb-setup-pick', '0.1');
     await waitPlotted(page, 'cb-zones', before['cb-zones']);
-    assert.equal(await page.getAttribute('#cb-pick', 'aria-invalid'), null);
+    assert.equal(await page.getAttribute('#cb-setup-pick', 'aria-invalid'), null);
     await page.screenshot({ path: `${ARTIFACTS}cubic-no-transform.png`, fullPage: true });
+  });
+});
+
+test('cubic panel on another machine: an A/C trunnion table with its A axis 20 µm low', async () => {
+  await withPage({ viewport: { width: 1400, height: 1900 } }, async ({ page, url }) => {
+    await page.goto(`${url}#v=2&p=cubic`);
+    await page.waitForSelector('#panel-cubic[data-ready=true]');
+    const before = await counts(page);
+    await page.selectOption('#cb-preset-menu', await option(page, 'cb-preset-menu', 'A/C trunnion table'));
+    await redrawn(page, before);
+    await page.waitForFunction(() => document.getElementById('m-errors-E_Z0A')?.value === '-20');
+    assert.equal(await page.inputValue('#m-type'), 'CAZ');
+    // A shift t of the tilting axis moves the set-up workpiece by P·t − t (the C turn keeps z):
+    // every tilted zone by E_Z0A·(1 − cos 30°), ZONE I not at all.
+    const { z, hover } = await zonesShown(page);
+    const expected = -20 * (1 - Math.cos(rad(30)));
+    z.flat().forEach((v, i) => {
+      const want = i === 4 ? 0 : expected;
+      assert.ok(Math.abs(v - want) < 1e-6, `cell ${i}: ${v} µm vs ${want}`);
+    });
+    // The axes are this machine's: C and A.
+    assert.ok(hover.every((t) => /^ZONE I{1,3}(-\d)?: C = -?[\d.]+°, A = -?[\d.]+°/.test(t)), hover[0]);
   });
 });
