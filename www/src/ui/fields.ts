@@ -295,7 +295,10 @@ export function namesField(id: string, labelText: string, hint?: string) {
       const cid = `${id}-${o.name}`;
       const c = el('input', { type: 'checkbox', id: cid, value: o.name });
       c.checked = picked === null || picked.has(o.name);
-      c.addEventListener('change', () => {
+      // On 'input', before the panel sees the event: the panel re-renders the boxes from the
+      // store when it reads its fields, which would undo a click not yet stored.
+      c.addEventListener('input', (e) => {
+        e.stopPropagation();
         const all = chosen();
         store.value = all.length === options.length ? '' : all.join(',');
         fire(store);
