@@ -26,6 +26,15 @@ function banner(text: string | null) {
   b.querySelector('.banner-text')!.textContent = text ?? '';
 }
 
+/** Settings of the state last restored that this version does not know: the machine's and each
+ *  panel's (applied when it mounts), named together. */
+const ignored: string[] = [];
+function ignoredSettings(ids: string[]) {
+  if (!ids.length) return;
+  ignored.push(...ids);
+  banner(`This link has settings this version does not know; they were ignored: ${ignored.join(', ')}.`);
+}
+
 // ---- saving the state (URL fragment and local storage), a moment after the last change
 let saveTimer: number | undefined;
 function scheduleSave() {
@@ -60,8 +69,7 @@ async function show(id: string) {
     try {
       if (!machine) throw new Error('the machine section is not ready');
       await panel.mount(section, machine);
-      const unknown = state.applyPending(panel.prefix);
-      if (unknown.length) banner(`This link has settings this version does not know; they were ignored: ${unknown.join(', ')}.`);
+      ignoredSettings(state.applyPending(panel.prefix));
       section.dataset.ready = 'true';
     } catch (err) {
       section.append(el('p', { class: 'warn' }, `This panel failed to load: ${String(err)}`));
@@ -214,8 +222,8 @@ async function restore(s: state.PageState) {
   restoring = true;
   try {
     state.apply(s);
-    const unknown = [...state.applyPending(MACHINE_PREFIX), ...state.applyPending(DRAWING_PREFIX)];
-    if (unknown.length) banner(`This link has settings this version does not know; they were ignored: ${unknown.join(', ')}.`);
+    ignored.length = 0;
+    ignoredSettings([...state.applyPending(MACHINE_PREFIX), ...state.applyPending(DRAWING_PREFIX)]);
     await show(panels.some((p) => p.id === s.p) ? s.p : panels[0].id);
   } finally {
     restoring = false;
