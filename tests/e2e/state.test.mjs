@@ -1,37 +1,59 @@
-// Page state across browser contexts, reloads and the network: share links, saved inputs,
-// reset, export of plot data, offline use after the first visit.
+// Page state across browser contexts, reloads and the network: share links (the machine's
+// fields with every panel's), saved inputs, reset, export of plot data, offline use after the
+// first visit.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import * as fa from '../../crate/pkg/fiveaxis.js';
+import * as fa from '../../wasm/pkg/fiveaxis.js';
 import { ARTIFACTS, guardedPage, startBrowser, waitPlotted, withPage } from './harness.mjs';
 
-fa.initSync({ module: readFileSync(new URL('../../crate/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
+/**
+ * The Machine section's fields to change (id → text as shown, in mm and arcseconds; the kind
+ * first, since the pivot field shows only on a machine with a head) and its drawing.
+ */
+const MACHINE = {
+  set: {
+    'm-kind': 'head-table', 'm-linear': 'table-y', 'm-geometry-tableHeight': '20', 'm-geometry-pivotLength': '420', 'm-geometry-toolLength': '90',
+    'm-rotary-kReversed': '1', 'm-rotary-mFrom': '-100', 'm-rotary-mTo': '110',
+    'm-errors-E_X0B': '0.012', 'm-errors-E_A0C': '7.2', 'm-errors-E_C0Y': '3.6', 'md-k': '30', 'md-m': '-20',
+  },
+  plots: ['machine-schematic'],
+};
 /** Per panel: fields to change (id → text) and the plots whose data must match after the trip. */
 const PANELS = [
   {
     tab: 'nonlinear',
-    set: { 'nl-type': 'BCX', 'nl-machine': 'head-head', 'nl-length': '250', 'nl-k0': '5', 'nl-m0': '-20', 'nl-k1': '47.5', 'nl-m1': '33', 'nl-ratios': '1, 4', 'nl-grid': '21' },
+    set: { 'nl-length': '250', 'nl-start-k': '5', 'nl-start-m': '-20', 'nl-end-k': '47.5', 'nl-end-m': '33', 'nl-ratios': '1, 4', 'nl-nx': '21', 'nl-vector': '0, 0.5, 0.8660254' },
     plots: ['nl-curve', 'nl-sweep-k', 'nl-sweep-m', 'nl-map-max', 'nl-map-u', 'nl-compare'],
   },
   {
     tab: 'cubic',
-    set: { 'cb-dzBY': '-14.2', 'cb-betaBY': '0.0029', 'cb-transform': '0', 'cb-reference': 'zone1-plane', 'cb-coffset': '12', 'cb-grid': '97', 'cb-range': '10' },
+    set: { 'cb-transform': '0', 'cb-reference': 'zone1-plane', 'cb-setup-workpieceX': '12', 'cb-setup-zoneSize': '12', 'cb-nx': '97', 'cb-range': '0.01' },
     plots: ['cb-zones', 'cb-sens', 'cb-map'],
   },
   {
     tab: 'sshape',
-    set: { 'ss-l0': '520', 'ss-branch': 'continuous', 'ss-reference': 'axesZero', 'ss-point': 'contact', 'ss-ea0c': '0.001', 'ss-ex0b': '0.01', 'ss-dr': '0.005', 'ss-nu': '131', 'ss-nv': '5', 'ss-radius': '0' },
+    set: {
+      'ss-tool-rTool': '9', 'ss-model-branch': 'continuous', 'ss-model-reference': 'axesZero', 'ss-model-point': 'contact', 'ss-dR': '0.005',
+      'ss-nu': '131', 'ss-nv': '5', 'ss-radiusTerm': '0', 'ss-rtol': '0.001', 'ss-parameters-value': 'E_X0B,E_A0B,E_C0Y',
+    },
     plots: ['ss-defects', 'ss-overcut-a', 'ss-overcut-b'],
   },
 ];
 
+/** Sets a field as a user does: a choice, a tick, typed text, or the boxes of a list of names. */
 async function setField(page, id, value) {
-  const tag = await page.$eval(`#${id}`, (e) => e.tagName);
+  const [tag, type] = await page.$eval(`#${id}`, (e) => [e.tagName, e.type]);
   if (tag === 'SELECT') await page.selectOption(`#${id}`, value);
-  else if ((await page.getAttribute(`#${id}`, 'type')) === 'checkbox') await page.setChecked(`#${id}`, value === '1');
-  else await page.fill(`#${id}`, value);
+  else if (type === 'checkbox') await page.setChecked(`#${id}`, value === '1');
+  else if (type === 'hidden') {
+    // The state of a list of names (its boxes' text): tick exactly those named.
+    const boxes = await page.$$eval(`#${id}`, (es) => [...es[0].closest('fieldset').querySelectorAll('input[type=checkbox]')].map((b) => b.id));
+    const want = new Set(value.split(','));
+    for (const b of boxes) await page.setChecked(`#${b}`, want.has(b.slice(b.lastIndexOf('-') + 1)));
+  } else await page.fill(`#${id}`, value);
 }
 const fieldValue = (page, id) =>
   page.$eval(`#${id}`, (e) => (e.type === 'checkbox' ? (e.checked ? '1' : '0') : e.value));
@@ -46,33 +68,50 @@ async function settle(page, plots) {
     await page.waitForTimeout(400);
   }
 }
-/** Every trace's x, y and z of each plot. */
+/** Every trace's x, y and z of each plot (z a grid or, in 3D, a list). */
 const allData = (page, plots) =>
   Promise.all(
     plots.map((id) =>
-      page.$eval(`#${id}`, (gd) => [gd.id, gd.data.map((t) => ({ x: Array.from(t.x ?? []), y: Array.from(t.y ?? []), z: t.z ? Array.from(t.z, (r) => Array.from(r)) : null }))]),
+      page.$eval(`#${id}`, (gd) => [gd.id, gd.data.map((t) => ({
+        x: Array.from(t.x ?? []), y: Array.from(t.y ?? []),
+        z: t.z ? Array.from(t.z, (r) => (r !== null && typeof r === 'object' ? Array.from(r) : r)) : null,
+      }))]),
     ),
   );
+/** The default text of a field, as the page wrote it. */
+const defaultOf = (page, id) =>
+  page.$eval(`#${id}`, (e) =>
+    e.tagName === 'SELECT' ? [...e.options].find((o) => o.defaultSelected)?.value ?? e.options[0]?.value : e.type === 'checkbox' ? (e.defaultChecked ? '1' : '0') : e.defaultValue,
+  );
 
-test('share link, reload, reset, units', async () => {
+test('share link, reload, reset, units: the machine and every panel', async () => {
   const b = await startBrowser();
   try {
     const ctx = await b.browser.newContext({ viewport: { width: 1300, height: 1000 } });
     const { page, assertClean } = await guardedPage(ctx, b.url);
     await page.goto(b.url);
+    await page.waitForSelector('#machine[data-ready=true]');
     // Units first, so that the data seen here and after the trip are in the same units.
     await page.selectOption('#units-length', 'mm');
     await page.selectOption('#units-angle', 'arcsec');
-    const expected = {};
+    // The machine first: every panel computes on it.
+    await settle(page, MACHINE.plots);
+    for (const [id, v] of Object.entries(MACHINE.set)) await setField(page, id, v);
+    await page.waitForFunction(() => /head-table/.test(document.getElementById('machine-summary')?.textContent ?? ''));
+    await settle(page, MACHINE.plots);
+    const expected = { machine: await allData(page, MACHINE.plots) };
     for (const p of PANELS) {
       await page.click(`#tab-${p.tab}`);
+      await page.waitForSelector(`#panel-${p.tab}[data-ready=true]`);
       await settle(page, p.plots);
       for (const [id, v] of Object.entries(p.set)) await setField(page, id, v);
       await settle(page, p.plots);
       expected[p.tab] = await allData(page, p.plots);
     }
+    // Every field holds what was set (nothing undone by a redraw).
+    for (const p of [MACHINE, ...PANELS]) for (const [id, v] of Object.entries(p.set)) assert.equal(await fieldValue(page, id), v, `${id} as set`);
     await page.click('#copy-link');
-    await page.waitForFunction(() => document.getElementById('share-link')?.value.includes('#v=1'));
+    await page.waitForFunction(() => document.getElementById('share-link')?.value.includes('#v=2'));
     const link = await page.inputValue('#share-link');
     assert.ok(link.startsWith(b.url) && link.length < 1500, `short link: ${link.length} characters`);
     assertClean();
@@ -81,35 +120,51 @@ test('share link, reload, reset, units', async () => {
     const fresh = await b.browser.newContext({ viewport: { width: 1300, height: 1000 } });
     const other = await guardedPage(fresh, b.url);
     await other.page.goto(link);
+    await other.page.waitForSelector('#machine[data-ready=true]');
     assert.equal(await other.page.inputValue('#units-length'), 'mm');
     assert.equal(await other.page.inputValue('#units-angle'), 'arcsec');
+    for (const [id, v] of Object.entries(MACHINE.set)) assert.equal(await fieldValue(other.page, id), v, id);
+    await settle(other.page, MACHINE.plots);
+    assert.deepEqual(await allData(other.page, MACHINE.plots), expected.machine, 'the same drawing of the machine');
     for (const p of PANELS) {
       await other.page.click(`#tab-${p.tab}`);
+      await other.page.waitForSelector(`#panel-${p.tab}[data-ready=true]`);
       await settle(other.page, p.plots);
       for (const [id, v] of Object.entries(p.set)) assert.equal(await fieldValue(other.page, id), v, id);
       assert.deepEqual(await allData(other.page, p.plots), expected[p.tab], `${p.tab}: the same plotted data`);
     }
     other.assertClean();
 
-    // A reload keeps the inputs of every panel (local storage), and reset restores the defaults
-    // of the open panel.
+    // A reload keeps the inputs of the machine and every panel (local storage).
     await other.page.evaluate(() => history.replaceState(null, '', location.pathname));
     await other.page.reload();
+    await other.page.waitForSelector('#machine[data-ready=true]');
+    for (const [id, v] of Object.entries(MACHINE.set)) assert.equal(await fieldValue(other.page, id), v, `${id} after reload`);
     for (const p of PANELS) {
       await other.page.click(`#tab-${p.tab}`);
+      await other.page.waitForSelector(`#panel-${p.tab}[data-ready=true]`);
       await settle(other.page, p.plots);
       for (const [id, v] of Object.entries(p.set)) assert.equal(await fieldValue(other.page, id), v, `${id} after reload`);
     }
+    // Units: the machine's small lengths and angles are converted, not reinterpreted.
+    await other.page.selectOption('#units-angle', 'deg');
+    await other.page.selectOption('#units-length', 'um');
+    assert.equal(await other.page.inputValue('#m-errors-E_A0C'), '0.002');
+    assert.equal(await other.page.inputValue('#m-errors-E_X0B'), '12');
+    await other.page.selectOption('#units-angle', 'arcsec');
+    await other.page.selectOption('#units-length', 'mm');
+    assert.equal(await other.page.inputValue('#m-errors-E_A0C'), '7.2');
+    assert.equal(await other.page.inputValue('#m-errors-E_X0B'), '0.012');
+    // Reset restores the defaults of the open panel only; the machine has its own reset.
     for (const p of PANELS) {
       await other.page.click(`#tab-${p.tab}`);
       await other.page.click('#reset');
-      for (const id of Object.keys(p.set)) {
-        const def = await other.page.$eval(`#${id}`, (e) =>
-          e.tagName === 'SELECT' ? [...e.options].find((o) => o.defaultSelected)?.value : e.type === 'checkbox' ? (e.defaultChecked ? '1' : '0') : e.defaultValue,
-        );
-        assert.equal(await fieldValue(other.page, id), def, `${id} reset`);
-      }
+      for (const id of Object.keys(p.set)) assert.equal(await fieldValue(other.page, id), await defaultOf(other.page, id), `${id} reset`);
     }
+    for (const [id, v] of Object.entries(MACHINE.set)) assert.equal(await fieldValue(other.page, id), v, `${id} kept by a panel's reset`);
+    await other.page.click('#machine-reset');
+    for (const id of Object.keys(MACHINE.set)) assert.equal(await fieldValue(other.page, id), await defaultOf(other.page, id), `${id} reset`);
+    assert.equal(await other.page.inputValue('#m-kind'), 'table-table');
     other.assertClean();
     await fresh.close();
   } finally {
@@ -117,22 +172,44 @@ test('share link, reload, reset, units', async () => {
   }
 });
 
-test('a link from another version opens with a message and the defaults', async () => {
+test('a link from another version opens with a message and the defaults; unknown settings are named', async () => {
   await withPage({}, async ({ page, url }) => {
-    await page.goto(`${url}#v=99&p=nonlinear&nl-length=5`);
-    await page.waitForSelector('#banner:not([hidden])');
-    assert.match(await page.textContent('#banner'), /different version/);
-    await waitPlotted(page, 'nl-curve');
-    assert.equal(await page.inputValue('#nl-length'), '100');
-    await page.goto(`${url}#v=1&z=not-deflate-data`);
+    await page.goto(url);
+    await page.waitForSelector('#panel-nonlinear[data-ready=true]');
+    // Inputs kept in this browser, which a link from another version must not bring back.
+    await page.fill('#nl-length', '33');
+    await page.fill('#m-geometry-tableHeight', '150');
+    await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash));
+    // A link of the first format (before the Machine section) and one from a future version.
+    for (const [v, link] of [['1', '#v=1&p=cubic&cb-dxBY=14.6&cb-transform=0'], ['99', '#v=99&p=nonlinear&nl-length=5&m-geometry-tableHeight=120']]) {
+      await page.goto(`${url}${link}`);
+      await page.reload();
+      await page.waitForSelector('#banner:not([hidden])');
+      assert.match(await page.textContent('#banner'), new RegExp(`different version of the calculator \\(format ${v}\\).*defaults`));
+      await page.waitForSelector('#panel-nonlinear[data-ready=true]');
+      await waitPlotted(page, 'nl-curve');
+      assert.equal(await page.inputValue('#nl-length'), '');
+      assert.equal(await page.inputValue('#m-geometry-tableHeight'), '100');
+      assert.equal(await page.inputValue('#m-errors-E_X0B'), '0');
+      // The address no longer holds the link's state (the page's own, of format 2, replaces it).
+      const hash = new URL(page.url()).hash;
+      assert.ok(!hash.includes(`v=${v}&`) && !/cb-dxBY|tableHeight|nl-length/.test(hash), `the link's state is dropped: ${hash}`);
+    }
+    await page.goto(`${url}#v=2&z=not-deflate-data`);
     await page.reload();
     await page.waitForSelector('#banner:not([hidden])');
     assert.match(await page.textContent('#banner'), /damaged/);
-    await page.goto(`${url}#v=1&p=nonlinear&nl-length=7&nl-removed-field=3`);
+    // Settings this version does not know, of a panel and of the machine, are named; the rest
+    // is applied.
+    await page.goto(`${url}#v=2&p=nonlinear&nl-length=7&nl-removed-field=3&m-geometry-tableHeight=150&m-removed-field=1`);
     await page.reload();
     await page.waitForSelector('#banner:not([hidden])');
-    assert.match(await page.textContent('#banner'), /nl-removed-field/);
+    await page.waitForSelector('#panel-nonlinear[data-ready=true]');
+    const text = await page.textContent('#banner');
+    assert.match(text, /nl-removed-field/);
+    assert.match(text, /m-removed-field/);
     assert.equal(await page.inputValue('#nl-length'), '7');
+    assert.equal(await page.inputValue('#m-geometry-tableHeight'), '150');
   });
 });
 
@@ -150,7 +227,8 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
     assert.equal(header, 'trace,interpolation parameter u,δ (mm)');
     const rows = lines.filter((l) => l.startsWith('δ(u),')).map((l) => l.slice('δ(u),'.length));
     // Independent of the page: the engine called directly with the default inputs.
-    const r = fa.nonlinearMove({ type: 'CAZ', length: 100, start: { k: 0, m: 10 }, end: { k: 30, m: 25 }, samples: 201 });
+    // The default machine: table-table, CBZ, table 100 mm above the rotary centre (L = 100 mm).
+    const r = fa.nonlinearMove({ machine: { kind: 'table-table', type: 'CBZ', geometry: { tableHeight: 100 } }, start: { k: 0, m: 10 }, end: { k: 30, m: 25 }, samples: 201 });
     assert.equal(rows.length, 201);
     rows.forEach((row, i) => {
       const [u, d] = row.split(',').map(Number);
@@ -169,8 +247,8 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     await page.selectOption('#units-length', 'mm');
     await page.click('#tab-cubic');
     await waitPlotted(page, 'cb-zones');
-    await page.selectOption('#cb-preset-menu', { label: "Table 5: the paper's machine (identified by ball bar)" });
-    await page.waitForFunction(() => document.getElementById('cb-dxBY')?.value === '0.0146');
+    await page.selectOption('#cb-preset-menu', { label: "Table 5: Li et al.'s machine as identified by ball bar" });
+    await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-0.0146');
     await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);
     const lines = readFileSync(await csv.path(), 'utf8').trim().split('\n');
@@ -179,8 +257,12 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     const grid = lines.slice(2).map((l) => l.split(',').map(Number));
     assert.deepEqual(xs, [-16, 0, 16]);
     assert.equal(grid.length, 3);
-    // Independent of the page: the engine called directly with Table 5 (mm and degrees).
-    const r = fa.cubicTest({ errors: { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 } });
+    // Independent of the page: the engine called directly with Table 5 (mm and degrees) in ISO
+    // names, E = −ε, on Li et al.'s machine (the table at the B axis, B and C intersecting).
+    const li = { kind: 'table-table', type: 'CBZ', geometry: { rotaryOffset: 0, tableHeight: 0, toolLength: 0 }, rotary: { mFrom: -120, mTo: 120 } };
+    const t5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
+    const errors = { E_X0B: -t5.dxBY, E_Y0B: -t5.dyBY, E_Z0B: -t5.dzBY, E_A0B: -t5.alphaBY, E_B0B: -t5.betaBY, E_C0B: -t5.gammaBY, E_A0C: -t5.alphaCB, E_X0C: -t5.dxCB };
+    const r = fa.cubicTest({ machine: { ...li, errors } });
     assert.equal(r.zones.length, 9);
     for (const z of r.zones) {
       const row = grid.find((g) => Math.abs(g[0] - z.y) < 1e-9);
@@ -202,8 +284,18 @@ test('works offline after the first visit', async () => {
     await context.setOffline(true);
     await page.reload();
     await waitPlotted(page, 'nl-curve');
-    await page.fill('#nl-k1', '50');
-    await waitPlotted(page, 'nl-curve', 1);
+    const n = await waitPlotted(page, 'nl-curve');
+    await page.fill('#nl-end-k', '50');
+    await waitPlotted(page, 'nl-curve', n);
+    // The machine presets come from the cache: choosing one redraws the machine and the panel.
+    await waitPlotted(page, 'machine-schematic');
+    const drawn = await waitPlotted(page, 'machine-schematic');
+    const curve = await waitPlotted(page, 'nl-curve');
+    await page.waitForFunction(() => document.getElementById('m-preset-menu')?.options.length > 1);
+    await page.selectOption('#m-preset-menu', { label: 'A/C fork head on a gantry' });
+    await waitPlotted(page, 'machine-schematic', drawn);
+    await waitPlotted(page, 'nl-curve', curve);
+    assert.equal(await page.inputValue('#m-kind'), 'head-head');
     // Every other panel loads (their code, presets and sample data come from the cache too).
     for (const p of PANELS.slice(1)) {
       await page.click(`#tab-${p.tab}`);
