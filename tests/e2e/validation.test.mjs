@@ -1,19 +1,40 @@
-// Input validation on every numeric field of every panel: text that is not a number, nothing, or
-// a value out of range shows a message at the field (and aria-invalid for assistive technology);
-// putting the value back clears it. While a field is invalid no plot is redrawn: the last good
-// result stays on screen. Tabs and fields are found on the page, so new panels and fields are
-// covered without editing this file.
+// Input validation on every numeric field of the Machine section and of every panel: text that
+// is not a number, nothing (where a value is required), or a value out of range shows a message
+// at the field (and aria-invalid for assistive technology); putting the value back clears it.
+// While a field is invalid no plot is redrawn: the last good result stays on screen, greyed when
+// the machine it came from is invalid. Tabs and fields are found on the page, so new panels and
+// fields are covered without editing this file; whether a field may be left empty comes from
+// the engine's schema.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import * as fa from '../../wasm/pkg/fiveaxis.js';
 import { withPage } from './harness.mjs';
 
-/** How often each plot of the open panel has been drawn. */
-const drawCounts = (page, tab) => page.$$eval(`#panel-${tab} .plot`, (gs) => gs.map((g) => g.dataset.plotted ?? '0').join());
+fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
-async function settle(page, tab) {
+/** Field ids the schema marks optional (empty: the engine's default or the machine's value). */
+const OPTIONAL = (() => {
+  const schema = fa.schema();
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', machineSchematic: 'md' };
+  const out = new Set(schema.machine.filter((f) => f.optional).map((f) => `m-${f.path.slice('machine.'.length).replace(/\./g, '-')}`));
+  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, machineSchematic: /^machineSchematic$/ };
+  for (const [name, fields] of Object.entries(schema.exports)) {
+    for (const [panel, re] of Object.entries(owner)) {
+      if (!re.test(name)) continue;
+      for (const f of fields) if (f.optional && !f.path.startsWith('machine.')) out.add(`${prefixes[panel]}-${f.path.replace(/\./g, '-')}`);
+    }
+  }
+  return out;
+})();
+
+/** How often each plot (of a panel, or all on the page) has been drawn. */
+const drawCounts = (page, scope = 'body') => page.$$eval(`${scope} .plot`, (gs) => gs.map((g) => `${g.id}:${g.dataset.plotted ?? '0'}`).join());
+
+async function settle(page, scope) {
   let last = '';
   for (;;) {
-    const now = await drawCounts(page, tab);
+    const now = await drawCounts(page, scope);
     if (now === last) return now;
     last = now;
     await page.waitForTimeout(600);
@@ -21,49 +42,101 @@ async function settle(page, tab) {
 }
 
 const message = (page, id) => page.$eval(`#${id}`, (e) => e.closest('.field')?.querySelector('.field-msg')?.textContent ?? '');
+/** The numeric fields shown in `scope`. */
+const numericFields = (page, scope) =>
+  page.$$eval(`${scope} input[inputmode=decimal]`, (es) => es.filter((e) => !e.closest('[hidden]')).map((e) => e.id));
 
-test('every numeric field of every panel: bad text shows a message that goes when the value is good', async () => {
+/** Bad texts in a field: each gives its message; the original value clears it. */
+async function check(page, id) {
+  const original = await page.inputValue(`#${id}`);
+  const empty = OPTIONAL.has(id) ? null : /Enter a value/;
+  for (const [text, expected] of [['12abc', /not a number/], ['', empty], ['1e12', /between|at most|whole number/]]) {
+    await page.fill(`#${id}`, text);
+    if (expected === null) {
+      // Optional: empty is a value (the default), no message.
+      await page.waitForFunction(([id]) => !document.getElementById(id)?.hasAttribute('aria-invalid'), [id]);
+      assert.equal(await message(page, id), '', `${id}: empty is allowed`);
+      continue;
+    }
+    await page.waitForFunction(([id]) => document.getElementById(id)?.getAttribute('aria-invalid') === 'true', [id]);
+    assert.match(await message(page, id), expected, `${id} with "${text}"`);
+  }
+  await page.fill(`#${id}`, original);
+  await page.waitForFunction(([id]) => !document.getElementById(id)?.hasAttribute('aria-invalid'), [id]);
+  assert.equal(await message(page, id), '', `${id}: the message goes when the value is good again`);
+}
+
+test('every numeric field of the machine and of every panel: bad text shows a message that goes when the value is good', async () => {
   await withPage({ viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
     await page.goto(url);
-    const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
+    await page.waitForSelector('#machine[data-ready=true]');
     let checked = 0;
-    for (const tab of tabs) {
-      await page.click(`#tab-${tab}`);
-      await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
-      await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
-      await settle(page, tab);
-      const ids = await page.$$eval(`#panel-${tab} form.inputs input[inputmode=decimal]`, (es) => es.map((e) => e.id));
-      assert.ok(ids.length >= 3, `${tab}: numeric fields found`);
-      for (const id of ids) {
-        const original = await page.inputValue(`#${id}`);
-        for (const [text, expected] of [['12abc', /not a number/], ['', /Enter a value/], ['1e12', /between|at most|whole number/]]) {
-          await page.fill(`#${id}`, text);
-          await page.waitForFunction(([id]) => document.getElementById(id)?.getAttribute('aria-invalid') === 'true', [id]);
-          assert.match(await message(page, id), expected, `${id} with "${text}"`);
-        }
-        await page.fill(`#${id}`, original);
-        await page.waitForFunction(([id]) => !document.getElementById(id)?.hasAttribute('aria-invalid'), [id]);
-        assert.equal(await message(page, id), '', `${id}: the message goes when the value is good again`);
+    const seen = new Set();
+    // The machine: as it opens (a table-table B/C machine), then with a head and an A axis, so
+    // that the pivot and the A axis's errors show too.
+    for (const [kind, type] of [[null, null], ['head-head', 'CAZ']]) {
+      if (kind) {
+        await page.selectOption('#m-kind', kind);
+        await page.selectOption('#m-type', type);
+        await page.waitForFunction(() => !document.getElementById('m-errors-E_X0A')?.closest('[hidden]'));
+      }
+      for (const id of await numericFields(page, '#machine')) {
+        if (seen.has(id)) continue;
+        seen.add(id);
+        await check(page, id);
         checked++;
       }
     }
-    assert.ok(checked >= 30, `${checked} fields checked`);
-  });
-});
+    assert.ok(['m-geometry-pivotLength', 'm-geometry-rotaryOffset', 'm-errors-E_X0A', 'm-errors-E_C0C', 'm-errors-E_B0Z', 'md-k'].every((id) => seen.has(id)), [...seen].join());
+    assert.equal([...seen].filter((id) => id.startsWith('m-errors-')).length, fa.schema().errors.length, 'every error of the table');
+    await page.click('#machine-reset');
 
-test('bad text keeps the last good plot: no redraw while a field is invalid', async () => {
-  await withPage({ viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
-    await page.goto(url);
     const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
-      const before = await settle(page, tab);
-      const ids = await page.$$eval(`#panel-${tab} form.inputs input[inputmode=decimal]`, (es) => es.map((e) => e.id));
+      await settle(page, `#panel-${tab}`);
+      const ids = await numericFields(page, `#panel-${tab} form.inputs`);
+      assert.ok(ids.length >= 3, `${tab}: numeric fields found`);
+      for (const id of ids) {
+        await check(page, id);
+        checked++;
+      }
+    }
+    assert.ok(checked >= 50, `${checked} fields checked`);
+  });
+});
+
+test('bad text keeps the last good plot: no redraw while a field of the machine or a panel is invalid', async () => {
+  await withPage({ viewport: { width: 1300, height: 1000 } }, async ({ page, url }) => {
+    await page.goto(url);
+    await page.waitForSelector('#machine[data-ready=true]');
+    const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
+    for (const tab of tabs) {
+      await page.click(`#tab-${tab}`);
+      await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
+      await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
+    }
+    // The machine: every panel's plots (and the drawing) stay as they were, greyed.
+    let before = await settle(page);
+    const machineIds = await numericFields(page, '#machine');
+    const originals = await Promise.all(machineIds.map((id) => page.inputValue(`#${id}`)));
+    for (const id of machineIds) await page.fill(`#${id}`, 'x');
+    await page.waitForTimeout(800);
+    assert.equal(await drawCounts(page), before, 'no plot was redrawn from a bad machine');
+    const drawn = await page.$$eval('.panel .plot', (gs) => gs.filter((g) => g.classList.contains('js-plotly-plot')).map((g) => [g.id, !!g.closest('.plot-wrap')?.classList.contains('stale')]));
+    for (const [id, greyed] of drawn) assert.ok(greyed, `${id} greyed while the machine is invalid`);
+    for (const [i, id] of machineIds.entries()) await page.fill(`#${id}`, originals[i]);
+    await page.waitForFunction(() => [...document.querySelectorAll('.panel .plot-wrap')].every((w) => !w.classList.contains('stale') || !w.querySelector('.js-plotly-plot')));
+    // Each panel's own fields.
+    for (const tab of tabs) {
+      await page.click(`#tab-${tab}`);
+      before = await settle(page, `#panel-${tab}`);
+      const ids = await numericFields(page, `#panel-${tab} form.inputs`);
       for (const id of ids) await page.fill(`#${id}`, 'x');
       await page.waitForTimeout(800);
-      assert.equal(await drawCounts(page, tab), before, `${tab}: no plot was redrawn from bad input`);
+      assert.equal(await drawCounts(page, `#panel-${tab}`), before, `${tab}: no plot was redrawn from bad input`);
     }
   });
 });
