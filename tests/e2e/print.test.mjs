@@ -1,6 +1,8 @@
-// The printed report of every panel (print media, as "Save as PDF" does): a table of the inputs
-// instead of the form, the plots redrawn to fit the page width, and the screen layout back
-// afterwards. Tabs are found on the page, so a new panel is covered without editing this file.
+// The printed report of every panel (print media, as "Save as PDF" does): the machine it was
+// computed for (its summary, its inputs and the errors entered) and a table of the panel's
+// inputs instead of the forms, the plots redrawn to fit the page width, and the screen layout
+// back afterwards. Tabs are found on the page, so a new panel is covered without editing this
+// file.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { ARTIFACTS, withPage } from './harness.mjs';
@@ -12,6 +14,10 @@ const plotWidths = (page) =>
 test('print report: inputs, key numbers and plots that fit the page, for every panel', async () => {
   await withPage({ viewport: { width: 1400, height: 1000 } }, async ({ page, url }) => {
     await page.goto(url);
+    await page.waitForSelector('#machine[data-ready=true]');
+    // One error entered in the Machine section (µm): the report lists it, and no error left at 0.
+    await page.fill('#m-errors-E_X0B', '20');
+    await page.waitForFunction(() => /1 error entered/.test(document.getElementById('machine-summary')?.textContent ?? ''));
     const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
     assert.ok(tabs.length >= 1);
     for (const tab of tabs) {
@@ -36,10 +42,17 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
         (tab) => [...document.querySelectorAll(`#panel-${tab} .js-plotly-plot`)].every((g) => (g.querySelector('svg.main-svg')?.getBoundingClientRect().width ?? 0) <= 700),
         tab,
       );
-      const rows = await page.$$eval(`#panel-${tab} .print-inputs dt`, (d) => d.length);
+      // Two lists: the machine's, under its summary, then the panel's inputs.
+      const [machineRows, rows] = await page.$$eval(`#panel-${tab} .print-inputs dl`, (ds) => ds.map((d) => [...d.querySelectorAll('dt')].map((t, i) => [t.textContent, d.querySelectorAll('dd')[i]?.textContent])));
+      const heads = await page.$$eval(`#panel-${tab} .print-inputs h3`, (hs) => hs.map((h) => h.textContent));
+      assert.match(heads[0], /^Machine: table-table, type CBZ/, `${tab}: ${heads}`);
+      const errorRows = machineRows.filter(([label]) => /^E_/.test(label));
+      assert.deepEqual(errorRows.map(([label, value]) => [label.split(':')[0], value]), [['E_X0B', '20 µm']], `${tab}: the errors entered`);
+      assert.ok(machineRows.length >= 8, `${tab}: ${machineRows.length} machine rows`);
       const controls = await page.$$eval(`#panel-${tab} form.inputs :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
-      assert.ok(rows >= 3 && rows <= controls, `${tab}: ${rows} input rows printed for ${controls} controls`);
+      assert.ok(rows.length >= 3 && rows.length <= controls, `${tab}: ${rows.length} input rows printed for ${controls} controls`);
       assert.equal(await page.$eval(`#panel-${tab} form.inputs`, (f) => getComputedStyle(f).display), 'none');
+      assert.equal(await page.$eval('#machine', (m) => getComputedStyle(m).display), 'none', 'the Machine section itself is not printed');
       await page.pdf({ path: `${ARTIFACTS}report-${tab}.pdf`, format: 'A4', printBackground: true });
 
       await page.emulateMedia({ media: 'screen' });
