@@ -38,6 +38,16 @@ async function redrawn(page, before) {
   await page.waitForTimeout(300);
 }
 const counts = async (page) => Object.fromEntries(await Promise.all(PLOTS.map(async (id) => [id, await waitPlotted(page, id)])));
+/** The draw counts once no plot has been redrawn for a while. */
+async function settled(page) {
+  let last = '';
+  for (;;) {
+    const now = await counts(page);
+    if (JSON.stringify(now) === last) return now;
+    last = JSON.stringify(now);
+    await page.waitForTimeout(500);
+  }
+}
 const allStale = (page, on, ids = PLOTS) =>
   page.waitForFunction(([ids, on]) => ids.every((id) => document.getElementById(id)?.closest('.plot-wrap')?.classList.contains('stale') === on), [ids, on]);
 
@@ -104,16 +114,17 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     assert.ok(Math.abs(zoneI + 14.2) < 0.01, `ZONE I ${zoneI}`);
 
     // Bad input in the Machine section: a message at the field, the plots keep their last good
-    // data, greyed.
+    // data, greyed (one field at a time made good again, the other still bad).
+    before = await settled(page);
     const last = await zonesShown(page);
-    before = await counts(page);
     await page.fill('#m-errors-E_Z0B', 'abc');
     await page.waitForFunction(() => /not a number/.test(document.querySelector('#m-errors-E_Z0B')?.closest('.field')?.textContent ?? ''));
     assert.equal(await page.getAttribute('#m-errors-E_Z0B', 'aria-invalid'), 'true');
     await allStale(page, true);
-    await page.fill('#m-errors-E_Z0B', '14.2');
     await page.fill('#m-errors-E_A0B', '9');
     await page.waitForFunction(() => /between/.test(document.querySelector('#m-errors-E_A0B')?.closest('.field')?.textContent ?? ''));
+    await page.fill('#m-errors-E_Z0B', '14.2');
+    await page.waitForTimeout(300);
     await allStale(page, true);
     assert.deepEqual(await counts(page), before);
     assert.deepEqual(await zonesShown(page), last);
@@ -123,7 +134,7 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     assert.deepEqual(await zonesShown(page), last);
     // A pick feed larger than the ball: the engine refuses it, its message appears at the
     // field, and no plot is redrawn; the two it refused are greyed.
-    before = await counts(page);
+    before = await settled(page);
     await page.fill('#cb-setup-pick', '7');
     await page.waitForFunction(() => /diameter/.test(document.querySelector('#cb-setup-pick')?.closest('.field')?.textContent ?? ''));
     await page.waitForTimeout(300);
