@@ -247,7 +247,8 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     await page.selectOption('#units-length', 'mm');
     await page.click('#tab-cubic');
     await waitPlotted(page, 'cb-zones');
-    await page.selectOption('#cb-preset-menu', { label: "Table 5: Li et al.'s machine as identified by ball bar" });
+    const table5 = await page.$eval('#cb-preset-menu', (s) => [...s.options].find((o) => o.text.startsWith("Table 5: Li et al.'s machine as identified by ball bar"))?.value);
+    await page.selectOption('#cb-preset-menu', table5);
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-0.0146');
     await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);
