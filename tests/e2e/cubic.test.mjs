@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, optionValue, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -30,7 +30,6 @@ const zonesShown = (page) =>
     text: gd.layout.annotations.map((a) => a.text),
     hover: gd.data[0].text.flat(),
   }));
-const option = (page, menu, start) => page.$eval(`#${menu}`, (s, start) => [...s.options].find((o) => o.text.startsWith(start))?.value, start);
 
 /** Waits until every plot has been drawn more often than in `before`, then for quiet. */
 async function redrawn(page, before) {
@@ -61,7 +60,7 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
 
     // Choose the Table 5 machine from the preset menu: it sets Li et al.'s machine and its
     // errors in the Machine section (Âµm and degrees shown: the default units).
-    await page.selectOption('#cb-preset-menu', await option(page, 'cb-preset-menu', 'Table 5: '));
+    await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Table 5: '));
     await redrawn(page, before);
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-14.6');
     assert.equal(await page.inputValue('#m-errors-E_A0C'), '0.00017');
@@ -153,7 +152,7 @@ test('cubic panel on another machine: an A/C trunnion table with its A axis 20 Â
     await page.goto(`${url}#v=2&p=cubic`);
     await page.waitForSelector('#panel-cubic[data-ready=true]');
     const before = await counts(page);
-    await page.selectOption('#cb-preset-menu', await option(page, 'cb-preset-menu', 'A/C trunnion table'));
+    await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'A/C trunnion table'));
     await redrawn(page, before);
     await page.waitForFunction(() => document.getElementById('m-errors-E_Z0A')?.value === '-20');
     assert.equal(await page.inputValue('#m-type'), 'CAZ');

@@ -96,3 +96,15 @@ export async function withPage(contextOptions, fn) {
     await b.close();
   }
 }
+
+/**
+ * The value of the option of the menu `menu` (an element id) whose text starts with `start`,
+ * once the menu has it (presets are fetched after the panel is ready).
+ */
+export async function optionValue(page, menu, start) {
+  const handle = await page.waitForFunction(
+    ([menu, start]) => [...(document.getElementById(menu)?.options ?? [])].find((o) => o.text.startsWith(start))?.value,
+    [menu, start],
+  );
+  return handle.jsonValue();
+}

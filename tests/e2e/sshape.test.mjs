@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, traceY, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, optionValue, traceY, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -34,7 +34,7 @@ test('S-shape panel: part, overcut, defects, identification of the sample file',
     // The Table 4 preset: Chanal et al.'s machine (B head, C table, L0 = 499.889 mm) with
     // E_X0B and E_A0B in the Machine section, the paper's eight errors to identify.
     let n = await waitPlotted(page, 'ss-defects');
-    const preset = await page.$eval('#ss-preset-menu', (s) => [...s.options].find((o) => o.text.startsWith('Chanal et al.\'s machine, Table 4: '))?.value);
+    const preset = await optionValue(page, 'ss-preset-menu', 'Chanal et al.\'s machine, Table 4: ');
     await page.selectOption('#ss-preset-menu', preset);
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '29.4');
     await waitPlotted(page, 'ss-defects', n);

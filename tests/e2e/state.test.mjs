@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, startBrowser, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -247,8 +247,7 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     await page.selectOption('#units-length', 'mm');
     await page.click('#tab-cubic');
     await waitPlotted(page, 'cb-zones');
-    const table5 = await page.$eval('#cb-preset-menu', (s) => [...s.options].find((o) => o.text.startsWith("Table 5: Li et al.'s machine as identified by ball bar"))?.value);
-    await page.selectOption('#cb-preset-menu', table5);
+    await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', "Table 5: Li et al.'s machine as identified by ball bar"));
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-0.0146');
     await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);
@@ -292,8 +291,7 @@ test('works offline after the first visit', async () => {
     await waitPlotted(page, 'machine-schematic');
     const drawn = await waitPlotted(page, 'machine-schematic');
     const curve = await waitPlotted(page, 'nl-curve');
-    await page.waitForFunction(() => document.getElementById('m-preset-menu')?.options.length > 1);
-    await page.selectOption('#m-preset-menu', { label: 'A/C fork head on a gantry' });
+    await page.selectOption('#m-preset-menu', await optionValue(page, 'm-preset-menu', 'A/C fork head on a gantry'));
     await waitPlotted(page, 'machine-schematic', drawn);
     await waitPlotted(page, 'nl-curve', curve);
     assert.equal(await page.inputValue('#m-kind'), 'head-head');
