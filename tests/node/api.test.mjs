@@ -86,7 +86,8 @@ test('the machine in words, its inverse kinematics and tool vector', () => {
   assert.deepEqual(s.axes.map((a) => a.name), ['B', 'C', 'X', 'Y', 'Z']);
   const c = s.axes.find((a) => a.name === 'C');
   assert.deepEqual([c.motion, c.side, c.role], ['rotary', 'table', 'K']);
-  assert.match(c.description, /^C \(K\): rotary table/);
+  // In words: C, the K axis, sits on B and carries the workpiece.
+  assert.match(c.description, /^C \(K\): .*\bon B\b.*carries the workpiece/);
   // Zone II-3 of the cubic test (Li et al.'s Table 2): B = 30°, C = 180°; continuity keeps C
   // near 170° (the other solution, C = 0°, B = −30°, is farther).
   const ik = fa.machineInverse({ machine: { type: 'CBZ' }, vector: [-0.5, 0, Math.sqrt(3) / 2], previous: { k: 170, m: 30 } });
