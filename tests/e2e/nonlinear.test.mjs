@@ -124,7 +124,7 @@ test('nonlinear panel: machine and move changes replot, eq 26 at the pole, bad i
     // A machine the engine refuses (C's travel ending below its start): the engine's message at
     // the machine's field, every plot greyed; fixed, they are current again.
     await page.fill('#m-rotary-kTo', '-400');
-    await page.waitForFunction(() => /must end above where it starts/.test(document.querySelector('#m-rotary-kTo')?.closest('.field')?.textContent ?? ''));
+    await page.waitForFunction(() => /must be above where the travel of . starts/.test(document.querySelector('#m-rotary-kTo')?.closest('.field')?.textContent ?? ''));
     await page.waitForFunction((ids) => ids.every((id) => document.getElementById(id)?.closest('.plot-wrap')?.classList.contains('stale')), PLOTS);
     n = await waitPlotted(page, 'nl-curve');
     await page.fill('#m-rotary-kTo', '360');

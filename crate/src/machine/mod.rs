@@ -454,12 +454,13 @@ impl Machine {
             ("m", t.m_from, t.m_to, self.m().letter()),
         ] {
             if from >= to {
+                let deg = |x: f64| format!("{}°", (x.to_degrees() * 1e9).round() / 1e9);
                 return Err(Error::field(
                     schema::join(path, &format!("rotary.{name}To")),
                     format!(
-                        "the travel of {letter} must end above where it starts ({}° to {}°)",
-                        from.to_degrees(),
-                        to.to_degrees()
+                        "must be above where the travel of {letter} starts ({} to {})",
+                        deg(from),
+                        deg(to)
                     ),
                 ));
             }
@@ -511,13 +512,13 @@ impl Machine {
                     m,
                     "table",
                     "M",
-                    format!("{m} (M): tilting table axis on the bed, carries {k}"),
+                    format!("{m} (M): table axis on the bed, carries {k}"),
                 ));
                 out.push(rot(
                     k,
                     "table",
                     "K",
-                    format!("{k} (K): rotary table on {m}, carries the workpiece"),
+                    format!("{k} (K): table axis on {m}, carries the workpiece"),
                 ));
             }
             MachineKind::HeadTable => {
@@ -525,7 +526,7 @@ impl Machine {
                     k,
                     "table",
                     "K",
-                    format!("{k} (K): rotary table, carries the workpiece"),
+                    format!("{k} (K): table axis, carries the workpiece"),
                 ));
             }
             MachineKind::HeadHead => {}
@@ -538,7 +539,7 @@ impl Machine {
                     m,
                     "spindle",
                     "M",
-                    format!("{m} (M): head axis, tilts the spindle"),
+                    format!("{m} (M): head axis, carries the spindle"),
                 ));
             }
             MachineKind::HeadHead => {
@@ -552,7 +553,7 @@ impl Machine {
                     m,
                     "spindle",
                     "M",
-                    format!("{m} (M): head axis on {k}, tilts the spindle"),
+                    format!("{m} (M): head axis on {k}, carries the spindle"),
                 ));
             }
         }

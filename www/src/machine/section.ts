@@ -166,6 +166,11 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   const applyContext = (r: SchematicResult) => {
     ctx = { ...ctx, k: r.k, m: r.m, u: r.face[0], v: r.face[1] };
     swing = r.swingLength;
+    // Each axis's errors under what the axis is on this machine ("C (K): head axis on the ram").
+    for (const a of r.axes) {
+      const legend = errorSets.get(a.name)?.querySelector('legend');
+      if (legend) legend.textContent = `${a.description}`;
+    }
     machineForm.setContext(ctx);
     drawingForm.setContext(ctx);
     // Values entered for axes this machine does not have are kept but not used: say so.
@@ -187,7 +192,6 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     await runSchematic({ machine: m, ...pose }).then((r) => {
       if (r === SUPERSEDED) return;
       note(plot, null);
-      details.classList.remove('stale');
       applyContext(r);
       void drawSchematic(plot, r, `The machine as entered, ${fill('{K}', ctx)} at ${fmt.num(Number(pose.k ?? 0))}° and ${fill('{M}', ctx)} at ${fmt.num(Number(pose.m ?? 0))}°`);
       for (const l of listeners) l();
@@ -249,7 +253,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   let timer: number | undefined;
   const onInput = () => {
     if (!current()) {
-      details.classList.add('stale');
+      plotWrap.classList.add('stale');
       // No machine now: the panels grey the plots it fed (they read current() as null).
       for (const l of listeners) l();
     }

@@ -10,7 +10,7 @@ import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
-import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
+import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, stale, type Panel } from './panel';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
@@ -101,7 +101,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       lastTest = { r, input };
       showTest(r, input);
       if (lastMap) showMap(lastMap);
-    }, (e) => engineError(e, zonesPlot.p));
+    }, (e) => {
+      engineError(e, zonesPlot.p);
+      stale(sensPlot.p, true); // fed by the same computation
+    });
     runMap({ ...input, nx: nx as number, ...(ny === undefined ? {} : { ny: ny as number }) }).then((map) => {
       if (map === SUPERSEDED) return;
       lastMap = map;
@@ -125,7 +128,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const alike = v.alike.map((g) => g.map((x) => x.name).join(' ~ ')).join('; ');
     const items: [string, string, string][] = [
       ['cb-span', 'Zone heights', `${show('errLength', lo)} to ${show('errLength', hi)} (spread ${show('errLength', hi - lo)})`],
-      ['cb-high', 'Highest / lowest zone', `${r.zones[heights.indexOf(hi)].name} / ${r.zones[heights.indexOf(lo)].name}`],
+      ['cb-high', 'Highest / lowest zone', hi - lo < ROUND_OFF ? 'all zones at the same height' : `${r.zones[heights.indexOf(hi)].name} / ${r.zones[heights.indexOf(lo)].name}`],
       ['cb-linear', 'Exact vs first order Σ k·ε', `differ by at most ${show('errLength', worst)}`],
       ['cb-blind', 'Errors this test cannot see', v.invisible.length ? `${v.invisible.join(', ')} (no zone height changes${v.tiltOnly.length ? `; ${v.tiltOnly.join(', ')} only tilt zones` : ''})` : 'none'],
       ['cb-alike', 'Errors it cannot tell apart', alike ? `${alike} (their height changes are proportional)` : 'none'],

@@ -45,12 +45,19 @@ export function engineErrors(fieldsByPath: Record<string, ShowsError>, machine: 
     const e = err instanceof EngineError ? err : new EngineError(String(err));
     const f = fieldsByPath[e.field];
     if (f) f.setError(e.message.slice(e.field.length + 2));
-    else if (!machine.showError(e.field, e.message)) note(target, e.message);
+    // A message about the machine as a whole ("machine: ZONE II-1: outside the travel …") goes
+    // over the plot without its path.
+    else if (!machine.showError(e.field, e.message)) note(target, e.field === 'machine' ? e.message.slice('machine: '.length) : e.message);
     stale(target, true);
   };
 }
 
-/** Greys a plot (and its wrapper) whose inputs changed but could not be computed, or clears it. */
+/**
+ * Greys a plot whose inputs changed but could not be computed, and the panel's summary of key
+ * numbers with it (they no longer show what the inputs ask for); a successful drawing clears both
+ * (`draw`).
+ */
 export function stale(target: HTMLElement, on: boolean) {
   (target.closest('.plot-wrap') ?? target).classList.toggle('stale', on);
+  if (on) target.closest('.results')?.querySelector(':scope > dl.summary')?.classList.add('stale');
 }

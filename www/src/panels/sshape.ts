@@ -120,7 +120,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       lastDefects = d;
       showDefects(d);
       showPart();
-    }, (e) => engineError(e, defects.p));
+    }, (e) => {
+      engineError(e, defects.p);
+      stale(part3d.p, true); // coloured by the same defects
+    });
     identify();
   };
 

@@ -39,9 +39,15 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   // (anchored to the container's top, Plotly cuts the first line of a two-line title).
   const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', automargin: true, pad: { b: 8 } } as Partial<Layout['title']>;
   const margin = { ...baseLayout.margin, t: 20, ...layout.margin };
-  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
+  const full = { ...baseLayout, title: titleLayout, ...layout, margin };
+  const first = !el.dataset.plotted;
+  await P.react(el, data, full, config);
+  // On a plot's first drawing Plotly grows the top margin for the title after it has placed the
+  // traces, which then sit above their axes until the next redraw: draw once more.
+  if (first) await P.react(el, data, full, config);
   toolbar(el, title, filename);
   (el.closest('.plot-wrap') ?? el).classList.remove('stale');
+  el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
 }
 

@@ -74,13 +74,15 @@ export function presetPicker(panel: string, prefix: string, machine: MachineSect
   root.append(label, select, note);
   loadPresets(panel).then(
     (presets) => {
-      presets.forEach((p, i) => select.append(el('option', { value: String(i) }, p.name)));
+      // A preset that sets the machine says so: it changes every panel.
+      presets.forEach((p, i) => select.append(el('option', { value: String(i) }, p.machinePreset || p.machine ? `${p.name} (sets the machine)` : p.name)));
       select.addEventListener('change', async () => {
         const p = presets[Number(select.value)];
         if (!p || select.value === '') return;
         try {
           await applyPreset(prefix, p, machine);
-          note.textContent = p.source ? `Source: ${p.source}` : '';
+          const set = p.machinePreset ? `The machine above is now: ${p.machinePreset}${p.machine ? ', with the preset’s values' : ''}. ` : p.machine ? 'The preset changed the machine above. ' : '';
+          note.textContent = `${set}${p.source ? `Source: ${p.source}` : ''}`;
         } catch (err) {
           note.textContent = `This preset could not be applied: ${String(err)}`;
         }

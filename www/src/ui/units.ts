@@ -92,9 +92,9 @@ export function titled(text: string, q: Quantity): string {
 
 /**
  * Below this magnitude (mm or degrees, the base units) a computed value is round-off, not a
- * result: a deviation of 1e-12 mm is a femtometre. It is shown as 0.
+ * result: a deviation of 1e-9 mm is a picometre. It is shown as 0.
  */
-export const ROUND_OFF = 1e-12;
+export const ROUND_OFF = 1e-9;
 
 /** A value as text in the unit shown now, with the unit: "12.35 µm" (round-off shown as 0). */
 export function show(q: Quantity, base: number | null | undefined, digits = 4): string {
