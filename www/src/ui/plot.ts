@@ -35,16 +35,15 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   };
   el.setAttribute('role', 'figure');
   el.setAttribute('aria-label', title);
-  // The title sits just above the plot area and the top margin grows to fit all its lines
-  // (anchored to the container's top, Plotly cuts the first line of a two-line title).
-  const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', automargin: true, pad: { b: 8 } } as Partial<Layout['title']>;
-  const margin = { ...baseLayout.margin, t: 20, ...layout.margin };
-  const full = { ...baseLayout, title: titleLayout, ...layout, margin };
-  const first = !el.dataset.plotted;
-  await P.react(el, data, full, config);
-  // On a plot's first drawing Plotly grows the top margin for the title after it has placed the
-  // traces, which then sit above their axes until the next redraw: draw once more.
-  if (first) await P.react(el, data, full, config);
+  // The title sits just above the plot area, in a top margin made for its lines. Plotly puts the
+  // first line's baseline at the anchor and the others below it, so the anchor is raised by the
+  // lines after the first. (Anchored to the container's top, Plotly cuts the first line of a
+  // two-line title; with the margin grown by Plotly's automargin instead, the first drawing places
+  // the traces before the margin grows, so that they sit above their axes until the next redraw.)
+  const lines = title.split('<br>').length;
+  const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
+  const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines };
+  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
   (el.closest('.plot-wrap') ?? el).classList.remove('stale');
   el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
