@@ -5,19 +5,10 @@
 // symbol its correction).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
-import * as fa from '../../wasm/pkg/fiveaxis.js';
+import { fa, preset, T5, T5_ISO } from '../papers.mjs';
 
-fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
-
-const MACHINES = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
-const LI = MACHINES.find((p) => p.name === 'B/C tilting table, vertical spindle (Li et al. 2021)').machine;
-/** Table 5 of Li et al. in the paper's symbols (mm, degrees). */
-const T5 = { dxBY: 0.0146, dyBY: -0.0089, dzBY: -0.0142, alphaBY: -0.0023, betaBY: 0.0029, gammaBY: -0.00002, alphaCB: -0.00017, dxCB: 0.0094 };
-const errors = {
-  E_X0B: -T5.dxBY, E_Y0B: -T5.dyBY, E_Z0B: -T5.dzBY, E_A0B: -T5.alphaBY,
-  E_B0B: -T5.betaBY, E_C0B: -T5.gammaBY, E_A0C: -T5.alphaCB, E_X0C: -T5.dxCB,
-};
+const LI = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+const errors = T5_ISO;
 const machine = { ...LI, errors };
 const rad = (d) => (d * Math.PI) / 180;
 /** Li et al.'s Table 2: (C, B) per zone in Table 1's order, degrees. */
