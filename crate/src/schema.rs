@@ -880,19 +880,6 @@ fn describe_in(fields: &[Field], path: &str, section: &str, shown: bool) -> Vec<
     out
 }
 
-/// The keys of an input object that were given (not absent, not null), for checks that depend on
-/// what the caller wrote rather than on defaults.
-pub fn given_keys(value: &Value) -> Vec<&str> {
-    match value {
-        Value::Object(m) => m
-            .iter()
-            .filter(|(_, v)| !v.is_null())
-            .map(|(k, _)| k.as_str())
-            .collect(),
-        _ => Vec::new(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

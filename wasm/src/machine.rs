@@ -5,7 +5,7 @@ use crate::{js_error, json, output};
 use fiveaxis::cubic::{CubicGrid, CubicInput};
 use fiveaxis::machine::errors::{ErrorDef, TABLE};
 use fiveaxis::machine::schematic::{schematic, Schematic};
-use fiveaxis::machine::{fit, AxisInfo, InverseInput, Machine, SchematicInput, ToolVectorInput};
+use fiveaxis::machine::{AxisInfo, InverseInput, Machine, SchematicInput, ToolVectorInput};
 use fiveaxis::nonlinear::{
     NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
     TypeCompareInput,
@@ -224,51 +224,27 @@ pub fn machine_inverse(
     let i = InverseInput::from_value(&json(&value)?, "").map_err(js_error)?;
     let model = i.machine.build().map_err(js_error)?;
     let v = nalgebra::Vector3::new(i.vector[0], i.vector[1], i.vector[2]);
-    let lay = model.layout;
-    let previous = i.previous.as_ref().map(|p| model.positions(p.k, p.m));
-    let prev_pose = i
-        .previous
-        .as_ref()
-        .map(|p| fiveaxis::rotary::Pose::new(lay.k_factor * p.k, lay.m_factor * p.m));
-    let sol = lay
-        .rtype
-        .inverse(&v, prev_pose)
+    let previous = i.previous.as_ref().map(|p| [p.k, p.m]);
+    let o = model
+        .orientations(&v, i.rule, previous)
         .map_err(|e| js_error(fiveaxis::Error::field("vector", e.message)))?;
-    let [(k0, k1), (m0, m1)] = model.travel();
-    let near = i.previous.as_ref();
-    let solutions = sol
-        .solutions
-        .iter()
-        .map(|s| {
-            let (k, m) = (s.k / lay.k_factor, s.m / lay.m_factor);
-            let kf = fit(k, k0, k1, near.map(|p| p.k));
-            let mf = fit(m, m0, m1, near.map(|p| p.m));
-            InverseSolution {
-                k: kf.unwrap_or(k).to_degrees(),
-                m: mf.unwrap_or(m).to_degrees(),
-                in_travel: kf.is_some() && mf.is_some(),
-            }
-        })
-        .collect();
-    let (chosen, message) =
-        match model.inverse(&nalgebra::Vector3::zeros(), &v, i.rule, previous.as_deref()) {
-            Ok(s) => {
-                let [k, m] = model.rotary_of(&s.q);
-                (
-                    Some(AxisPair {
-                        k: k.to_degrees(),
-                        m: m.to_degrees(),
-                    }),
-                    None,
-                )
-            }
-            Err(e) => (None, Some(e.message)),
-        };
+    let deg = |x: f64| x.to_degrees();
     output(&InverseResult {
-        solutions,
-        chosen,
-        message,
-        singular: sol.singular,
-        pole_angle: sol.pole_angle.to_degrees(),
+        solutions: o
+            .solutions
+            .iter()
+            .map(|c| InverseSolution {
+                k: deg(c.k),
+                m: deg(c.m),
+                in_travel: c.in_travel,
+            })
+            .collect(),
+        chosen: o.chosen.map(|[k, m]| AxisPair {
+            k: deg(k),
+            m: deg(m),
+        }),
+        message: o.unreachable,
+        singular: o.singular,
+        pole_angle: deg(o.pole_angle),
     })
 }

@@ -22,7 +22,7 @@
 //!
 //! # Position-dependent error motions
 //! The chain also carries error motions `E_XX(X) …` ([`crate::chain::Link::motion`]); the table
-//! is prepared for them ([`ErrorKind::Motion`], [`motion_name`]) but lists none yet: the
+//! is prepared for them ([`ErrorKind::Motion`]; the chain names them, [`crate::chain::Link::motion_name`]) but lists none yet: the
 //! volumetric study will add them, with their values as functions of the axis position.
 
 use crate::error::{Error, Result};
@@ -312,11 +312,6 @@ pub fn find(name: &str) -> Option<&'static ErrorDef> {
     TABLE.iter().find(|d| d.name == name)
 }
 
-/// ISO 230-1 name of error-motion component `component` (0..6) of `axis`: `E_XX`, `E_CB`.
-pub fn motion_name(axis: char, component: usize) -> String {
-    format!("E_{}{axis}", ['X', 'Y', 'Z', 'A', 'B', 'C'][component % 6])
-}
-
 /// Values of the machine's errors by ISO name, in engine units (mm, rad). Names not present
 /// are zero.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -352,14 +347,6 @@ impl ErrorValues {
         let mut e = Self::none();
         e.set(name, value)?;
         Ok(e)
-    }
-
-    /// The entries with a non-zero value.
-    pub fn nonzero(&self) -> impl Iterator<Item = (&str, f64)> {
-        self.0
-            .iter()
-            .filter(|(_, v)| **v != 0.0)
-            .map(|(k, v)| (k.as_str(), *v))
     }
 
     /// From a paper's symbols (`"δxBY"` or `"dxBY"`), values in engine units in the paper's own

@@ -667,6 +667,32 @@ pub struct Model {
     pub layout: RotaryLayout,
 }
 
+/// One orientation solution of [`Model::orientations`], commands in rad.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate {
+    /// K, written in its travel when a turn fits.
+    pub k: f64,
+    /// M, likewise.
+    pub m: f64,
+    /// Both axes are within their travel.
+    pub in_travel: bool,
+}
+
+/// What [`Model::orientations`] finds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Orientations {
+    /// Every solution of the type (two, or one at a singular orientation).
+    pub solutions: Vec<Candidate>,
+    /// `[K, M]` the rule picks within the travel, rad; `None` when none is within it.
+    pub chosen: Option<[f64; 2]>,
+    /// Why none is chosen: the angles needed and the travel.
+    pub unreachable: Option<String>,
+    /// The tool lies along K: K is arbitrary and was kept.
+    pub singular: bool,
+    /// Angle between the direction and the nearer of ±K, rad.
+    pub pole_angle: f64,
+}
+
 /// A pose from [`Model::inverse`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Solved {
@@ -687,17 +713,6 @@ impl Model {
     pub fn place_workpiece(&mut self, offset: &Vector3<f64>) {
         self.chain.work_origin += offset;
         self.nominal.work_origin += offset;
-    }
-
-    /// The chain's location error values are the machine's: a copy of this model with other
-    /// errors (engine units), the placement kept.
-    pub fn with_errors(&self, errors: &ErrorValues) -> Result<Model> {
-        let mut m = self.machine.clone();
-        m.errors = errors.clone();
-        let mut out = m.build()?;
-        let offset = self.nominal.work_origin - out.nominal.work_origin;
-        out.place_workpiece(&offset);
-        Ok(out)
     }
 
     /// Where the sensitivity of error `def` sits in [`Chain::jacobian`]'s output.
@@ -736,6 +751,65 @@ impl Model {
         q
     }
 
+    /// The rotary commands that give the tool `direction` (workpiece coordinates): every
+    /// solution of the type, each written in the travel where a turn fits (module docs), and the
+    /// one `rule` picks among those within it (`None` when none is), continuing from the K and M
+    /// commands `previous` (rad) when given.
+    pub fn orientations(
+        &self,
+        direction: &Vector3<f64>,
+        rule: BranchRule,
+        previous: Option<[f64; 2]>,
+    ) -> Result<Orientations> {
+        let lay = self.layout;
+        let prev_pose = previous.map(|[k, m]| Pose::new(lay.k_factor * k, lay.m_factor * m));
+        let sol = lay.rtype.inverse(direction, prev_pose)?;
+        let [(k_lo, k_hi), (m_lo, m_hi)] = self.travel();
+        let solutions: Vec<Candidate> = sol
+            .solutions
+            .iter()
+            .map(|s| {
+                let (k, m) = (s.k / lay.k_factor, s.m / lay.m_factor);
+                let kf = fit(k, k_lo, k_hi, previous.map(|p| p[0]));
+                let mf = fit(m, m_lo, m_hi, previous.map(|p| p[1]));
+                Candidate {
+                    k: kf.unwrap_or(k),
+                    m: mf.unwrap_or(m),
+                    in_travel: kf.is_some() && mf.is_some(),
+                }
+            })
+            .collect();
+        let reachable = solutions.iter().filter(|c| c.in_travel).map(|c| [c.k, c.m]);
+        let chosen = match (rule, previous) {
+            (BranchRule::Nearest, Some(p)) => reachable.min_by(|a, b| {
+                let d = |x: &[f64; 2]| (x[0] - p[0]).powi(2) + (x[1] - p[1]).powi(2);
+                d(a).total_cmp(&d(b))
+            }),
+            _ => reachable.min_by(|a, b| {
+                let key = |x: &[f64; 2]| {
+                    (
+                        (x[1].abs() * 1e9).round(),
+                        u8::from(x[1] < -1e-12),
+                        (x[0].abs() * 1e9).round(),
+                    )
+                };
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            }),
+        };
+        let unreachable = chosen
+            .is_none()
+            .then(|| self.unreachable(&sol.solutions).message);
+        Ok(Orientations {
+            solutions,
+            chosen,
+            unreachable,
+            singular: sol.singular,
+            pole_angle: sol.pole_angle,
+        })
+    }
+
     /// Inverse kinematics within the travel (module docs): the positions (chain order) that put
     /// the tool tip at `tip` with the tool along `direction` (workpiece coordinates, nominal
     /// machine), by `rule`, continuing from `previous` (chain order) when given. A pose outside
@@ -753,46 +827,17 @@ impl Model {
                 return Err(Error::field("previous", "wrong number of axis positions"));
             }
         }
-        let prev = previous.map(|p| [p[lay.k], p[lay.m]]);
-        let prev_pose = prev.map(|[k, m]| Pose::new(lay.k_factor * k, lay.m_factor * m));
-        let sol = lay.rtype.inverse(direction, prev_pose)?;
-        let [(k_lo, k_hi), (m_lo, m_hi)] = self.travel();
-        let mut candidates: Vec<[f64; 2]> = Vec::new();
-        for s in &sol.solutions {
-            let k = s.k / lay.k_factor;
-            let m = s.m / lay.m_factor;
-            let kf = fit(k, k_lo, k_hi, prev.map(|p| p[0]));
-            let mf = fit(m, m_lo, m_hi, prev.map(|p| p[1]));
-            if let (Some(k), Some(m)) = (kf, mf) {
-                candidates.push([k, m]);
-            }
-        }
-        let chosen = match (rule, prev) {
-            (BranchRule::Nearest, Some(p)) => candidates.iter().copied().min_by(|a, b| {
-                let d = |x: &[f64; 2]| (x[0] - p[0]).powi(2) + (x[1] - p[1]).powi(2);
-                d(a).total_cmp(&d(b))
-            }),
-            _ => candidates.iter().copied().min_by(|a, b| {
-                let key = |x: &[f64; 2]| {
-                    (
-                        (x[1].abs() * 1e9).round(),
-                        u8::from(x[1] < -1e-12),
-                        (x[0].abs() * 1e9).round(),
-                    )
-                };
-                key(a)
-                    .partial_cmp(&key(b))
-                    .unwrap_or(std::cmp::Ordering::Equal)
-            }),
-        };
-        let [k, m] = chosen.ok_or_else(|| self.unreachable(&sol.solutions))?;
+        let o = self.orientations(direction, rule, previous.map(|p| [p[lay.k], p[lay.m]]))?;
+        let [k, m] = o
+            .chosen
+            .ok_or_else(|| Error::field("", o.unreachable.unwrap_or_default()))?;
         let mut q = previous.map_or_else(|| vec![0.0; self.chain.len()], <[f64]>::to_vec);
         q[lay.k] = k;
         q[lay.m] = m;
         let q = self.nominal.solve_linear(tip, &q)?;
         Ok(Solved {
             q,
-            singular: sol.singular,
+            singular: o.singular,
         })
     }
 
