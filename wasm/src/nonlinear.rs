@@ -3,7 +3,7 @@
 
 use crate::{f64_array, js_error, json, output, Series};
 use fiveaxis::nonlinear::{
-    self, Move, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, Reference, SweepKInput,
+    self, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, Reference, SweepKInput,
     SweepMInput, TypeCompareInput,
 };
 use fiveaxis::rotary::{Group, RotaryType};
@@ -71,12 +71,7 @@ pub fn nonlinear_move(
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, NonlinearMoveInput) = read(&value)?;
     let l = length(&c)?;
-    let mv = Move::new(
-        c.rtype(),
-        c.angles(i.start.k, i.start.m),
-        c.angles(i.end.k, i.end.m),
-    );
-    let a = nonlinear::analyze(mv, l, i.samples).map_err(js_error)?;
+    let a = nonlinear::analyze(c.move_between(&i.start, &i.end), l, i.samples).map_err(js_error)?;
     output(&NonlinearMoveResult {
         rtype: c.rtype().name(),
         length: l,
@@ -113,17 +108,7 @@ pub fn nonlinear_sweep_k(
     #[wasm_bindgen(unchecked_param_type = "NonlinearCase & SweepKInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, SweepKInput) = read(&value)?;
-    let (fk, fm) = c.factors();
-    let max = nonlinear::sweep_start_k(
-        c.rtype(),
-        length(&c)?,
-        fm * i.theta_m,
-        fk * i.d_k,
-        fm * i.d_m,
-        (fk * i.from, fk * i.to),
-        i.n,
-    )
-    .map_err(js_error)?;
+    let max = c.sweep_k(&i).map_err(js_error)?;
     let k = nonlinear::linspace(i.from.to_degrees(), i.to.to_degrees(), i.n);
     output(&SweepKResult {
         k: f64_array(&k),
@@ -159,18 +144,7 @@ pub fn nonlinear_sweep_m(
     #[wasm_bindgen(unchecked_param_type = "NonlinearCase & SweepMInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, SweepMInput) = read(&value)?;
-    let (fk, fm) = c.factors();
-    // Δθk = ratio·Δθm in commands; in the study's angles the ratio takes both senses.
-    let ratios: Vec<f64> = i.ratios.iter().map(|r| r * fk * fm).collect();
-    let curves = nonlinear::sweep_start_m(
-        c.rtype(),
-        length(&c)?,
-        fm * i.d_m,
-        &ratios,
-        (fm * i.from, fm * i.to),
-        i.n,
-    )
-    .map_err(js_error)?;
+    let curves = c.sweep_m(&i).map_err(js_error)?;
     output(&SweepMResult {
         m: f64_array(&nonlinear::linspace(
             i.from.to_degrees(),
@@ -179,9 +153,8 @@ pub fn nonlinear_sweep_m(
         )),
         curves: curves
             .into_iter()
-            .zip(&i.ratios)
-            .map(|(c, r)| RatioCurve {
-                ratio: *r,
+            .map(|c| RatioCurve {
+                ratio: c.ratio,
                 exact: f64_array(&c.exact),
                 approx: c.approx,
             })
@@ -214,29 +187,13 @@ pub fn nonlinear_grid(
     #[wasm_bindgen(unchecked_param_type = "NonlinearCase & NonlinearGridInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, NonlinearGridInput) = read(&value)?;
-    let (fk, fm) = c.factors();
-    if i.d_k.from == i.d_k.to || i.d_m.from == i.d_m.to {
-        return Err(js_error(Error::field(
-            if i.d_k.from == i.d_k.to { "dK" } else { "dM" },
-            "the range is empty: 'from' equals 'to'",
-        )));
-    }
-    let g = nonlinear::sweep_increments(
-        c.rtype(),
-        length(&c)?,
-        fm * i.theta_m,
-        (fk * i.d_k.from, fk * i.d_k.to),
-        (fm * i.d_m.from, fm * i.d_m.to),
-        i.nx,
-        i.ny,
-    )
-    .map_err(js_error)?;
-    let deg = |a: &[f64], f: f64| -> Vec<f64> { a.iter().map(|x| (x / f).to_degrees()).collect() };
+    let g = c.grid(&i).map_err(js_error)?;
+    let deg = |a: &[f64]| -> Vec<f64> { a.iter().map(|x| x.to_degrees()).collect() };
     output(&GridResult {
         nx: g.nx,
         ny: g.ny,
-        d_k: f64_array(&deg(&g.d_k, fk)),
-        d_m: f64_array(&deg(&g.d_m, fm)),
+        d_k: f64_array(&deg(&g.d_k)),
+        d_m: f64_array(&deg(&g.d_m)),
         max: f64_array(&g.max),
         u_at_max: g.u_at_max,
     })
@@ -268,12 +225,8 @@ pub fn nonlinear_compare_types(
     #[wasm_bindgen(unchecked_param_type = "NonlinearCase & TypeCompareInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, TypeCompareInput) = read(&value)?;
-    let rows = nonlinear::compare_types(
-        length(&c)?,
-        c.angles(i.start.k, i.start.m),
-        c.angles(i.end.k, i.end.m),
-    )
-    .map_err(js_error)?;
+    let mv = c.move_between(&i.start, &i.end);
+    let rows = nonlinear::compare_types(length(&c)?, mv.start, mv.end).map_err(js_error)?;
     let out: Vec<TypeComparison> = rows
         .into_iter()
         .map(|r| TypeComparison {

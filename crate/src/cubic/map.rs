@@ -150,7 +150,7 @@ pub fn auto_rows(setup: &CubicPiece, nx: usize) -> usize {
 }
 
 /// Simulates the machined face on an `nx × ny` grid (module docs; like Fig 16(b)); `ny` left out
-/// is [`auto_rows`].
+/// is `auto_rows` (four rows per pass step).
 ///
 /// Every zone is cut by its zig-zag passes along the face's first axis ([`CubicPiece::pick`]); a pass is the
 /// segment between the actual tool centres (from the chain, eqs 1 and 14) of its two end points,

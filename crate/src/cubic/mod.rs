@@ -47,7 +47,7 @@
 //!
 //! **Frames** ([`CubicReference`], `transform`): with the workpiece transform (eqs 10–12, Fig 12) the
 //! workpiece is set up with every axis at zero, where it coincides with the nominal table
-//! ([`Setup::AtPose`]), so a zone cut there (ZONE I on a Group I machine) is exact; without it
+//! ([`Setup::AtPose`](crate::chain::Setup::AtPose)), so a zone cut there (ZONE I on a Group I machine) is exact; without it
 //! (eq 2, Fig 10) W is the erroneous table frame. The heights are measured from W, or from the
 //! measurement frame of Section 5.1 set on ZONE I: shifted to ZONE I's height (the text), or also
 //! levelled on ZONE I's plane (Fig 15).

@@ -3,7 +3,9 @@
 //! at the edge); with ISO 841 senses they are the study's θk, θm (a reversed axis flips the sign,
 //! [`NonlinearCase::angles`]).
 
-use super::MAX_LENGTH_MM;
+use super::{
+    sweep_increments, sweep_start_k, sweep_start_m, IncrementGrid, Move, RatioCurve, MAX_LENGTH_MM,
+};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use crate::rotary::{Pose, RotaryType};
@@ -233,9 +235,81 @@ impl NonlinearCase {
         Pose::new(s(r.k_reversed) * k, s(r.m_reversed) * m)
     }
 
-    /// The factors `θ = f·command` of K and M.
-    pub fn factors(&self) -> (f64, f64) {
+    /// The factors `θ = f·command` of K and M (±1).
+    fn factors(&self) -> (f64, f64) {
         let p = self.angles(1.0, 1.0);
         (p.k, p.m)
+    }
+
+    /// The move from `start` to `end` (commands, rad) in the study's angles.
+    pub fn move_between(&self, start: &MoveStart, end: &MoveEnd) -> Move {
+        Move::new(
+            self.rtype(),
+            self.angles(start.k, start.m),
+            self.angles(end.k, end.m),
+        )
+    }
+
+    /// Fig 4 on this machine ([`sweep_start_k`]): the maximum error (mm) at each start command
+    /// of K in `i.from..=i.to` (`i.n` points, the commands given by [`super::linspace`]).
+    pub fn sweep_k(&self, i: &SweepKInput) -> Result<Vec<f64>> {
+        let (fk, fm) = self.factors();
+        sweep_start_k(
+            self.rtype(),
+            self.length()?,
+            fm * i.theta_m,
+            fk * i.d_k,
+            fm * i.d_m,
+            (fk * i.from, fk * i.to),
+            i.n,
+        )
+    }
+
+    /// Fig 7 on this machine ([`sweep_start_m`]), one curve per ratio of the commands' increments
+    /// `ΔK/ΔM` (its [`RatioCurve::ratio`] as given); the errors at each start command of M in
+    /// `i.from..=i.to`.
+    pub fn sweep_m(&self, i: &SweepMInput) -> Result<Vec<RatioCurve>> {
+        let (fk, fm) = self.factors();
+        // ΔK = ratio·ΔM in commands; in the study's angles the ratio takes both senses.
+        let ratios: Vec<f64> = i.ratios.iter().map(|r| r * fk * fm).collect();
+        let curves = sweep_start_m(
+            self.rtype(),
+            self.length()?,
+            fm * i.d_m,
+            &ratios,
+            (fm * i.from, fm * i.to),
+            i.n,
+        )?;
+        Ok(curves
+            .into_iter()
+            .zip(&i.ratios)
+            .map(|(c, &ratio)| RatioCurve { ratio, ..c })
+            .collect())
+    }
+
+    /// Figs 3, 5, 8 on this machine ([`sweep_increments`]); the grid's increments are the
+    /// commands' (rad). An empty range (`from` = `to`) is refused.
+    pub fn grid(&self, i: &NonlinearGridInput) -> Result<IncrementGrid> {
+        for (key, span) in [("dK", &i.d_k), ("dM", &i.d_m)] {
+            if span.from == span.to {
+                return Err(Error::field(key, "the range is empty: 'from' equals 'to'"));
+            }
+        }
+        let (fk, fm) = self.factors();
+        let g = sweep_increments(
+            self.rtype(),
+            self.length()?,
+            fm * i.theta_m,
+            (fk * i.d_k.from, fk * i.d_k.to),
+            (fm * i.d_m.from, fm * i.d_m.to),
+            i.nx,
+            i.ny,
+        )?;
+        let commands = |a: Vec<f64>, f: f64| a.into_iter().map(|x| x / f).collect();
+        Ok(IncrementGrid {
+            d_k: commands(g.d_k, fk),
+            d_m: commands(g.d_m, fm),
+            ..g
+        })
     }
 }
