@@ -118,11 +118,6 @@ impl RigidError {
         *self = Self::from_array(v);
     }
 
-    /// True when every component is zero.
-    pub fn is_zero(&self) -> bool {
-        self.to_array().iter().all(|v| *v == 0.0)
-    }
-
     /// `D = T(x, y, z) · R_X(a) · R_Y(b) · R_Z(c)`.
     pub fn transform(&self) -> Isometry3<f64> {
         let r =
@@ -286,8 +281,11 @@ pub struct ToolPose {
     pub axis: Vector3<f64>,
 }
 
-/// One error component of one link.
+/// One error component of one link: a location error (position-independent, `E_X0B`) or an
+/// error motion (a function of the axis position, `E_XB(B)`, taken at the current position).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub enum ErrorKind {
     /// Position-independent location error `E_X0i`.
     Location,
@@ -376,14 +374,6 @@ impl Chain {
         }
     }
 
-    /// Sets every location error and error motion to zero.
-    pub fn clear_errors(&mut self) {
-        for l in self.work.iter_mut().chain(self.tool.iter_mut()) {
-            l.location = RigidError::default();
-            l.motion = None;
-        }
-    }
-
     fn check_positions(&self, q: &[f64]) -> Result<()> {
         if q.len() != self.len() {
             return Err(Error::field(
@@ -423,25 +413,23 @@ impl Chain {
         f * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity())
     }
 
-    /// The frame of every axis in bed coordinates at `q` (chain order): where the axis sits and
-    /// which way it points, before its own motion (`F_(i-1)·T(o_i)·D(l_i)`, the location error
-    /// with `errors`). For drawings of the machine.
-    pub fn axis_frames(&self, q: &[f64], errors: bool) -> Result<Vec<Isometry3<f64>>> {
+    /// The nominal frame of every axis in bed coordinates at `q` (chain order): where the axis
+    /// sits and which way it points, before its own motion (`F_(i-1)·T(o_i)`). For drawings of
+    /// the machine.
+    pub fn axis_frames(&self, q: &[f64]) -> Result<Vec<Isometry3<f64>>> {
         self.check_positions(q)?;
         let nw = self.work.len();
         let mut out = Vec::with_capacity(self.len());
         for (links, qs) in [(&self.work, &q[..nw]), (&self.tool, &q[nw..])] {
             let mut f = Isometry3::identity();
             for (l, &qi) in links.iter().zip(qs) {
-                let mut at = f * Isometry3::from_parts(
-                    Translation3::from(l.offset),
-                    UnitQuaternion::identity(),
+                out.push(
+                    f * Isometry3::from_parts(
+                        Translation3::from(l.offset),
+                        UnitQuaternion::identity(),
+                    ),
                 );
-                if errors {
-                    at *= l.location.transform();
-                }
-                out.push(at);
-                f *= l.transform(qi, errors);
+                f *= l.transform(qi, false);
             }
         }
         Ok(out)
@@ -498,18 +486,6 @@ impl Chain {
             tip: (g * Point3::origin()).coords,
             axis: g.rotation * self.tool_axis.unit(),
         })
-    }
-
-    /// Transforms a point given in workpiece coordinates into bed coordinates at `q`.
-    pub fn work_to_bed(
-        &self,
-        q: &[f64],
-        errors: bool,
-        setup: &Setup,
-        p: &Vector3<f64>,
-    ) -> Result<Vector3<f64>> {
-        let (fw, _) = self.used_frames(q, errors, setup)?;
-        Ok((fw * Point3::from(*p)).coords)
     }
 
     /// Where [`Chain::jacobian`] puts location error component `component` (0..6) of the link

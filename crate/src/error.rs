@@ -85,13 +85,3 @@ pub fn check_count(field: &str, value: usize, min: usize, max: usize) -> Result<
     }
     Ok(value)
 }
-
-/// Checks an interval `(from, to)` given as field `name`: both ends in `[min, max]` and distinct.
-pub fn check_interval(name: &str, range: (f64, f64), min: f64, max: f64, unit: &str) -> Result<()> {
-    check_range(&format!("{name}.from"), range.0, min, max, unit)?;
-    check_range(&format!("{name}.to"), range.1, min, max, unit)?;
-    if range.0 == range.1 {
-        return Err(Error::field(name, "the range is empty: 'from' equals 'to'"));
-    }
-    Ok(())
-}

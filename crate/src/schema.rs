@@ -70,11 +70,7 @@ impl Quantity {
     /// A derivative per unit of this quantity in the engine (per mm, per radian) as one per API
     /// unit (per mm, per degree): `∂y/∂x_deg = ∂y/∂x_rad · π/180`.
     pub fn per_api_unit(self, k: f64) -> f64 {
-        if self.is_angle() {
-            k.to_radians()
-        } else {
-            k
-        }
+        self.to_engine(k)
     }
 
     /// The unit at the edge, as messages and the schema spell it: `"mm"`, `"deg"` or `""`.
@@ -477,10 +473,7 @@ fn read_object_in(
                         ));
                     }
                 }
-                match f.kind {
-                    Kind::Object(inner) => read_object_in(inner, v, &p, machine_kind.clone())?,
-                    _ => read_field(f, v, &p)?,
-                }
+                read_field(f, v, &p, &machine_kind)?
             }
             _ if !f.optional => {
                 return Err(Error::field(p, format!("is required ({})", f.label)));
@@ -629,7 +622,9 @@ fn check_number_in(
     Ok(x)
 }
 
-fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
+/// One given value of field `f` at `path`, checked and in engine units; an object is read
+/// within the machine of kind `machine_kind` ([`read_object_in`]).
+fn read_field(f: &Field, v: &Value, path: &str, machine_kind: &Option<String>) -> Result<Value> {
     match f.kind {
         Kind::Number {
             quantity,
@@ -692,7 +687,7 @@ fn read_field(f: &Field, v: &Value, path: &str) -> Result<Value> {
                 format!("expected a text, got {}", what(v)),
             )),
         },
-        Kind::Object(fields) => read_object(fields, v, path),
+        Kind::Object(fields) => read_object_in(fields, v, path, machine_kind.clone()),
         Kind::NumberList {
             quantity,
             min,

@@ -24,9 +24,8 @@ thread_local! {
 
 /// The eq 14 model of a case (the machine without its errors, the tool, the options), cached.
 fn design(c: &SShapeCase) -> Result<Rc<Design>, JsError> {
-    let mut m = c.machine.clone();
-    m.errors = fiveaxis::machine::errors::ErrorValues::none();
-    let key = serde_json::to_string(&(&m, &c.tool, &c.model)).map_err(js_error)?;
+    let key = serde_json::to_string(&(&c.machine.without_errors(), &c.tool, &c.model))
+        .map_err(js_error)?;
     if let Some(d) = DESIGNS.with(|cache| {
         cache
             .borrow()

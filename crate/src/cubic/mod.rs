@@ -475,9 +475,7 @@ pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Resu
         if v == 0.0 {
             continue;
         }
-        let mut one = machine.clone();
-        one.errors = ErrorValues::single(def.name, v)?;
-        let t = Test::new(&one, piece, options)?;
+        let t = test.with_errors(ErrorValues::single(def.name, v)?)?;
         let planes: Vec<ZonePlane> = t.zones.iter().map(|z| t.plane(z)).collect::<Result<_>>()?;
         for (z, p) in relative(&planes, &centres, options.reference)
             .into_iter()

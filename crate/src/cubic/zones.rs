@@ -4,7 +4,7 @@
 use super::{CubicPiece, Options, ZonePlane, BRANCH};
 use crate::chain::{Chain, Setup};
 use crate::error::{Error, Result};
-use crate::machine::errors::ErrorDef;
+use crate::machine::errors::{ErrorDef, ErrorValues};
 use crate::machine::{Machine, Model};
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -110,15 +110,22 @@ pub(super) struct Test {
     pub(super) zones: Vec<Zone>,
 }
 
+/// The machine's model with the test piece placed on the table (face frame `frame`).
+fn placed(machine: &Machine, piece: &CubicPiece, frame: &[Vector3<f64>; 3]) -> Result<Model> {
+    let mut model = machine.build()?;
+    let [u, v, n] = frame;
+    model.place_workpiece(
+        &(u * piece.workpiece_x + v * piece.workpiece_y + n * piece.workpiece_height),
+    );
+    Ok(model)
+}
+
 impl Test {
     pub(super) fn new(machine: &Machine, piece: &CubicPiece, options: &Options) -> Result<Self> {
         piece.validate()?;
-        let mut model = machine.build()?;
         let frame = machine.face_frame();
         let [u, v, n] = frame;
-        model.place_workpiece(
-            &(u * piece.workpiece_x + v * piece.workpiece_y + n * piece.workpiece_height),
-        );
+        let model = placed(machine, piece, &frame)?;
         let setup = if options.transform {
             Setup::AtPose(vec![0.0; model.chain.len()])
         } else {
@@ -151,6 +158,20 @@ impl Test {
             piece: piece.clone(),
             frame,
             zones,
+        })
+    }
+
+    /// The same test on the machine with `errors` instead: the zones' poses come from the
+    /// nominal machine, so only the model is built again.
+    pub(super) fn with_errors(&self, errors: ErrorValues) -> Result<Self> {
+        let mut machine = self.model.machine.clone();
+        machine.errors = errors;
+        Ok(Self {
+            model: placed(&machine, &self.piece, &self.frame)?,
+            setup: self.setup.clone(),
+            piece: self.piece.clone(),
+            frame: self.frame,
+            zones: self.zones.clone(),
         })
     }
 

@@ -37,16 +37,7 @@ pub const MAX_POSITION_ERROR: f64 = 5.0;
 /// Largest accepted angular location error, degrees (ten times their intentional 0.5°).
 pub const MAX_ANGLE_ERROR: f64 = 5.0;
 
-/// Location error (position-independent) or error motion (a function of the axis position).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
-#[serde(rename_all = "camelCase")]
-pub enum ErrorKind {
-    /// `E_X0B`: a constant displacement of the axis frame.
-    Location,
-    /// `E_XB(B)`: a displacement that depends on the axis position (none in the table yet).
-    Motion,
-}
+pub use crate::chain::ErrorKind;
 
 /// A paper's symbol for an error, and how its value relates to the ISO one.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -51,7 +51,7 @@
 pub mod errors;
 pub mod schematic;
 
-use crate::chain::{Chain, Link, RotaryLayout};
+use crate::chain::{Chain, Joint, Link, RotaryLayout};
 use crate::error::{Error, Result};
 use crate::geometry::Axis;
 use crate::rotary::{Pose, RotaryAxis, RotaryType};
@@ -487,74 +487,72 @@ impl Machine {
         Ok(())
     }
 
+    /// The same machine without errors (what the control knows of it).
+    pub fn without_errors(&self) -> Machine {
+        Machine {
+            errors: ErrorValues::none(),
+            ..self.clone()
+        }
+    }
+
     /// The machine's axes in chain order (module docs), with what each does.
     pub fn axes(&self) -> Vec<AxisInfo> {
-        let (k, m) = (self.k().letter(), self.m().letter());
-        let (table, spindle) = self.linear.split();
-        let lin = |a: &Axis, side: &'static str| AxisInfo {
-            name: a.letter().to_string(),
-            motion: "linear",
-            side,
-            role: "",
-            description: format!("{}: linear axis, moves the {side}", a.letter()),
-        };
-        let rot = |letter: char, side: &'static str, role: &'static str, what: String| AxisInfo {
-            name: letter.to_string(),
-            motion: "rotary",
-            side,
-            role,
-            description: what,
-        };
-        let mut out: Vec<AxisInfo> = table.iter().map(|a| lin(a, "table")).collect();
-        match self.kind {
-            MachineKind::TableTable => {
-                out.push(rot(
-                    m,
-                    "table",
-                    "M",
-                    format!("{m} (M): table axis on the bed, carries {k}"),
-                ));
-                out.push(rot(
-                    k,
-                    "table",
-                    "K",
-                    format!("{k} (K): table axis on {m}, carries the workpiece"),
-                ));
-            }
-            MachineKind::HeadTable => {
-                out.push(rot(
-                    k,
-                    "table",
-                    "K",
-                    format!("{k} (K): table axis, carries the workpiece"),
-                ));
-            }
-            MachineKind::HeadHead => {}
-        }
-        out.extend(spindle.iter().map(|a| lin(a, "spindle")));
-        match self.kind {
-            MachineKind::TableTable => {}
-            MachineKind::HeadTable => {
-                out.push(rot(
-                    m,
-                    "spindle",
-                    "M",
-                    format!("{m} (M): head axis, carries the spindle"),
-                ));
-            }
-            MachineKind::HeadHead => {
-                out.push(rot(
-                    k,
-                    "spindle",
-                    "K",
-                    format!("{k} (K): head axis on the ram, carries {m}"),
-                ));
-                out.push(rot(
-                    m,
-                    "spindle",
-                    "M",
-                    format!("{m} (M): head axis on {k}, carries the spindle"),
-                ));
+        self.axes_of(&self.nominal_chain())
+    }
+
+    /// [`Machine::axes`] read from the machine's nominal `chain`: each branch from its base
+    /// (the bed, the ram) to its end (the workpiece, the spindle).
+    fn axes_of(&self, chain: &Chain) -> Vec<AxisInfo> {
+        let k = self.k().letter().to_string();
+        let mut out = Vec::with_capacity(chain.len());
+        for (links, side, what, base, end) in [
+            (
+                &chain.work,
+                "table",
+                "table axis",
+                "the bed",
+                "the workpiece",
+            ),
+            (
+                &chain.tool,
+                "spindle",
+                "head axis",
+                "the ram",
+                "the spindle",
+            ),
+        ] {
+            let rotary: Vec<&str> = links
+                .iter()
+                .filter(|l| matches!(l.joint, Joint::Rotary(_)))
+                .map(|l| l.name.as_str())
+                .collect();
+            for l in links {
+                let name = l.name.clone();
+                let Some(i) = rotary.iter().position(|r| *r == name) else {
+                    out.push(AxisInfo {
+                        description: format!("{name}: linear axis, moves the {side}"),
+                        name,
+                        motion: "linear",
+                        side,
+                        role: "",
+                    });
+                    continue;
+                };
+                let role = if name == k { "K" } else { "M" };
+                // "on" only where the branch has two rotary axes: the first sits on the base.
+                let on = match (rotary.len(), i) {
+                    (2, 0) => format!(" on {base}"),
+                    (2, _) => format!(" on {}", rotary[0]),
+                    _ => String::new(),
+                };
+                let carries = rotary.get(i + 1).copied().unwrap_or(end);
+                out.push(AxisInfo {
+                    description: format!("{name} ({role}): {what}{on}, carries {carries}"),
+                    name,
+                    motion: "rotary",
+                    side,
+                    role,
+                });
             }
         }
         out
@@ -614,24 +612,20 @@ impl Machine {
     /// Validates the machine and builds its chain with the errors applied.
     pub fn build(&self) -> Result<Model> {
         self.validate("machine")?;
-        let mut chain = self.nominal_chain();
-        for (name, value) in &self.errors.0 {
-            let def = errors::find(name).ok_or_else(|| {
-                Error::field(format!("machine.errors.{name}"), "unknown error name")
-            })?;
-            let link = chain.index_of(&def.axis.to_string()).ok_or_else(|| {
-                Error::field(
-                    format!("machine.errors.{name}"),
-                    format!("this machine has no {} axis", def.axis),
-                )
-            })?;
-            chain.link_mut(link).location.set(def.component, *value);
+        let nominal = self.nominal_chain();
+        let mut chain = nominal.clone();
+        for def in self.error_defs() {
+            let link = link_of(&chain, def)?;
+            chain
+                .link_mut(link)
+                .location
+                .set(def.component, self.errors.get(def.name));
         }
         let layout = chain.rotary_type()?;
         Ok(Model {
             machine: self.clone(),
             chain,
-            nominal: self.nominal_chain(),
+            nominal,
             layout,
         })
     }
@@ -642,6 +636,16 @@ impl Machine {
     pub fn face_frame(&self) -> [Vector3<f64>; 3] {
         face_frame(self.home())
     }
+}
+
+/// The chain index of the axis error `def` belongs to.
+fn link_of(chain: &Chain, def: &ErrorDef) -> Result<usize> {
+    chain.index_of(&def.axis.to_string()).ok_or_else(|| {
+        Error::field(
+            format!("errors.{}", def.name),
+            format!("this machine has no {} axis", def.axis),
+        )
+    })
 }
 
 /// The face frame of a spindle direction (see [`Machine::face_frame`]).
@@ -661,8 +665,8 @@ pub struct Model {
     pub machine: Machine,
     /// The chain with the machine's errors.
     pub chain: Chain,
-    /// The same chain without errors (the control's model of the machine).
-    pub nominal: Chain,
+    /// The same chain without errors (the control's model of the machine), [`Model::nominal`].
+    nominal: Chain,
     /// K and M in the chain and the factors `θ = f·q`.
     pub layout: RotaryLayout,
 }
@@ -717,13 +721,10 @@ impl Model {
 
     /// Where the sensitivity of error `def` sits in [`Chain::jacobian`]'s output.
     pub fn error_column(&self, def: &ErrorDef) -> Result<usize> {
-        let link = self.chain.index_of(&def.axis.to_string()).ok_or_else(|| {
-            Error::field(
-                format!("errors.{}", def.name),
-                format!("this machine has no {} axis", def.axis),
-            )
-        })?;
-        Ok(Chain::location_index(link, def.component))
+        Ok(Chain::location_index(
+            link_of(&self.chain, def)?,
+            def.component,
+        ))
     }
 
     /// The commanded travel `(from, to)` of K and M, rad.
@@ -798,9 +799,7 @@ impl Model {
                     .unwrap_or(std::cmp::Ordering::Equal)
             }),
         };
-        let unreachable = chosen
-            .is_none()
-            .then(|| self.unreachable(&sol.solutions).message);
+        let unreachable = chosen.is_none().then(|| self.unreachable(&sol.solutions));
         Ok(Orientations {
             solutions,
             chosen,
@@ -841,7 +840,8 @@ impl Model {
         })
     }
 
-    fn unreachable(&self, solutions: &[Pose]) -> Error {
+    /// Why no solution is within the travel: the angles each needs, and the travel.
+    fn unreachable(&self, solutions: &[Pose]) -> String {
         let lay = self.layout;
         let [kl, ml] = self.letters();
         let [(k_lo, k_hi), (m_lo, m_hi)] = self.travel();
@@ -856,17 +856,14 @@ impl Model {
                 )
             })
             .collect();
-        Error::field(
-            "",
-            format!(
-                "outside the travel: this tool direction needs {} (or a whole turn more or less), \
-                 but {kl} travels from {} to {} and {ml} from {} to {}",
-                needs.join(" or "),
-                d(k_lo),
-                d(k_hi),
-                d(m_lo),
-                d(m_hi)
-            ),
+        format!(
+            "outside the travel: this tool direction needs {} (or a whole turn more or less), \
+             but {kl} travels from {} to {} and {ml} from {} to {}",
+            needs.join(" or "),
+            d(k_lo),
+            d(k_hi),
+            d(m_lo),
+            d(m_hi)
         )
     }
 }

@@ -2,7 +2,7 @@
 //! spindle and the tool, at a chosen pose of the rotary axes, in machine (bed) coordinates, mm.
 //! The page draws it so the user can see that the machine entered is the machine they have.
 
-use super::{Machine, MachineKind};
+use super::{AxisInfo, Machine, MachineKind};
 use crate::chain::Setup;
 use crate::error::Result;
 use nalgebra::{Point3, Vector3};
@@ -13,16 +13,9 @@ use serde::Serialize;
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct DrawnAxis {
-    /// `"X"` … `"C"`.
-    pub name: String,
-    /// `"linear"` or `"rotary"`.
-    pub motion: &'static str,
-    /// `"table"` or `"spindle"`.
-    pub side: &'static str,
-    /// `"K"`, `"M"` or `""`.
-    pub role: &'static str,
-    /// In words.
-    pub description: String,
+    /// The axis and what it does.
+    #[serde(flatten)]
+    pub axis: AxisInfo,
     /// A point on the axis (a rotary axis's line passes through it), mm.
     pub origin: [f64; 3],
     /// Its direction (unit).
@@ -59,19 +52,15 @@ pub fn schematic(machine: &Machine, k: f64, m: f64, standoff: f64) -> Result<Sch
     let mut q = model.positions(k, m);
     let pose = chain.tool_pose(&q, false, &Setup::None)?;
     q = chain.solve_linear(&(pose.axis * standoff), &q)?;
-    let frames = chain.axis_frames(&q, false)?;
+    let frames = chain.axis_frames(&q)?;
     let (fw, ft) = chain.frames(&q, false)?;
     let axes: Vec<DrawnAxis> = machine
-        .axes()
+        .axes_of(chain)
         .into_iter()
         .zip(&frames)
         .zip(chain.links())
-        .map(|((info, f), (_, link))| DrawnAxis {
-            name: info.name,
-            motion: info.motion,
-            side: info.side,
-            role: info.role,
-            description: info.description,
+        .map(|((axis, f), (_, link))| DrawnAxis {
+            axis,
             origin: f.translation.vector.into(),
             direction: (f.rotation * link.joint.axis().unit()).into(),
         })

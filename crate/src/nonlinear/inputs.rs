@@ -4,7 +4,8 @@
 //! [`NonlinearCase::angles`]).
 
 use super::{
-    sweep_increments, sweep_start_k, sweep_start_m, IncrementGrid, Move, RatioCurve, MAX_LENGTH_MM,
+    sweep_increments, sweep_start_k, sweep_start_m, IncrementGrid, Move, RatioCurve, MAX_ANGLE_DEG,
+    MAX_LENGTH_MM,
 };
 use crate::error::{Error, Result};
 use crate::machine::Machine;
@@ -13,7 +14,7 @@ use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
 use serde_json::Value;
 
 /// Largest accepted axis angle, degrees (ten turns).
-const ANGLE: f64 = 3600.0;
+const ANGLE: f64 = MAX_ANGLE_DEG;
 
 crate::inputs! {
     /// What every export of the study needs: the machine and `L`.

@@ -109,13 +109,7 @@ crate::choices! {
 }
 
 /// A pose on the path: the axis positions (chain order, mm and rad) and the singular flag.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Pose {
-    /// Axis positions in the chain's order.
-    pub q: Vec<f64>,
-    /// The tool lies along K: K is undefined and was kept from the previous pose.
-    pub singular: bool,
-}
+pub use crate::machine::Solved as Pose;
 
 /// The part set up on a machine (module docs).
 #[derive(Debug, Clone)]
@@ -171,16 +165,12 @@ impl OnMachine {
         branch: PathBranch,
         previous: Option<&[f64]>,
     ) -> Result<Pose> {
-        let s = self.model.inverse(
+        self.model.inverse(
             &(self.frame * tip),
             &(self.frame * axis),
             branch.rule(),
             previous,
-        )?;
-        Ok(Pose {
-            q: s.q,
-            singular: s.singular,
-        })
+        )
     }
 
     /// The first-order displacement of the tool tip and of the tool axis at positions `q`, per

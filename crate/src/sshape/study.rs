@@ -224,9 +224,7 @@ impl Design {
     pub fn new(machine: &Machine, tool: &SShapeTool, model: &SShapeModel) -> Result<Self> {
         let part = Part::standard()?;
         let path = tool.path();
-        let mut nominal = machine.clone();
-        nominal.errors = ErrorValues::none();
-        let on = OnMachine::new(&nominal)?;
+        let on = OnMachine::new(&machine.without_errors())?;
         let points = Part::standard_points()?;
         let poses = measurement_poses(&on, &path, &part, points, model.branch)?;
         let rows = defect_matrix(&on, &poses, model.reference, model.point)?;
