@@ -7,9 +7,8 @@
 //! zones in the order of `zones`, errors in the order of `errorNames` (the machine's errors in
 //! the order of the error table).
 
-use crate::{f64_array, js_error, json, output, unit, Series};
+use crate::{api_combination, f64_array, js_error, json, output, Series};
 use fiveaxis::cubic::{self, CubicInput, CubicReference, ZonePlane};
-use fiveaxis::schema::Quantity;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -125,15 +124,6 @@ pub fn cubic_test(
             .collect()
     };
     let single: Vec<f64> = a.single.iter().flatten().copied().collect();
-    let quantity = |name: &str| {
-        a.errors
-            .iter()
-            .find(|d| d.name == name)
-            .map_or(Quantity::SmallLength, |d| d.quantity)
-    };
-    // k_b = f·k_a per engine unit; per API unit k_b' = f·(c_b/c_a)·k_a' with c = π/180 for an
-    // angle, 1 for a length.
-    let per = |name: &str| quantity(name).per_api_unit(1.0);
     let v = &a.visibility;
     let visibility = CubicVisibility {
         invisible: v.invisible.iter().map(|s| s.to_string()).collect(),
@@ -142,11 +132,13 @@ pub fn cubic_test(
             .alike
             .iter()
             .map(|g| {
-                let first = g.first().map_or("", |m| m.0);
+                // k_b = f·k_a: the combination k_a·(x_a + f·x_b + …) the test sees.
+                let (factors, _) = api_combination(g.iter().map(|(name, f)| (*name, *f)));
                 g.iter()
-                    .map(|(name, f)| AlikeMember {
+                    .zip(factors)
+                    .map(|((name, _), factor)| AlikeMember {
                         name: name.to_string(),
-                        factor: f * per(name) / per(first),
+                        factor,
                     })
                     .collect()
             })
@@ -180,7 +172,7 @@ pub fn cubic_test(
         error_units: a
             .errors
             .iter()
-            .map(|d| unit(d.quantity).to_string())
+            .map(|d| d.quantity.api_unit().to_string())
             .collect(),
         k_height: f64_array(&table(|k| k.height)),
         k_slope_x: f64_array(&table(|k| k.slope_x)),

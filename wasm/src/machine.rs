@@ -141,8 +141,6 @@ pub fn machine_schematic(
     let i = SchematicInput::from_value(&json(&value)?, "").map_err(js_error)?;
     let m = &i.machine;
     let drawing = schematic(m, i.k, i.m, i.standoff).map_err(js_error)?;
-    let face = fiveaxis::geometry::Axis::ALL;
-    let h = m.home().index();
     output(&SchematicResult {
         drawing,
         axes: m.axes(),
@@ -150,11 +148,7 @@ pub fn machine_schematic(
         m: m.m().letter().to_string(),
         home: m.home().letter().to_string(),
         group: m.rotary_type.group(),
-        face: [
-            face[(h + 1) % 3].letter().to_string(),
-            face[(h + 2) % 3].letter().to_string(),
-            face[h].letter().to_string(),
-        ],
+        face: fiveaxis::machine::face_axes(m.home()).map(|a| a.letter().to_string()),
         swing_length: m.swing_length(),
     })
 }
@@ -196,6 +190,8 @@ pub struct InverseSolution {
     pub m: f64,
     /// Within the travel of both axes.
     pub in_travel: bool,
+    /// The one the rule picks (`chosen` of the result).
+    pub chosen: bool,
 }
 
 /// Result of [`machine_inverse`].
@@ -233,15 +229,17 @@ pub fn machine_inverse(
         solutions: o
             .solutions
             .iter()
-            .map(|c| InverseSolution {
+            .enumerate()
+            .map(|(i, c)| InverseSolution {
                 k: deg(c.k),
                 m: deg(c.m),
                 in_travel: c.in_travel,
+                chosen: o.chosen == Some(i),
             })
             .collect(),
-        chosen: o.chosen.map(|[k, m]| AxisPair {
-            k: deg(k),
-            m: deg(m),
+        chosen: o.chosen.map(|i| AxisPair {
+            k: deg(o.solutions[i].k),
+            m: deg(o.solutions[i].m),
         }),
         message: o.unreachable,
         singular: o.singular,

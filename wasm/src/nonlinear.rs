@@ -32,6 +32,8 @@ pub struct NonlinearMoveResult {
     /// The machine's rotary-axis type.
     #[serde(rename = "type")]
     pub rtype: String,
+    /// Its group (eq 25 or eq 30 gives the approximation).
+    pub group: Group,
     /// `L` used, mm (given, or the machine's).
     pub length: f64,
     /// Exact maximum error δ, mm.
@@ -74,6 +76,7 @@ pub fn nonlinear_move(
     let a = nonlinear::analyze(c.move_between(&i.start, &i.end), l, i.samples).map_err(js_error)?;
     output(&NonlinearMoveResult {
         rtype: c.rtype().name(),
+        group: c.rtype().group(),
         length: l,
         max: a.max,
         u_at_max: a.u_at_max,

@@ -1,14 +1,14 @@
 //! Exports of the S-shape study (see `fiveaxis::sshape`). Lengths in mm, angles in degrees (the
 //! machine's angular errors too; a sensitivity to one is per degree), like every export.
 
-use crate::{f64_array, js_error, json, output, unit, Series};
+use crate::{api_combination, error_quantity, f64_array, js_error, json, output, Series};
 use fiveaxis::schema::{Inputs, Quantity};
 use fiveaxis::sshape::identify::{combination_text, parse_measurements};
 use fiveaxis::sshape::overcut::OvercutMap;
-use fiveaxis::sshape::part::{self, MeasurementPoint, Part, SurfaceId};
+use fiveaxis::sshape::part::{MeasurementPoint, Part, SurfaceId};
 use fiveaxis::sshape::study::{
     self, Design, SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput,
-    SShapePartInput, RADIUS_NAME,
+    SShapePartInput,
 };
 use serde::Serialize;
 use std::cell::RefCell;
@@ -86,43 +86,25 @@ pub fn sshape_part(
     #[wasm_bindgen(unchecked_param_type = "SShapePartInput | undefined")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let i = SShapePartInput::from_value(&json(&value)?, "").map_err(js_error)?;
-    let (nu, nv) = (i.nu, i.nv);
     let part = Part::standard().map_err(js_error)?;
-    let mut surfaces = Vec::new();
-    for id in SurfaceId::BOTH {
-        let s = part.surface(id);
-        let mut xyz = [
-            Vec::with_capacity(nu * nv),
-            Vec::with_capacity(nu * nv),
-            Vec::with_capacity(nu * nv),
-        ];
-        for iv in 0..nv {
-            for iu in 0..nu {
-                let p = s.point(iu as f64 / (nu - 1) as f64, iv as f64 / (nv - 1) as f64);
-                for k in 0..3 {
-                    xyz[k].push(p[k]);
-                }
+    let surfaces = SurfaceId::BOTH
+        .into_iter()
+        .map(|id| {
+            let [x, y, z] = part.surface(id).mesh(i.nu, i.nv);
+            SShapeSurfaceMesh {
+                id,
+                nu: i.nu,
+                nv: i.nv,
+                x: f64_array(&x),
+                y: f64_array(&y),
+                z: f64_array(&z),
             }
-        }
-        surfaces.push(SShapeSurfaceMesh {
-            id,
-            nu,
-            nv,
-            x: f64_array(&xyz[0]),
-            y: f64_array(&xyz[1]),
-            z: f64_array(&xyz[2]),
-        });
-    }
-    let mut curve_lengths = Vec::new();
-    for z in [part::Z_TOP, part::Z_BOTTOM] {
-        for id in SurfaceId::BOTH {
-            curve_lengths.push(part.surface(id).curve_length(z / part::HEIGHT));
-        }
-    }
+        })
+        .collect();
     output(&SShapePartResult {
         surfaces,
         points: Part::standard_points().map_err(js_error)?.to_vec(),
-        curve_lengths,
+        curve_lengths: part.curve_lengths(),
     })
 }
 
@@ -191,33 +173,29 @@ pub fn sshape_overcut(
     let i = SShapeOvercutInput::from_value(&json(&value)?, "").map_err(js_error)?;
     let o = study::overcut(&i.tool.path(), i.nu, i.nv).map_err(js_error)?;
     let surface = |id: SurfaceId, m: &OvercutMap| {
-        let (e6p, _, _) = m.max_of(&m.eq6_paper);
-        let (e6, u6, v6) = m.max_of(&m.eq6);
-        let gouge: Vec<f64> = m.exact.iter().map(|d| -d).collect();
-        let (g, ug, vg) = m.max_of(&gouge);
+        let p = m.peaks();
         SShapeOvercutSurface {
             id,
             eq6_paper: f64_array(&m.eq6_paper),
             eq6: f64_array(&m.eq6),
             exact: f64_array(&m.exact),
-            max_eq6_paper: e6p,
-            max_eq6: e6,
-            max_gouge: g.max(0.0),
-            at_eq6: [u6, v6 * part::HEIGHT],
-            at_gouge: [ug, vg * part::HEIGHT],
+            max_eq6_paper: p.eq6_paper,
+            max_eq6: p.eq6,
+            max_gouge: p.gouge,
+            at_eq6: p.at_eq6,
+            at_gouge: p.at_gouge,
         }
     };
-    let z: Vec<f64> = o.a.v.iter().map(|v| v * part::HEIGHT).collect();
     output(&SShapeOvercutResult {
         nu: i.nu,
         nv: i.nv,
         u: f64_array(&o.a.u),
-        z: f64_array(&z),
+        z: f64_array(&o.a.z()),
         surfaces: vec![surface(SurfaceId::A, &o.a), surface(SurfaceId::B, &o.b)],
         b_paper_side: [o.b_paper_side.0, o.b_paper_side.1],
         paper: PaperOvercut {
-            a: 0.0387,
-            b: 0.0125,
+            a: study::PAPER_OVERCUT[0],
+            b: study::PAPER_OVERCUT[1],
         },
     })
 }
@@ -283,15 +261,16 @@ pub fn sshape_defects(
     let d = design(&c)?;
     let total = d.simulate(&c.machine.errors, own.d_r);
     let errors = d.errors();
-    let n = errors.len();
-    let mut contributions = Vec::with_capacity(100 * n);
-    let mut sensitivity = Vec::with_capacity(100 * n);
-    for row in &d.rows {
-        for (k, def) in errors.iter().enumerate() {
-            contributions.push(row[k] * c.machine.errors.get(def.name));
-            sensitivity.push(def.quantity.per_api_unit(row[k]));
-        }
-    }
+    let contributions: Vec<f64> = d.contributions(&c.machine.errors).concat();
+    let sensitivity: Vec<f64> = d
+        .rows
+        .iter()
+        .flat_map(|row| {
+            row.iter()
+                .zip(errors)
+                .map(|(k, def)| def.quantity.per_api_unit(*k))
+        })
+        .collect();
     let chain = &d.on.model.chain;
     let quantities: Vec<Quantity> = chain
         .links()
@@ -304,12 +283,12 @@ pub fn sshape_defects(
         names: errors.iter().map(|e| e.name.to_string()).collect(),
         units: errors
             .iter()
-            .map(|e| unit(e.quantity).to_string())
+            .map(|e| e.quantity.api_unit().to_string())
             .collect(),
         total: f64_array(&total),
         contributions: f64_array(&contributions),
         sensitivity: f64_array(&sensitivity),
-        radius: f64_array(&d.radius.iter().map(|r| r * own.d_r).collect::<Vec<_>>()),
+        radius: f64_array(&d.radius_deviation(own.d_r)),
         axes: chain.axis_names(),
         poses: d
             .poses
@@ -427,23 +406,14 @@ pub fn sshape_identify(
     let f = d
         .identify(&measured, i.parameters.as_deref(), i.radius_term, i.rtol)
         .map_err(js_error)?;
-    let quantity = |name: &str| -> Quantity {
-        if name == RADIUS_NAME {
-            return Quantity::SmallLength;
-        }
-        d.errors()
-            .iter()
-            .find(|e| e.name == name)
-            .map_or(Quantity::SmallLength, |e| e.quantity)
-    };
     let estimates = f
         .estimates
         .iter()
         .map(|e| {
-            let q = quantity(&e.name);
+            let q = error_quantity(&e.name);
             SShapeEstimate {
                 name: e.name.clone(),
-                unit: unit(q).to_string(),
+                unit: q.api_unit().to_string(),
                 value: e.value.map(|v| q.to_api(v)),
                 std_error: e.std_error.map(|v| q.to_api(v)),
                 min_norm: q.to_api(e.min_norm),
@@ -451,10 +421,6 @@ pub fn sshape_identify(
             }
         })
         .collect();
-    // Combinations Σ c_j·x_j in API units (x in degrees for the angles): with f_j = π/180 for an
-    // angle and 1 for a length, c'_j = c_j·f_j·s, where s = 180/π when the first (leading, c = 1)
-    // member is an angle, so that the value converts like that member.
-    let factor = |name: &str| quantity(name).per_api_unit(1.0);
     let groups = f
         .groups
         .iter()
@@ -465,11 +431,13 @@ pub fn sshape_identify(
                 .combinations
                 .iter()
                 .map(|c| {
-                    let s = c.terms.first().map_or(1.0, |(n, _)| 1.0 / factor(n));
+                    let (coefficients, s) =
+                        api_combination(c.terms.iter().map(|(n, k)| (n.as_str(), *k)));
                     let terms: Vec<(String, f64)> = c
                         .terms
                         .iter()
-                        .map(|(n, k)| (n.clone(), k * factor(n) * s))
+                        .zip(coefficients)
+                        .map(|((n, _), k)| (n.clone(), k))
                         .collect();
                     SShapeCombination {
                         text: combination_text(&terms),

@@ -650,12 +650,14 @@ fn link_of(chain: &Chain, def: &ErrorDef) -> Result<usize> {
 
 /// The face frame of a spindle direction (see [`Machine::face_frame`]).
 pub fn face_frame(home: Axis) -> [Vector3<f64>; 3] {
+    face_axes(home).map(Axis::unit)
+}
+
+/// The machine axes of the face frame of a spindle direction: the next two in cyclic order,
+/// then the spindle's own (X, Y, Z for a vertical spindle).
+pub fn face_axes(home: Axis) -> [Axis; 3] {
     let i = home.index();
-    [
-        Axis::ALL[(i + 1) % 3].unit(),
-        Axis::ALL[(i + 2) % 3].unit(),
-        home.unit(),
-    ]
+    [Axis::ALL[(i + 1) % 3], Axis::ALL[(i + 2) % 3], home]
 }
 
 /// A machine ready to compute with: its chain (errors applied) and where K and M sit in it.
@@ -687,8 +689,9 @@ pub struct Candidate {
 pub struct Orientations {
     /// Every solution of the type (two, or one at a singular orientation).
     pub solutions: Vec<Candidate>,
-    /// `[K, M]` the rule picks within the travel, rad; `None` when none is within it.
-    pub chosen: Option<[f64; 2]>,
+    /// The solution the rule picks within the travel (index into `solutions`); `None` when none
+    /// is within it.
+    pub chosen: Option<usize>,
     /// Why none is chosen: the angles needed and the travel.
     pub unreachable: Option<String>,
     /// The tool lies along K: K is arbitrary and was kept.
@@ -780,13 +783,17 @@ impl Model {
                 }
             })
             .collect();
-        let reachable = solutions.iter().filter(|c| c.in_travel).map(|c| [c.k, c.m]);
+        let reachable = solutions
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.in_travel)
+            .map(|(i, c)| (i, [c.k, c.m]));
         let chosen = match (rule, previous) {
-            (BranchRule::Nearest, Some(p)) => reachable.min_by(|a, b| {
+            (BranchRule::Nearest, Some(p)) => reachable.min_by(|(_, a), (_, b)| {
                 let d = |x: &[f64; 2]| (x[0] - p[0]).powi(2) + (x[1] - p[1]).powi(2);
                 d(a).total_cmp(&d(b))
             }),
-            _ => reachable.min_by(|a, b| {
+            _ => reachable.min_by(|(_, a), (_, b)| {
                 let key = |x: &[f64; 2]| {
                     (
                         (x[1].abs() * 1e9).round(),
@@ -798,7 +805,8 @@ impl Model {
                     .partial_cmp(&key(b))
                     .unwrap_or(std::cmp::Ordering::Equal)
             }),
-        };
+        }
+        .map(|(i, _)| i);
         let unreachable = chosen.is_none().then(|| self.unreachable(&sol.solutions));
         Ok(Orientations {
             solutions,
@@ -827,12 +835,13 @@ impl Model {
             }
         }
         let o = self.orientations(direction, rule, previous.map(|p| [p[lay.k], p[lay.m]]))?;
-        let [k, m] = o
+        let c = o
             .chosen
+            .map(|i| o.solutions[i])
             .ok_or_else(|| Error::field("", o.unreachable.unwrap_or_default()))?;
         let mut q = previous.map_or_else(|| vec![0.0; self.chain.len()], <[f64]>::to_vec);
-        q[lay.k] = k;
-        q[lay.m] = m;
+        q[lay.k] = c.k;
+        q[lay.m] = c.m;
         let q = self.nominal.solve_linear(tip, &q)?;
         Ok(Solved {
             q,

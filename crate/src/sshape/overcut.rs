@@ -37,7 +37,7 @@
 //! by `ΔR·sin θ`: deviation `−ΔR·sin θ(u, h)` (the paper writes `(R' − R)·sin θ` as a defect
 //! magnitude).
 
-use super::part::{Frame, Surface};
+use super::part::{Frame, Surface, HEIGHT};
 use crate::error::{check_count, check_positive, Result};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
@@ -211,7 +211,42 @@ pub struct OvercutMap {
     pub exact: Vec<f64>,
 }
 
+/// The peaks of one surface's [`OvercutMap`], with where they are: `[u, z mm]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OvercutPeaks {
+    /// Largest eq 6 with the paper's `T`, mm.
+    pub eq6_paper: f64,
+    /// Largest eq 6 with `T⊥`, mm.
+    pub eq6: f64,
+    /// Largest gouge `−δ`, mm (0 where the surface is nowhere gouged).
+    pub gouge: f64,
+    /// Where the largest eq 6 (`T⊥`) is.
+    pub at_eq6: [f64; 2],
+    /// Where the largest gouge is.
+    pub at_gouge: [f64; 2],
+}
+
 impl OvercutMap {
+    /// The heights of the grid rows, `z = 30·v` mm.
+    pub fn z(&self) -> Vec<f64> {
+        self.v.iter().map(|v| v * HEIGHT).collect()
+    }
+
+    /// The largest overcuts and gouge of the map, and where they are.
+    pub fn peaks(&self) -> OvercutPeaks {
+        let (eq6_paper, _, _) = self.max_of(&self.eq6_paper);
+        let (eq6, u6, v6) = self.max_of(&self.eq6);
+        let gouge: Vec<f64> = self.exact.iter().map(|d| -d).collect();
+        let (g, ug, vg) = self.max_of(&gouge);
+        OvercutPeaks {
+            eq6_paper,
+            eq6,
+            gouge: g.max(0.0),
+            at_eq6: [u6, v6 * HEIGHT],
+            at_gouge: [ug, vg * HEIGHT],
+        }
+    }
+
     /// Largest value of a row-major field and its `(u, v)`.
     pub fn max_of(&self, field: &[f64]) -> (f64, f64, f64) {
         let nu = self.u.len();

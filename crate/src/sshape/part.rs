@@ -255,6 +255,22 @@ impl Surface {
         frame_from(&c0, &c1, v, self.outward)
     }
 
+    /// The surface on an `nu × nv` grid (`nu, nv ≥ 2`; u and v from 0 to 1): `[x, y, z]`, each
+    /// row-major `nv × nu` (`[iv * nu + iu]`), mm.
+    pub fn mesh(&self, nu: usize, nv: usize) -> [Vec<f64>; 3] {
+        let mut xyz: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(nu * nv));
+        let at = |i: usize, n: usize| i as f64 / (n.max(2) - 1) as f64;
+        for iv in 0..nv {
+            for iu in 0..nu {
+                let p = self.point(at(iu, nu), at(iv, nv));
+                for (c, x) in xyz.iter_mut().zip(p.iter()) {
+                    c.push(*x);
+                }
+            }
+        }
+        xyz
+    }
+
     /// The iso-curve parameter `v` of the height `z` (mm): `v = z/30`.
     pub fn v_at_height(z: f64) -> f64 {
         z / HEIGHT
@@ -454,6 +470,19 @@ impl Part {
             .get_or_init(|| Ok(Part::standard()?.measurement_points()))
             .as_deref()
             .map_err(Clone::clone)
+    }
+
+    /// The lengths of the four measurement curves, mm, in list order: top A, top B, bottom A,
+    /// bottom B.
+    pub fn curve_lengths(&self) -> Vec<f64> {
+        Curve::BOTH
+            .iter()
+            .flat_map(|c| {
+                SurfaceId::BOTH
+                    .iter()
+                    .map(|id| self.surface(*id).curve_length(Surface::v_at_height(c.z())))
+            })
+            .collect()
     }
 
     /// The 100 measurement points in list order (see the module documentation).

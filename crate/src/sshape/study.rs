@@ -260,12 +260,26 @@ impl Design {
     /// The deviation at each point (mm) for the machine's errors and a tool-radius error `dr`
     /// (mm): eq 14 applied to every error, plus `−sin θ·dr`.
     pub fn simulate(&self, errors: &ErrorValues, dr: f64) -> Vec<f64> {
+        self.contributions(errors)
+            .iter()
+            .zip(self.radius_deviation(dr))
+            .map(|(row, r)| row.iter().sum::<f64>() + r)
+            .collect()
+    }
+
+    /// The deviation at each point (mm) from each of the machine's errors alone (eq 14, one
+    /// column per [`Design::errors`]): row per point.
+    pub fn contributions(&self, errors: &ErrorValues) -> Vec<Vec<f64>> {
         let xi: Vec<f64> = self.errors().iter().map(|d| errors.get(d.name)).collect();
         self.rows
             .iter()
-            .zip(&self.radius)
-            .map(|(row, r)| row.iter().zip(&xi).map(|(a, x)| a * x).sum::<f64>() + r * dr)
+            .map(|row| row.iter().zip(&xi).map(|(a, x)| a * x).collect())
             .collect()
+    }
+
+    /// The deviation at each point (mm) from a tool-radius error `dr` (mm) alone: `−sin θ·dr`.
+    pub fn radius_deviation(&self, dr: f64) -> Vec<f64> {
+        self.radius.iter().map(|r| r * dr).collect()
     }
 
     /// Least-squares identification of the errors `parameters` (all the machine's when `None`)
@@ -350,6 +364,9 @@ impl Design {
         out
     }
 }
+
+/// The largest overcuts Chanal et al. print for surfaces A and B, mm (eq 6, their tool path).
+pub const PAPER_OVERCUT: [f64; 2] = [0.0387, 0.0125];
 
 /// The overcut maps of both surfaces, and the maxima of eq 6 with the paper's sign of `N`
 /// (`N = R × T` on both surfaces, i.e. the tool on the side of B that faces A).
