@@ -21,6 +21,16 @@ export class EngineError extends Error {
     const m = /^([A-Za-z][\w.[\]]*): /.exec(message);
     this.field = m ? m[1] : '';
   }
+
+  /** The message without its path (for a message shown at the field the path names). */
+  get text(): string {
+    return this.field ? this.message.slice(this.field.length + 2) : this.message;
+  }
+
+  /** `err` as an EngineError (a worker failure becomes one that names no field). */
+  static of(err: unknown): EngineError {
+    return err instanceof EngineError ? err : new EngineError(String(err));
+  }
 }
 
 let worker: Worker | null = null;

@@ -5,8 +5,8 @@
 import type { ErrorDef, Machine, SchematicResult } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import { el, fields, numberField, type NumberField } from '../ui/fields';
-import { fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
-import { note } from '../ui/plot';
+import { displayQuantity, fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
+import { note, stale } from '../ui/plot';
 import * as fmt from '../ui/format';
 import { leaves } from '../ui/presets';
 import { resetPanel } from '../ui/state';
@@ -15,6 +15,8 @@ import { drawSchematic } from './schematic';
 /** Field prefix of the machine's fields, and of the drawing's pose. */
 export const MACHINE_PREFIX = 'm';
 export const DRAWING_PREFIX = 'md';
+/** The linear axes: every machine has them, and their squareness errors. */
+const LINEAR = ['X', 'Y', 'Z'];
 
 export interface MachinePreset {
   name: string;
@@ -32,7 +34,7 @@ export interface MachineSection {
   /** The machine's pivot-to-tool-tip distance (the nonlinear study's L), mm, or null. */
   swingLength(): number | null;
   /** Shows an engine error at the machine field its path names; false when it names none. */
-  showError(path: string, message: string): boolean;
+  showError(err: EngineError): boolean;
   /** Called after every change of the machine (once the drawing knows its letters). */
   onChange(listener: () => void): void;
   /** Resets the machine to the defaults, then sets the values of a machine object. */
@@ -82,7 +84,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   errorBox.append(el('h3', {}, 'Geometric errors (ISO 230-1)'), el('p', { class: 'field-hint' },
     'Location errors of the axes: where each axis line lies and how it is turned, relative to where the control believes. Leave a value at 0 when it is not known. Positions in the small-length unit, angles in the small-angle unit chosen above.'));
   for (const def of schema.errors) {
-    const group = ['X', 'Y', 'Z'].includes(def.axis) ? 'linear' : def.axis;
+    const group = LINEAR.includes(def.axis) ? 'linear' : def.axis;
     let set = errorSets.get(group);
     if (!set) {
       set = el('fieldset', { class: 'error-set' });
@@ -95,7 +97,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     const f = numberField({
       id: fieldId(MACHINE_PREFIX, `errors.${def.name}`),
       label: `${def.name}: ${def.label}`,
-      quantity: def.quantity === 'smallAngle' ? 'errAngle' : 'errLength',
+      quantity: displayQuantity(def.quantity),
       value: 0,
       min: -def.limit,
       max: def.limit,
@@ -125,6 +127,8 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   const listeners: (() => void)[] = [];
 
   const machineFields = () => [...errorFields.values()];
+  /** The error belongs to one of the machine's axes (its rotary axes or a linear one). */
+  const onMachine = (def: ErrorDef) => axes.includes(def.axis) || LINEAR.includes(def.axis);
 
   /**
    * The kind and the rotary axes as chosen right now (from the type's letters: K, M, then the
@@ -174,13 +178,12 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     machineForm.setContext(ctx);
     drawingForm.setContext(ctx);
     // Values entered for axes this machine does not have are kept but not used: say so.
-    const unused = machineFields().filter(({ def, field }) => !axes.includes(def.axis) && !['X', 'Y', 'Z'].includes(def.axis) && (field.read() ?? 0) !== 0);
+    const unused = machineFields().filter(({ def, field }) => !onMachine(def) && (field.read() ?? 0) !== 0);
     errorNote.textContent = unused.length
       ? `Kept but not used (this machine has no such axis): ${unused.map((u) => u.def.name).join(', ')}.`
       : '';
-    const entered = machineFields().filter(({ def, field }) => (axes.includes(def.axis) || ['X', 'Y', 'Z'].includes(def.axis)) && (field.read() ?? 0) !== 0);
-    const kindText = { 'table-table': 'table-table', 'head-table': 'head-table', 'head-head': 'head-head' }[ctx.kind] ?? ctx.kind;
-    summary.textContent = `Machine: ${kindText}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}`;
+    const entered = machineFields().filter(({ def, field }) => onMachine(def) && (field.read() ?? 0) !== 0);
+    summary.textContent = `Machine: ${ctx.kind}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}`;
     roles.textContent = `${r.axes.filter((a) => a.motion === 'rotary').map((a) => a.description).join('. ')}. Group ${r.group}. ${r.swingLength === null ? '' : `Pivot to tool tip (the nonlinear study's L): ${fmt.num(r.swingLength)} mm.`}`;
   };
 
@@ -196,8 +199,8 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
       void drawSchematic(plot, r, `The machine as entered, ${fill('{K}', ctx)} at ${fmt.num(Number(pose.k ?? 0))}° and ${fill('{M}', ctx)} at ${fmt.num(Number(pose.m ?? 0))}°`);
       for (const l of listeners) l();
     }, (e) => {
-      const err = e instanceof EngineError ? e : new EngineError(String(e));
-      if (!section.showError(err.field, err.message)) note(plot, err.message);
+      const err = EngineError.of(e);
+      if (!section.showError(err)) note(plot, err.message);
       // The panels try this machine too: the engine refuses it there as well, and they grey
       // the plots it fed.
       for (const l of listeners) l();
@@ -210,16 +213,16 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     swingLength: () => swing,
     errorOptions: () =>
       machineFields()
-        .filter(({ def }) => axes.includes(def.axis) || ['X', 'Y', 'Z'].includes(def.axis))
+        .filter(({ def }) => onMachine(def))
         .map(({ def }) => ({ name: def.name, label: `${def.label}: ${def.description}` })),
-    showError(path, message) {
-      const text = message.slice(path.length + 2);
+    showError(err) {
+      const path = err.field;
       if (path.startsWith('machine.errors.')) {
         const f = errorFields.get(path.slice('machine.errors.'.length));
-        if (f) return f.field.setError(text), true;
+        if (f) return f.field.setError(err.text), true;
       }
       const f = machineForm.byPath[path.slice('machine.'.length)];
-      if (path.startsWith('machine.') && f) return f.setError(text), true;
+      if (path.startsWith('machine.') && f) return f.setError(err.text), true;
       return false;
     },
     onChange(l) {
@@ -253,7 +256,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   let timer: number | undefined;
   const onInput = () => {
     if (!current()) {
-      plotWrap.classList.add('stale');
+      stale(plot, true);
       // No machine now: the panels grey the plots it fed (they read current() as null).
       for (const l of listeners) l();
     }

@@ -7,11 +7,11 @@ import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, numberField } from '../ui/fields';
 import { loadSchema, renderFields } from '../ui/form';
-import { axis, draw, note } from '../ui/plot';
+import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, stale, type Panel } from './panel';
+import { engineErrors, panelShell, type Panel } from './panel';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);

@@ -1,16 +1,16 @@
 // The "Nonlinear error" panel: Geng, Wu & Qiu (2018), on the machine of the Machine section (its
 // rotary-axis type and pivot).
 import type { Data } from 'plotly.js';
-import type { InverseResult, Machine, NonlinearMoveResult, RotaryTypeInfo } from '@engine';
-import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
+import type { InverseResult, Machine, NonlinearMoveResult } from '@engine';
+import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
 import { fill, loadSchema, renderFields } from '../ui/form';
-import { axis, draw, note, rows } from '../ui/plot';
+import { axis, draw, note, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, stale, type Panel } from './panel';
+import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -24,7 +24,6 @@ export const nonlinearPanel: Panel = {
 };
 
 async function mount(root: HTMLElement, machine: MachineSection) {
-  const types = await call('rotaryTypes');
   const schema = await loadSchema();
   const { form, results } = panelShell(
     root,
@@ -85,6 +84,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!m || !own) {
       // Messages are at the fields; the plots no longer show what the inputs ask for.
       for (const p of allPlots) stale(p.p, true);
+      stale(ikOut, true);
       return;
     }
     const t = String(m.type ?? 'CBZ');
@@ -97,7 +97,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const dM = end.m - start.m;
     const base = { machine: m as Machine, ...(length === undefined ? {} : { length }) };
 
-    runMove({ ...base, start, end, samples: 201 }).then((r) => {
+    runMove({ ...base, start, end }).then((r) => {
       if (r === SUPERSEDED) return;
       showMove(r, t, start, end);
     }, (e) => engineError(e, curve.p));
@@ -168,11 +168,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       if (r === SUPERSEDED) return;
       const res = r as InverseResult;
       ikOut.replaceChildren();
+      stale(ikOut, false);
       const list = el('ul');
       for (const s of res.solutions) {
-        const chosen = res.chosen !== null && Math.abs(s.k - res.chosen.k) < 1e-9 && Math.abs(s.m - res.chosen.m) < 1e-9;
         const travel = s.inTravel ? '' : ' (outside the travel)';
-        list.append(el('li', {}, `${ctx.k} = ${fmt.degrees(s.k)}, ${ctx.m} = ${fmt.degrees(s.m)}${travel}${chosen ? '  ← nearest the start pose' : ''}`));
+        list.append(el('li', {}, `${ctx.k} = ${fmt.degrees(s.k)}, ${ctx.m} = ${fmt.degrees(s.m)}${travel}${s.chosen ? '  ← nearest the start pose' : ''}`));
       }
       ikOut.append(list);
       if (res.message) ikOut.append(el('p', { class: 'warn' }, res.message));
@@ -182,10 +182,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
         ikOut.append(el('p', { class: 'warn' }, `Near the singularity: ${fmt.degrees(res.poleAngle, 3)} from the ${ctx.k} axis; ${ctx.k} turns fast here.`));
       }
     }, (e) => {
-      const err = e instanceof EngineError ? e : new EngineError(String(e));
-      const f = inputs.byPath[err.field];
-      if (f) f.setError(err.message.slice(err.field.length + 2));
-      else ikOut.replaceChildren(el('p', { class: 'warn' }, err.message));
+      // The angles shown were for other inputs: clear them, and say where the message is.
+      const err = showAtField(e, inputs.byPath, machine);
+      ikOut.replaceChildren(el('p', { class: 'warn' }, err ? err.message : 'No angles: see the message at the field.'));
     });
   };
 
@@ -193,14 +192,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ctx = machine.context();
     const L = r.length;
     note(curve.p, null);
-    const group = types.find((x: RotaryTypeInfo) => x.name === t)?.group ?? 'I';
-    const eq = group === 'I' ? 'eq 25' : 'eq 30';
+    const eq = r.group === 'I' ? 'eq 25' : 'eq 30';
     const items: [string, string, string][] = [
       ['nl-max', 'Exact maximum δ', `${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax, 5)}`],
       ['nl-approx', `u = 0.5 approximation (${eq})`, r.approx === null ? 'undefined (no unique plane)' : show('errLength', r.approx)],
       ['nl-shortfall', 'Approximation falls short by', r.approxShortfall === null ? '—' : `${fmt.percent(r.approxShortfall)} (${show('errLength', r.max - (r.approx ?? 0))})`],
       ['nl-eq26', 'Closed form at the pole (eq 26)', r.closedForm === null
-        ? `not applicable: the move does not start at θm = ${group === 'I' ? '0°' : '±90°'}`
+        ? `not applicable: the move does not start at θm = ${r.group === 'I' ? '0°' : '±90°'}`
         : show('errLength', r.closedForm)],
       ['nl-used-length', 'L (tool point from its pivot)', `${fmt.num(L)} mm`],
       ['nl-sweep', 'Angle between start and end tool', fmt.degrees(r.sweepAngle, 5)],

@@ -2,9 +2,7 @@ import { EngineError } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
 import type { ShowsError } from '../ui/form';
-import { note } from '../ui/plot';
-
-export type { ShowsError };
+import { note, stale } from '../ui/plot';
 
 // A study's panel: mounted once, the first time it is shown.
 export interface Panel {
@@ -35,29 +33,28 @@ export function panelShell(root: HTMLElement, heading: string, lead: string) {
 }
 
 /**
- * A handler for an engine error: the message goes to the field its path names (`"start.k: ..."`
- * → the field registered under `"start.k"`, without the path), to the machine's field for a
- * `machine.` path, or over the plot `target` when it names no field. The plot is greyed: it no
+ * Shows an engine error at the field its path names (`"start.k: ..."` → the field registered
+ * under `"start.k"`, without the path) or at the machine's field for a `machine.` path. Returns
+ * the error when no field shows it, for the caller to show.
+ */
+export function showAtField(err: unknown, fieldsByPath: Record<string, ShowsError>, machine: MachineSection): EngineError | null {
+  const e = EngineError.of(err);
+  const f = fieldsByPath[e.field];
+  if (f) return f.setError(e.text), null;
+  return machine.showError(e) ? null : e;
+}
+
+/**
+ * A handler for an engine error: the message goes to the field its path names
+ * ([`showAtField`]), or over the plot `target` when it names none. The plot is greyed: it no
  * longer shows what the inputs ask for.
  */
 export function engineErrors(fieldsByPath: Record<string, ShowsError>, machine: MachineSection) {
   return (err: unknown, target: HTMLElement) => {
-    const e = err instanceof EngineError ? err : new EngineError(String(err));
-    const f = fieldsByPath[e.field];
-    if (f) f.setError(e.message.slice(e.field.length + 2));
+    const e = showAtField(err, fieldsByPath, machine);
     // A message about the machine as a whole ("machine: ZONE II-1: outside the travel …") goes
     // over the plot without its path.
-    else if (!machine.showError(e.field, e.message)) note(target, e.field === 'machine' ? e.message.slice('machine: '.length) : e.message);
+    if (e) note(target, e.field === 'machine' ? e.text : e.message);
     stale(target, true);
   };
-}
-
-/**
- * Greys a plot whose inputs changed but could not be computed, and the panel's summary of key
- * numbers with it (they no longer show what the inputs ask for); a successful drawing clears both
- * (`draw`).
- */
-export function stale(target: HTMLElement, on: boolean) {
-  (target.closest('.plot-wrap') ?? target).classList.toggle('stale', on);
-  if (on) target.closest('.results')?.querySelector(':scope > dl.summary')?.classList.add('stale');
 }

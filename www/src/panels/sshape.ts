@@ -8,11 +8,11 @@ import { call, channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
 import { loadSchema, renderFields } from '../ui/form';
-import { axis, draw, note, rows } from '../ui/plot';
+import { axis, draw, note, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, stale, type Panel } from './panel';
+import { engineErrors, panelShell, type Panel } from './panel';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -108,6 +108,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const i = read();
     if (!i) {
       for (const p of [part3d, mapA, mapB, defects, fitPlot, residualPlot]) stale(p.p, true);
+      stale(ident, true);
       return;
     }
     runOvercut({ tool: i.tool, nu: i.nu, nv: i.nv } as never).then((o) => {
@@ -124,16 +125,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       engineError(e, defects.p);
       stale(part3d.p, true); // coloured by the same defects
     });
-    identify();
+    identify(i);
   };
 
-  const identify = () => {
-    const i = read();
-    if (!i) return;
+  const identify = (i: NonNullable<ReturnType<typeof read>>) => {
+    // Whatever comes next (a hint, a table or a message) belongs to these inputs.
+    const put = (...content: Node[]) => {
+      ident.replaceChildren(...content);
+      stale(ident, false);
+    };
     const text = i.csv;
     if (text.trim() === '') {
       inputs.byPath.csv?.setError(null);
-      ident.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated on Chanal et al.’s machine with Table 4’s errors) to identify the errors.'));
+      put(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated on Chanal et al.’s machine with Table 4’s errors) to identify the errors.'));
       return;
     }
     runIdentify({ machine: i.machine, tool: i.tool, model: i.model, csv: text, parameters: i.parameters, radiusTerm: i.radiusTerm, rtol: i.rtol } as never).then((f) => {
@@ -142,7 +146,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       showIdentification(f);
     }, (e) => {
       // A failed identification clears the previous one: its numbers belong to other inputs.
-      ident.replaceChildren(el('p', { class: 'warn' }, 'No identification: see the message at the field or above the plot.'));
+      put(el('p', { class: 'warn' }, 'No identification: see the message at the field or above the plot.'));
       engineError(e, fitPlot.p);
     });
   };
@@ -270,6 +274,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       el('p', {}, `Rank ${f.rank} of ${f.estimates.length} (relative singular values ${svs}; threshold ${fmt.num(f.rtol)}). Residuals: RMS ${show('errLength', f.rms)}, largest ${show('errLength', f.maxAbs)}.`),
       table,
     );
+    stale(ident, false);
     if (f.groups.length) ident.append(groupList);
     const x = Array.from({ length: 100 }, (_, i) => i + 1);
     const xaxis = pointAxis('');

@@ -147,7 +147,6 @@ function render(info: FieldInfo, id: string, ctx: Context | null): Rendered {
 /**
  * Renders `fields` (shown ones, not under `machine.`) into `container`, one fieldset per group
  * in the order the groups first appear (a field without a group goes in its section's).
- * `order` puts some groups first.
  */
 export function renderFields(fields: FieldInfo[], prefix: string, container: HTMLElement, ctx: Context | null = null): RenderedForm {
   const groups = new Map<string, HTMLElement>();
@@ -172,7 +171,6 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
   }
   const byPath: Record<string, ShowsError> = {};
   for (const r of rendered) byPath[r.info.path] = r;
-  let current: Context | null = ctx;
   return {
     byPath,
     groups,
@@ -188,13 +186,12 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
       return ok ? out : null;
     },
     setContext(next: Context) {
-      current = next;
       for (const r of rendered) {
-        const text = fill(r.info.label, current);
+        const text = fill(r.info.label, next);
         // The label element may hold only text (inputs and selects) or a legend.
         if (r.label.textContent !== text) r.label.textContent = text;
         const hint = r.root.querySelector(':scope > .field-hint');
-        if (hint && r.info.help) hint.textContent = fill(r.info.help, current);
+        if (hint && r.info.help) hint.textContent = fill(r.info.help, next);
         r.root.hidden = r.info.kinds.length > 0 && !r.info.kinds.includes(next.kind);
       }
       for (const set of groups.values()) {

@@ -45,9 +45,19 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
-  (el.closest('.plot-wrap') ?? el).classList.remove('stale');
+  stale(el, false);
   el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
+}
+
+/**
+ * Greys what no longer shows what the inputs ask for: a plot (its wrapper), or any other output
+ * element, and with it the panel's summary of key numbers. `on = false` clears the element only:
+ * the summary is cleared by a successful drawing (`draw`).
+ */
+export function stale(target: HTMLElement, on: boolean) {
+  (target.closest('.plot-wrap') ?? target).classList.toggle('stale', on);
+  if (on) target.closest('.results')?.querySelector(':scope > dl.summary')?.classList.add('stale');
 }
 
 /** PNG and CSV buttons under a plot (added once). */
