@@ -13,6 +13,8 @@
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
 //! * [`cubic`]: the cubic-machining test, 3 × 3 zone heights (Li, Sato, Shirase & Sakamoto 2021).
 //! * [`sshape`]: the S-shape test piece of ISO 10791-7 (Chanal, Duc & Chevalier 2022).
+//! * [`toolpath`]: the customer's toolpath on the twelve rotary-axis types, ranked by nonlinear
+//!   error, and refined to a tolerance.
 
 pub mod schema;
 
@@ -25,5 +27,6 @@ pub mod nonlinear;
 mod numeric;
 pub mod rotary;
 pub mod sshape;
+pub mod toolpath;
 
 pub use error::{Error, Result};

@@ -104,6 +104,23 @@ test('nonlinear panel: machine and move changes replot, eq 26 at the pole, bad i
     for (const id of ['nl-length', 'nl-nx', 'nl-start-k']) assert.equal(await page.getAttribute(`#${id}`, 'aria-invalid'), null, id);
     assert.ok(!(await isStale(page, 'nl-curve')));
 
+    // The 12-type chart compares the same tool path, not the same joint move. The issue's
+    // numbers: CAZ (0°, 10°) → (30°, 25°) at L = 100 mm, as a tool path, is 0.129 mm on ABZ and
+    // 3.292 mm on CAY (the same joint move gave 1.391 mm on both).
+    n = await waitPlotted(page, 'nl-compare');
+    await page.fill('#nl-start-m', '10');
+    await page.fill('#nl-end-k', '30');
+    await page.fill('#nl-length', '100');
+    await page.waitForFunction(() => Number(document.getElementById('nl-compare')?.dataset.plotted) > 0);
+    await page.waitForFunction((k) => {
+      const y = document.getElementById('nl-compare')?.data?.[0]?.y;
+      return y && Math.abs(y[6] - 129.2) < 0.5;
+    }, n);
+    const bars = await traceY(page, 'nl-compare');
+    assert.ok(Math.abs(bars[6] - 129) < 0.5 && Math.abs(bars[10] - 3292) < 0.5, `ABZ ${bars[6]} µm, CAY ${bars[10]} µm`);
+    assert.match(await page.$eval('#nl-compare .gtitle', (e) => e.textContent), /same tool path/);
+    await page.fill('#nl-length', '');
+
     // An invalid machine field greys every plot it fed; the message is at the machine's field.
     await page.fill('#m-geometry-tableHeight', 'abc');
     await page.waitForFunction(() => document.getElementById('m-geometry-tableHeight')?.getAttribute('aria-invalid') === 'true');

@@ -94,6 +94,13 @@ function sshapeIdentifyCase(r) {
   const names = errorsOf(m.type).map((e) => e.name).filter(() => r() < 0.5);
   return build({ tool, model, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()) }, r, { machine: m, ...(r() < 0.5 ? { parameters: names } : {}) });
 }
+/** A short random toolpath: [x, y, z, i, j, k] per point, the tool axis within 60° of +Z. */
+function toolpathPoints(r) {
+  const n = small(0, 8)(r);
+  const out = [];
+  for (let i = 0; i < n; i++) out.push(r() * 100, r() * 100, r() * 50, r() - 0.5, r() - 0.5, 1);
+  return new Float64Array(out);
+}
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -112,6 +119,9 @@ export const SPECS = {
   sshapeOvercut: { args: [{ tool, nu: small(14, 20), nv: small(2, 3) }] },
   sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },
   sshapeIdentify: { args: [sshapeIdentifyCase] },
+  toolpathAnalyse: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
+  toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
+  toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPoints] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

@@ -20,11 +20,13 @@ mod cubic;
 mod machine;
 mod nonlinear;
 mod sshape;
+mod toolpath;
 
 pub use cubic::*;
 pub use machine::*;
 pub use nonlinear::*;
 pub use sshape::*;
+pub use toolpath::*;
 
 use fiveaxis::schema::{join, Quantity};
 use fiveaxis::Error;

@@ -15,6 +15,7 @@ use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
     SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
 };
+use fiveaxis::toolpath::ToolpathCase;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use tsify::Tsify;
@@ -57,6 +58,9 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("machineInverse", fields::<InverseInput>());
     put("toolVector", fields::<ToolVectorInput>());
     put("nonlinearMove", both::<NonlinearCase, NonlinearMoveInput>());
+    put("toolpathAnalyse", fields::<ToolpathCase>());
+    put("toolpathCompare", fields::<ToolpathCase>());
+    put("toolpathRefine", fields::<ToolpathCase>());
     put("nonlinearSweepK", both::<NonlinearCase, SweepKInput>());
     put("nonlinearSweepM", both::<NonlinearCase, SweepMInput>());
     put("nonlinearGrid", both::<NonlinearCase, NonlinearGridInput>());

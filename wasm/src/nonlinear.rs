@@ -202,7 +202,7 @@ pub fn nonlinear_grid(
     })
 }
 
-/// One row of [`nonlinear_compare_types`].
+/// One row of [`nonlinear_compare_types`]: the same tool path on one type.
 #[derive(Serialize, Tsify)]
 #[tsify(missing_as_null, hashmap_as_object)]
 #[serde(rename_all = "camelCase")]
@@ -212,33 +212,37 @@ pub struct TypeComparison {
     pub rtype: String,
     /// Its group.
     pub group: Group,
-    /// Exact maximum error, mm.
-    pub max: f64,
+    /// Its commands `[K, M]` at the start and at the end, degrees; null when out of travel.
+    pub start: Option<[f64; 2]>,
+    /// At the end.
+    pub end: Option<[f64; 2]>,
+    /// Exact maximum error, mm; null when out of travel.
+    pub max: Option<f64>,
     /// u of the maximum.
-    pub u_at_max: f64,
-    /// Eq 25/30, mm.
-    pub approx: Option<f64>,
-    /// Reference used.
-    pub reference: Reference,
+    pub u_at_max: Option<f64>,
+    /// Why the type cannot make the move within the travel.
+    pub unreachable: Option<String>,
 }
 
-/// The same move of K and M (the study's angles) on each of the twelve types.
+/// The machine's move from `start` to `end` as a tool path (its start and end tool vectors),
+/// made by each of the twelve types on the machine's kind and travel.
 #[wasm_bindgen(js_name = nonlinearCompareTypes, unchecked_return_type = "TypeComparison[]")]
 pub fn nonlinear_compare_types(
     #[wasm_bindgen(unchecked_param_type = "NonlinearCase & TypeCompareInput")] value: JsValue,
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, TypeCompareInput) = read(&value)?;
-    let mv = c.move_between(&i.start, &i.end);
-    let rows = nonlinear::compare_types(length(&c)?, mv.start, mv.end).map_err(js_error)?;
+    let rows = c.compare_types(&i.start, &i.end).map_err(js_error)?;
+    let deg = |p: &fiveaxis::rotary::Pose| [p.k.to_degrees(), p.m.to_degrees()];
     let out: Vec<TypeComparison> = rows
         .into_iter()
         .map(|r| TypeComparison {
             rtype: r.rtype.name(),
             group: r.group,
+            start: r.commands.as_ref().map(|c| deg(&c[0])),
+            end: r.commands.as_ref().map(|c| deg(&c[1])),
             max: r.max,
             u_at_max: r.u_at_max,
-            approx: r.approx,
-            reference: r.reference,
+            unreachable: r.unreachable,
         })
         .collect();
     output(&out)

@@ -167,6 +167,47 @@ fn nonlinear_compare_types_refuses_unknown_inputs() {
     );
 }
 
+/// A three-point path: `[x, y, z, i, j, k]` per point.
+fn path() -> JsValue {
+    JsValue::from(js_sys::Float64Array::from(
+        &[
+            0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 10.0, 0.0, 0.0, 0.1, 0.0, 1.0, 20.0, 0.0, 0.0, 0.2, 0.1,
+            1.0,
+        ][..],
+    ))
+}
+
+#[wasm_bindgen_test]
+fn toolpath_exports_refuse_unknown_inputs_and_bad_points() {
+    type Export = fn(JsValue, JsValue) -> Result<JsValue, wasm_bindgen::JsError>;
+    let exports: [Export; 3] = [
+        fa::toolpath_analyse,
+        fa::toolpath_compare,
+        fa::toolpath_refine,
+    ];
+    for f in exports {
+        refuses(
+            |v| f(v, path()),
+            json!({ "machine": trunnion(), "length": 100, "tolerance": 0.01 }),
+        );
+        let m = error_message(f(jv(&json!({ "tolerance": -1 })), path()));
+        assert!(m.starts_with("tolerance: must be greater than 0"), "{m}");
+        let five = JsValue::from(js_sys::Float64Array::from(&[0.0; 5][..]));
+        let m = error_message(f(jv(&json!({})), five));
+        assert!(
+            m.starts_with("points: length must be a multiple of 6"),
+            "{m}"
+        );
+        let zero = JsValue::from(js_sys::Float64Array::from(
+            &[0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0][..],
+        ));
+        let m = error_message(f(jv(&json!({})), zero));
+        assert!(m.starts_with("points[1]: the tool axis"), "{m}");
+        let m = error_message(f(jv(&json!({})), jv(&json!([1, 2, 3]))));
+        assert!(m.starts_with("points: expected a Float64Array"), "{m}");
+    }
+}
+
 #[wasm_bindgen_test]
 fn nonlinear_max_errors_refuses_wrong_arguments() {
     let moves = |v: &[f64]| JsValue::from(js_sys::Float64Array::from(v));

@@ -4,8 +4,8 @@
 //! [`NonlinearCase::angles`]).
 
 use super::{
-    sweep_increments, sweep_start_k, sweep_start_m, IncrementGrid, Move, RatioCurve, MAX_ANGLE_DEG,
-    MAX_LENGTH_MM,
+    sweep_increments, sweep_start_k, sweep_start_m, Deviation, IncrementGrid, Move, RatioCurve,
+    TypeComparison, MAX_ANGLE_DEG, MAX_LENGTH_MM,
 };
 use crate::error::{Error, Result};
 use crate::machine::Machine;
@@ -215,17 +215,9 @@ impl NonlinearCase {
         self.machine.rotary_type
     }
 
-    /// `L`: given, or the machine's ([`Machine::swing_length`]).
+    /// `L`: given, or the machine's ([`swing_length`]).
     pub fn length(&self) -> Result<f64> {
-        match self.length {
-            Some(l) => Ok(l),
-            None => self.machine.swing_length().ok_or_else(|| {
-                Error::field(
-                    "length",
-                    "this machine's table surface is at its rotary centre, so it gives no distance: enter L",
-                )
-            }),
-        }
+        swing_length(self.length, &self.machine)
     }
 
     /// The study's angles `(θk, θm)` of the commands `k`, `m` (rad): the sign of a reversed axis
@@ -288,6 +280,37 @@ impl NonlinearCase {
             .collect())
     }
 
+    /// The move from `start` to `end` (this machine's commands) as a tool path, its start and end
+    /// tool vectors, made by each of the twelve types (the machine's kind, senses and travel;
+    /// [`crate::toolpath::follow`]: the smallest tilt at the start, the nearest solution at the
+    /// end), with its exact maximum error at this `L`.
+    pub fn compare_types(&self, start: &MoveStart, end: &MoveEnd) -> Result<Vec<TypeComparison>> {
+        let length = self.length()?;
+        let mv = self.move_between(start, end);
+        mv.validate()?;
+        let ends = [mv.orientation(0.0), mv.orientation(1.0)];
+        RotaryType::ALL
+            .iter()
+            .map(|&t| {
+                let model = crate::toolpath::machine_of_type(&self.machine, t).build()?;
+                let f = crate::toolpath::follow(&model, &ends)?;
+                let lay = model.layout;
+                let pose = |i: usize| Pose::new(lay.k_factor * f.k[i], lay.m_factor * f.m[i]);
+                let reached = f.unreachable.is_none();
+                let peak = reached.then(|| Deviation::new(Move::new(t, pose(0), pose(1))).peak());
+                Ok(TypeComparison {
+                    rtype: t,
+                    group: t.group(),
+                    commands: reached
+                        .then(|| [Pose::new(f.k[0], f.m[0]), Pose::new(f.k[1], f.m[1])]),
+                    max: peak.map(|p| p.value * length),
+                    u_at_max: peak.map(|p| p.u),
+                    unreachable: f.unreachable.map(|(_, why)| why),
+                })
+            })
+            .collect()
+    }
+
     /// Figs 3, 5, 8 on this machine ([`sweep_increments`]); the grid's increments are the
     /// commands' (rad). An empty range (`from` = `to`) is refused.
     pub fn grid(&self, i: &NonlinearGridInput) -> Result<IncrementGrid> {
@@ -312,5 +335,19 @@ impl NonlinearCase {
             d_m: commands(g.d_m, fm),
             ..g
         })
+    }
+}
+
+/// `L` (mm): `given`, or the machine's ([`Machine::swing_length`]); an error on `length` when the
+/// machine gives none.
+pub fn swing_length(given: Option<f64>, machine: &Machine) -> Result<f64> {
+    match given {
+        Some(l) => Ok(l),
+        None => machine.swing_length().ok_or_else(|| {
+            Error::field(
+                "length",
+                "this machine's table surface is at its rotary centre, so it gives no distance: enter L",
+            )
+        }),
     }
 }

@@ -36,8 +36,8 @@
 
 mod inputs;
 pub use inputs::{
-    AngleSpan, MoveEnd, MoveStart, NonlinearCase, NonlinearGridInput, NonlinearMoveInput,
-    SweepKInput, SweepMInput, TypeCompareInput,
+    swing_length, AngleSpan, MoveEnd, MoveStart, NonlinearCase, NonlinearGridInput,
+    NonlinearMoveInput, SweepKInput, SweepMInput, TypeCompareInput,
 };
 
 use crate::error::{check_count, check_positive, check_range, Result};
@@ -599,7 +599,7 @@ pub fn sweep_increments(
     })
 }
 
-/// One row of [`compare_types`].
+/// One row of [`NonlinearCase::compare_types`]: the same tool path on one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct TypeComparison {
@@ -608,33 +608,15 @@ pub struct TypeComparison {
     pub rtype: RotaryType,
     /// Its group.
     pub group: Group,
-    /// Exact maximum error, mm.
-    pub max: f64,
+    /// The commands (rad) that give the start and end tool vectors on this type: the smallest
+    /// tilt at the start, the nearest solution at the end; `None` when out of travel.
+    pub commands: Option<[Pose; 2]>,
+    /// Exact maximum error, mm; `None` when out of travel.
+    pub max: Option<f64>,
     /// u of the maximum.
-    pub u_at_max: f64,
-    /// Eq 25/30 approximation, mm.
-    pub approx: Option<f64>,
-    /// Reference used.
-    pub reference: Reference,
-}
-
-/// The same move (angles of K and M) on each of the twelve types.
-pub fn compare_types(length: f64, start: Pose, end: Pose) -> Result<Vec<TypeComparison>> {
-    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
-    RotaryType::ALL
-        .iter()
-        .map(|&t| {
-            let a = analyze(Move::new(t, start, end), length, 2)?;
-            Ok(TypeComparison {
-                rtype: t,
-                group: t.group(),
-                max: a.max,
-                u_at_max: a.u_at_max,
-                approx: a.approx,
-                reference: a.reference,
-            })
-        })
-        .collect()
+    pub u_at_max: Option<f64>,
+    /// Why the type cannot make the move within the machine's travel.
+    pub unreachable: Option<String>,
 }
 
 /// `n ≥ 2` equally spaced values from `a` to `b` inclusive.

@@ -151,12 +151,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     runCompare({ ...base, start, end }).then((rowsOut) => {
       if (rowsOut === SUPERSEDED) return;
       const colors = rowsOut.map((r) => (r.type === t ? '#d62728' : r.group === 'I' ? '#1f77b4' : '#7fb3d5'));
-      draw(compare.p, `The same move of K and M on all 12 types (this machine: ${t})`, [{
-        type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => D(r.max)), marker: { color: colors },
-        customdata: rowsOut.map((r) => [fmt.num(r.uAtMax), r.approx === null ? 'undefined' : show('errLength', r.approx), r.group]),
-        hovertemplate: '%{x} (Group %{customdata[2]})<br>δ %{y:.4g} at u = %{customdata[0]}<br>u = 0.5 approximation %{customdata[1]}<extra></extra>',
+      const pose = (p: number[] | null) => (p ? `${fmt.degrees(p[0])}, ${fmt.degrees(p[1])}` : '');
+      const out = rowsOut.filter((r) => r.max === null).map((r) => r.type);
+      const note = out.length ? `<br>out of this machine's travel: ${out.join(', ')}` : '';
+      draw(compare.p, `The same tool path (start and end tool vectors of this move) on all 12 types; this machine: ${t}${note}`, [{
+        type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => (r.max === null ? null : D(r.max))), marker: { color: colors },
+        customdata: rowsOut.map((r) => [r.uAtMax === null ? '' : fmt.num(r.uAtMax), r.group, pose(r.start), pose(r.end)]),
+        hovertemplate: '%{x} (Group %{customdata[1]})<br>δ %{y:.4g} at u = %{customdata[0]}<br>axes (%{customdata[2]}) → (%{customdata[3]})<extra></extra>',
         name: 'exact δ',
-      }], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
+      } as Data], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
     }, (e) => engineError(e, compare.p));
 
     updateIk(m as Machine, own.vector as number[], start);
