@@ -25,5 +25,6 @@ pub mod nonlinear;
 mod numeric;
 pub mod rotary;
 pub mod sshape;
+pub mod toolpath;
 
 pub use error::{Error, Result};
