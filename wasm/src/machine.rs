@@ -15,7 +15,7 @@ use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
     SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
 };
-use fiveaxis::toolpath::ToolpathCase;
+use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use tsify::Tsify;
@@ -61,6 +61,8 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("toolpathAnalyse", fields::<ToolpathCase>());
     put("toolpathCompare", fields::<ToolpathCase>());
     put("toolpathRefine", fields::<ToolpathCase>());
+    put("toolpathParse", fields::<ToolpathReadInput>());
+    put("toolpathWrite", fields::<ToolpathReadInput>());
     put("nonlinearSweepK", both::<NonlinearCase, SweepKInput>());
     put("nonlinearSweepM", both::<NonlinearCase, SweepMInput>());
     put("nonlinearGrid", both::<NonlinearCase, NonlinearGridInput>());

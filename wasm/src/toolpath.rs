@@ -5,7 +5,8 @@
 
 use crate::{f64_array, js_error, json, output, Series};
 use fiveaxis::rotary::Group;
-use fiveaxis::toolpath::{Summary, ToolpathCase, Unreachable};
+use fiveaxis::toolpath::parse::{write, Format, Parser, Point};
+use fiveaxis::toolpath::{Summary, ToolpathCase, ToolpathReadInput, Unreachable};
 use fiveaxis::Error;
 use js_sys::Float64Array;
 use nalgebra::Vector3;
@@ -252,4 +253,176 @@ pub fn toolpath_refine(
         added: r.added,
         max: r.max,
     })
+}
+
+/// A toolpath read from a file.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null)]
+#[serde(rename_all = "camelCase")]
+pub struct ParsedToolpath {
+    /// The format read: `"csv"`, `"apt"` or `"nc"`.
+    pub format: String,
+    /// Points read.
+    pub count: usize,
+    /// `[x, y, z, i, j, k]` per point: tip mm, unit tool axis, workpiece coordinates.
+    pub points: Series,
+    /// The file's line of each point (1-based).
+    pub lines: Series,
+    /// NC blocks: the commands `[K, M]` of each point, degrees; null for CL data.
+    pub angles: Option<Series>,
+    /// Lines read.
+    pub lines_read: u32,
+}
+
+/// Reads a toolpath file piece by piece, so that a large file never needs to be one string:
+/// `new ToolpathReader({format, machine})`, then `feed(text)` for each piece (pieces may split
+/// lines anywhere; returns the lines read so far), then `finish()`. A bad line throws an Error
+/// `"toolpath: line 12, column 7: …"`.
+#[wasm_bindgen]
+pub struct ToolpathReader {
+    options: ToolpathReadInput,
+    parser: Option<Parser>,
+    points: Vec<Point>,
+}
+
+#[wasm_bindgen]
+impl ToolpathReader {
+    /// A reader for the format and machine of `options` (`format` `"auto"` recognises it from
+    /// the first piece).
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
+    ) -> Result<ToolpathReader, JsError> {
+        let options = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
+        Ok(Self {
+            options,
+            parser: None,
+            points: Vec::new(),
+        })
+    }
+
+    /// Reads the next piece of the file; returns the lines read so far.
+    pub fn feed(&mut self, text: &str) -> Result<u32, JsError> {
+        let parser = match &mut self.parser {
+            Some(p) => p,
+            None => {
+                let format = self
+                    .options
+                    .format
+                    .format()
+                    .unwrap_or_else(|| Format::detect(text));
+                self.parser
+                    .insert(Parser::new(format, Some(&self.options.machine)).map_err(js_error)?)
+            }
+        };
+        parser.feed(text, &mut self.points).map_err(js_error)?;
+        Ok(parser.lines())
+    }
+
+    /// Ends the file: the points read.
+    #[wasm_bindgen(unchecked_return_type = "ParsedToolpath")]
+    pub fn finish(&mut self) -> Result<JsValue, JsError> {
+        if self.parser.is_none() {
+            self.feed("")?;
+        }
+        let parser = self
+            .parser
+            .as_mut()
+            .ok_or_else(|| js_error("toolpath: no parser"))?;
+        parser.finish(&mut self.points).map_err(js_error)?;
+        let p = std::mem::take(&mut self.points);
+        let flat: Vec<f64> = p
+            .iter()
+            .flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z])
+            .collect();
+        let angles: Option<Vec<f64>> = p
+            .iter()
+            .map(|q| q.angles)
+            .collect::<Option<Vec<_>>>()
+            .filter(|_| parser.format() == Format::Nc)
+            .map(|a| a.into_iter().flatten().collect());
+        output(&ParsedToolpath {
+            format: parser.format().name().to_string(),
+            count: p.len(),
+            points: f64_array(&flat),
+            lines: f64_array(&p.iter().map(|q| f64::from(q.line)).collect::<Vec<_>>()),
+            angles: angles.map(|a| f64_array(&a)),
+            lines_read: parser.lines(),
+        })
+    }
+}
+
+/// Reads a whole toolpath text at once (see [`ToolpathReader`]).
+#[wasm_bindgen(js_name = toolpathParse, unchecked_return_type = "ParsedToolpath")]
+pub fn toolpath_parse(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let text = text
+        .as_string()
+        .ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
+    let mut r = ToolpathReader::new(options)?;
+    r.feed(&text)?;
+    r.finish()
+}
+
+/// Writes points (`[x, y, z, i, j, k]` each) in a format: CSV, APT, or NC blocks for the
+/// machine, for which `angles` (`[K, M]` degrees per point, e.g. a refined path's) are needed.
+#[wasm_bindgen(js_name = toolpathWrite)]
+pub fn toolpath_write(
+    #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | undefined")] angles: JsValue,
+) -> Result<String, JsError> {
+    let o = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
+    let format = o.format.format().ok_or_else(|| {
+        js_error(Error::field(
+            "format",
+            "say which format to write: csv, apt or nc",
+        ))
+    })?;
+    let (tips, axes) = points(&path)?;
+    let angles: Option<Vec<f64>> = if angles.is_undefined() || angles.is_null() {
+        None
+    } else {
+        Some(
+            angles
+                .dyn_ref::<Float64Array>()
+                .ok_or_else(|| {
+                    js_error(Error::field(
+                        "angles",
+                        "expected a Float64Array of [K, M] per point",
+                    ))
+                })?
+                .to_vec(),
+        )
+    };
+    if let Some(a) = &angles {
+        if a.len() != 2 * tips.len() {
+            return Err(js_error(Error::field(
+                "angles",
+                format!(
+                    "expected {} numbers ([K, M] per point), got {}",
+                    2 * tips.len(),
+                    a.len()
+                ),
+            )));
+        }
+    }
+    if format == Format::Nc && angles.is_none() {
+        return Err(js_error(Error::field(
+            "angles",
+            "NC blocks need the machine's commands [K, M] of each point",
+        )));
+    }
+    let pts: Vec<Point> = (0..tips.len())
+        .map(|i| Point {
+            tip: tips[i],
+            axis: axes[i].normalize(),
+            line: 0,
+            angles: angles.as_ref().map(|a| [a[2 * i], a[2 * i + 1]]),
+        })
+        .collect();
+    let letters = o.machine.build().map_err(js_error)?.letters();
+    write(format, &pts, Some(letters)).map_err(js_error)
 }

@@ -382,5 +382,12 @@ fn the_schema_lists_every_exports_inputs() {
     let cubic = &s.exports["cubicTest"];
     assert!(cubic.iter().any(|f| f.path == "setup.zoneSize"));
     assert!(cubic.iter().any(|f| f.path == "machine.errors"));
-    assert_eq!(s.exports.len(), 14);
+    let toolpath = &s.exports["toolpathAnalyse"];
+    assert!(toolpath
+        .iter()
+        .any(|f| f.path == "tolerance" && f.unit == "mm"));
+    assert!(s.exports["toolpathParse"]
+        .iter()
+        .any(|f| f.path == "format"));
+    assert_eq!(s.exports.len(), 19);
 }

@@ -50,6 +50,73 @@ use nalgebra::Vector3;
 use serde::Serialize;
 use serde_json::Value;
 
+pub mod parse;
+
+crate::choices! {
+    /// The format of a toolpath file ([`parse`]).
+    pub enum FileFormat {
+        /// Recognised from the first lines ([`parse::Format::detect`]).
+        Auto = "auto" {
+            label: "Recognise it",
+            help: "From its first lines: GOTO/ statements are APT, letter words (X… A… C…) NC blocks, numbers CSV.",
+        },
+        /// `x,y,z,i,j,k` per line.
+        Csv = "csv" {
+            label: "CSV: x, y, z, i, j, k",
+            help: "One point per line: the tool tip (mm) and the tool axis, workpiece coordinates.",
+        },
+        /// APT CL data.
+        Apt = "apt" {
+            label: "APT CL data (GOTO/x,y,z,i,j,k)",
+            help: "CL data from the CAM system, with MULTAX.",
+        },
+        /// NC blocks for this machine.
+        Nc = "nc" {
+            label: "NC blocks for this machine (X Y Z and its two rotary axes)",
+            help: "With tool-centre-point control on: X Y Z the tool tip, the rotary words the machine's commands.",
+        },
+    }
+}
+
+impl FileFormat {
+    /// The parser's format, `None` for [`FileFormat::Auto`].
+    pub fn format(self) -> Option<parse::Format> {
+        match self {
+            FileFormat::Auto => None,
+            FileFormat::Csv => Some(parse::Format::Csv),
+            FileFormat::Apt => Some(parse::Format::Apt),
+            FileFormat::Nc => Some(parse::Format::Nc),
+        }
+    }
+}
+
+crate::inputs! {
+    /// How to read a toolpath file.
+    pub struct ToolpathReadInput {
+        /// The machine (NC blocks are its commands).
+        pub machine: Machine = "machine" optional {
+            label: "Machine", kind: Kind::Object(Machine::FIELDS), default: DefaultValue::Empty,
+        },
+        /// The file's format.
+        pub format: FileFormat = "format" optional {
+            label: "File format",
+            help: "How the toolpath file is written; NC blocks are read for the machine above.",
+            kind: Kind::Choice(FileFormat::CHOICES),
+            default: DefaultValue::Str("auto"),
+            group: "Toolpath",
+        },
+    }
+}
+
+impl ToolpathReadInput {
+    /// Reads the options (unknown keys refused) and checks the machine.
+    pub fn read(value: &Value) -> Result<Self> {
+        let c = <Self as schema::Inputs>::from_value(value, "")?;
+        c.machine.validate("machine")?;
+        Ok(c)
+    }
+}
+
 crate::inputs! {
     /// What every toolpath export needs besides the points: the machine, `L` and the tolerance.
     pub struct ToolpathCase {
