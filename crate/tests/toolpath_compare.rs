@@ -309,3 +309,75 @@ fn inputs_that_cannot_be_analysed_are_refused_with_their_path() {
     assert_eq!(err.field, "tolerance");
     let _ = toolpath::POLE_ANGLE_DEG;
 }
+
+/// The tool axes of a sample file of `public/samples/` (written by `scripts/samples.mjs`).
+fn sample(name: &str, format: fiveaxis::toolpath::parse::Format) -> Vec<Vector3<f64>> {
+    let text = std::fs::read_to_string(format!("../public/samples/{name}")).unwrap();
+    fiveaxis::toolpath::parse::parse(&text, format, None)
+        .unwrap()
+        .iter()
+        .map(|p| p.axis)
+        .collect()
+}
+
+#[test]
+fn the_dome_sample_flips_exactly_the_types_whose_k_axis_is_vertical() {
+    // The dome's meridian passes 0.3° beside the vertical, tilting ±40°, 1° a point. K about Z
+    // (C: CAZ CBZ CAY CBX) must swing by about 2·atan(0.5/0.3) ≈ 118° next to the vertical:
+    // a pole passage and a flip on either side of it. K about X or Y never comes near its pole
+    // (the tool stays within 40° of Z). ABX and ACX (tool along X at zero) need M to tilt the
+    // tool by at least 90° + 40° minus a hair from X, beyond the default ±120° of M: they
+    // cannot start.
+    let axes = sample(
+        "dome-past-the-pole.csv",
+        fiveaxis::toolpath::parse::Format::Csv,
+    );
+    assert_eq!(axes.len(), 81);
+    let rows = compare(&machine(json!({})), &axes, 150.0, 0.01).unwrap();
+    for r in &rows {
+        let name = r.rtype.name();
+        match name.as_str() {
+            "CAZ" | "CBZ" | "CAY" | "CBX" => {
+                assert_eq!((r.flips, r.poles), (2, 2), "{name}");
+                assert!(r.max > 0.1, "{name}: {}", r.max);
+            }
+            "ABX" | "ACX" => assert_eq!(r.unreachable.as_ref().map(|u| u.point), Some(0)),
+            _ => {
+                assert_eq!((r.flips, r.poles, r.above), (0, 0, 0), "{name}");
+                assert!(r.unreachable.is_none());
+            }
+        }
+    }
+    // Ranked: the smooth types first, the flipping ones after, those that cannot start last.
+    let order: Vec<String> = rows.iter().map(|r| r.rtype.name()).collect();
+    let pos = |n: &str| order.iter().position(|x| x == n).unwrap();
+    for smooth in ["BCY", "BAZ", "ABZ", "ACY"] {
+        assert!(
+            pos(smooth) < pos("CAZ") && pos("CAZ") < pos("ABX"),
+            "{order:?}"
+        );
+    }
+}
+
+#[test]
+fn the_impeller_sample_turns_c_round_and_tilts_a_and_b_less() {
+    // The swarf path goes once round Z (six blades 60° apart), tilted 41° to 49° from Z. K
+    // about Z follows the azimuth (at least 300° of C in all), while K about X or Y only rocks:
+    // its total travel stays below C's. Every type that follows the whole path keeps its worst
+    // segment within a few times the tolerance (0.5° of blade per point) unless it flips.
+    let axes = sample("impeller-swarf.apt", fiveaxis::toolpath::parse::Format::Apt);
+    assert_eq!(axes.len(), 751);
+    let rows = compare(&machine(json!({})), &axes, 150.0, 0.01).unwrap();
+    let row = |n: &str| rows.iter().find(|r| r.rtype.name() == n).unwrap();
+    assert!(row("CBZ").k_travel.to_degrees() > 300.0);
+    assert!(row("BAZ").k_travel < row("CBZ").k_travel);
+    for r in rows
+        .iter()
+        .filter(|r| r.unreachable.is_none() && r.flips == 0)
+    {
+        assert!(r.max < 0.05, "{}: {}", r.rtype, r.max);
+    }
+    assert!(rows
+        .windows(2)
+        .all(|w| w[0].unreachable.is_some() <= w[1].unreachable.is_some()));
+}

@@ -11,7 +11,7 @@
 //!
 //! For one machine (its kind, rotary-axis type, senses and travel) the path is followed by
 //! inverse kinematics with continuity ([`follow`]): the first point takes the smallest tilt
-//! ([`BranchRule::SmallestTilt`]), every later point the solution within the travel nearest the
+//! ([`BranchRule::SmallestTilt`], each angle at the turn nearest 0), every later point the solution within the travel nearest the
 //! previous commands ([`BranchRule::Nearest`]), whole turns added or removed as the travel needs
 //! (unwinding). A point no solution within the travel reaches stops the following: the machine
 //! cannot run the path as given, and says which point and what it would need.
@@ -275,13 +275,13 @@ pub fn follow(model: &Model, axes: &[Vector3<f64>]) -> Result<Following> {
     let mut m = Vec::with_capacity(axes.len());
     let mut previous: Option<[f64; 2]> = None;
     for (i, a) in axes.iter().enumerate() {
-        let rule = if previous.is_some() {
-            BranchRule::Nearest
-        } else {
-            BranchRule::SmallestTilt
+        // The first point: the smallest tilt, each angle at the turn nearest 0 (room both ways).
+        let (rule, near) = match previous {
+            Some(p) => (BranchRule::Nearest, p),
+            None => (BranchRule::SmallestTilt, [0.0, 0.0]),
         };
         let o = model
-            .orientations(a, rule, previous)
+            .orientations(a, rule, Some(near))
             .map_err(|e| Error::field(format!("points[{i}]"), e.message))?;
         match o.chosen {
             Some(c) => {
