@@ -5,6 +5,7 @@ import type { Panel } from './panels/panel';
 import { nonlinearPanel } from './panels/nonlinear';
 import { cubicPanel } from './panels/cubic';
 import { sshapePanel } from './panels/sshape';
+import { toolpathPanel } from './panels/toolpath';
 import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
@@ -12,7 +13,7 @@ import * as state from './ui/state';
 import { printReport, setupPrint } from './ui/print';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel];
+const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel];
 let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();

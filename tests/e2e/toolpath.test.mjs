@@ -1,0 +1,70 @@
+// The "Toolpath" panel in Debian's Chromium: a sample path ranked on the twelve configurations,
+// δ along the path and the 3D path plotted, the refined path exported and read back, a bad file
+// named by its line while the last result stays, and no request leaving the page's origin.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import * as fa from '../../wasm/pkg/fiveaxis.js';
+import { ARTIFACTS, traceY, waitPlotted, withPage } from './harness.mjs';
+
+fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
+
+test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file names its line', async () => {
+  await withPage({ acceptDownloads: true, viewport: { width: 1400, height: 1800 } }, async ({ page, url }) => {
+    await page.goto(url);
+    await page.click('#tab-toolpath');
+    await page.waitForSelector('#panel-toolpath[data-ready=true]');
+    // The dome passes 0.3° beside the vertical: the four types whose K turns about Z flip
+    // twice (see crate/tests/toolpath_compare.rs for why), ABX and ACX cannot start.
+    await page.selectOption('#tp-sample', 'dome-past-the-pole.csv');
+    await page.waitForSelector('#tp-ranking table tbody tr');
+    await waitPlotted(page, 'tp-delta');
+    await waitPlotted(page, 'tp-path');
+    const rows = await page.$$eval('#tp-ranking tbody tr', (trs) => trs.map((tr) => ({ type: tr.dataset.type, cells: [...tr.cells].map((c) => c.textContent) })));
+    assert.equal(rows.length, 12);
+    for (const r of rows) {
+      if (['CAZ', 'CBZ', 'CAY', 'CBX'].includes(r.type)) assert.equal(r.cells[6], '2', `${r.type}: ${r.cells}`);
+      else if (['ABX', 'ACX'].includes(r.type)) assert.match(r.cells[2], /cannot follow the path: point 1/);
+      else assert.equal(r.cells[6], '0', r.type);
+    }
+    assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
+    assert.match(await page.textContent('#tp-file-msg'), /81 points \(CSV/);
+    // The machine is the default CBZ table: δ along its 80 segments, two flips marked.
+    assert.equal((await traceY(page, 'tp-delta')).length, 80);
+    assert.equal((await traceY(page, 'tp-delta', 2)).length, 2);
+    assert.match(await page.textContent('#tp-summary'), /dome-past-the-pole\.csv/);
+    await page.screenshot({ path: `${ARTIFACTS}toolpath-desktop.png`, fullPage: true });
+
+    // Refine for CBZ at 10 µm and export: the file reads back as CSV, every original point in it,
+    // and every segment of it within the tolerance on CBZ (the engine, called directly).
+    await page.click('#tp-refine');
+    await page.waitForFunction(() => /points inserted/.test(document.getElementById('tp-refine-out')?.textContent ?? ''));
+    const added = Number(/^(\d+) points inserted/.exec(await page.textContent('#tp-refine-out'))[1]);
+    assert.ok(added > 0);
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#tp-export')]);
+    assert.equal(dl.suggestedFilename(), 'dome-past-the-pole-refined-CBZ.csv');
+    const text = readFileSync(await dl.path(), 'utf8');
+    const back = fa.toolpathParse(text, { format: 'auto' });
+    assert.equal(back.format, 'csv');
+    assert.equal(back.count, 81 + added);
+    const check = fa.toolpathAnalyse({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, back.points);
+    assert.ok(check.summary.max <= 0.0100001, `refined max ${check.summary.max}`);
+    assert.equal(check.summary.above, 0);
+
+    // A bad file: the message names the line and column; the last ranking stays, greyed.
+    await page.setInputFiles('#tp-file', { name: 'bad.csv', mimeType: 'text/csv', buffer: Buffer.from('x,y,z,i,j,k\n0,0,0,0,0,1\n1,0,0,0,0,1x\n') });
+    await page.waitForFunction(() => /could not be read/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    const msg = await page.textContent('#tp-file-msg');
+    assert.match(msg, /line 3, column 11/);
+    assert.match(msg, /still those of dome-past-the-pole\.csv/);
+    assert.equal(await page.$$eval('#tp-ranking tbody tr', (t) => t.length), 12);
+    assert.ok(await page.$eval('#tp-ranking', (e) => e.classList.contains('stale')));
+
+    // The impeller's APT file, at phone width.
+    await page.setViewportSize({ width: 390, height: 900 });
+    await page.selectOption('#tp-sample', 'impeller-swarf.apt');
+    await page.waitForFunction(() => /751 points \(APT/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    await page.waitForFunction(() => !document.getElementById('tp-ranking')?.classList.contains('stale'));
+    await page.screenshot({ path: `${ARTIFACTS}toolpath-phone.png`, fullPage: true });
+  });
+});

@@ -1,0 +1,296 @@
+// The "Toolpath" panel: the customer's five-axis path on the machine of the Machine section and
+// on the other eleven rotary-axis types of its kind, ranked by nonlinear error (Geng, Wu & Qiu
+// 2018, Section 5), and the path refined to a tolerance.
+import type { Data } from 'plotly.js';
+import type { Machine, ParsedToolpath, ToolpathAnalysis, ToolpathRefined, ToolpathSummary } from '@engine';
+import { call, channel, SUPERSEDED } from '../engine/client';
+import type { MachineSection } from '../machine/section';
+import { download } from '../ui/export';
+import { el, selectField } from '../ui/fields';
+import { loadSchema, renderFields } from '../ui/form';
+import { axis, draw, note, stale } from '../ui/plot';
+import * as fmt from '../ui/format';
+import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
+import { engineErrors, panelShell, showAtField, type Panel } from './panel';
+
+/** A length from the engine (mm) in the unit shown now. */
+const D = (mm: number) => toDisplay('errLength', mm);
+const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
+/** Sample paths shipped in public/samples/ (written by scripts/samples.mjs). */
+const SAMPLES = [
+  { value: '', label: 'none: drop or choose a file' },
+  { value: 'impeller-swarf.apt', label: 'Impeller, swarf cut over the hub (APT, 751 points)' },
+  { value: 'dome-past-the-pole.csv', label: 'Dome, a meridian 0.3° beside the top (CSV, 81 points)' },
+];
+
+export const toolpathPanel: Panel = {
+  id: 'toolpath',
+  prefix: 'tp',
+  title: 'Toolpath',
+  exports: ['toolpathParse', 'toolpathAnalyse'],
+  mount,
+};
+
+/** A file read: its name and what the engine made of it. */
+interface Loaded {
+  name: string;
+  parsed: ParsedToolpath;
+}
+
+async function mount(root: HTMLElement, machine: MachineSection) {
+  const schema = await loadSchema();
+  const { form, results } = panelShell(
+    root,
+    'Your toolpath on every rotary-axis configuration',
+    'Drop a five-axis toolpath (APT CL data, CSV x, y, z, i, j, k, or NC blocks for the machine above). It is ' +
+      'followed on this machine and on the other eleven rotary-axis types of its kind, with the same travel: ' +
+      'between two points the control turns the rotary axes linearly, and the tool tip leaves the programmed ' +
+      'motion by δ (the nonlinear error). The ranking says which configuration machines the path more ' +
+      'accurately; flips (the rotary axes swinging round near their pole or at the end of their travel) are ' +
+      'flagged. Geng, Wu & Qiu, Math. Problems in Engineering 2018, Section 5. The file stays in this browser.',
+  );
+
+  // ---- inputs
+  const fileSet = el('fieldset');
+  fileSet.append(el('legend', {}, 'Toolpath file'));
+  const sample = selectField('tp-sample', 'Sample path', SAMPLES, '', 'Written by scripts/samples.mjs; the README explains their ranking.');
+  const fileLabel = el('label', { for: 'tp-file', class: 'file-label' }, 'Or a file of your own (drop it on this box)');
+  const file = el('input', { type: 'file', id: 'tp-file', accept: '.apt,.cls,.cl,.csv,.txt,.nc,.ngc,.mpf,.tap,.iso,.h' });
+  const fileMsg = el('p', { class: 'file-msg', id: 'tp-file-msg', role: 'status', 'aria-live': 'polite' });
+  fileSet.append(sample.root, fileLabel, file, fileMsg);
+  form.append(fileSet);
+  const fieldsOf = toolpathPanel.exports.flatMap((name) => schema.exports[name]);
+  const inputs = renderFields(fieldsOf, 'tp', form, machine.context());
+  const typeSel = selectField('tp-type', 'Configuration shown in detail', [{ value: 'machine', label: 'this machine' }, ...TYPES.map((t) => ({ value: t, label: t }))], 'machine',
+    'The plots and the refined path are for this configuration; click a row of the ranking to choose it.');
+  inputs.groups.get('Toolpath')?.append(typeSel.root);
+
+  // ---- outputs
+  const summary = el('dl', { class: 'summary', id: 'tp-summary', 'aria-live': 'polite' });
+  const tableWrap = el('div', { class: 'table-wrap', id: 'tp-ranking' });
+  const plot = (id: string) => {
+    const wrap = el('div', { class: 'plot-wrap wide' });
+    const p = el('div', { class: 'plot', id });
+    wrap.append(p);
+    return { wrap, p };
+  };
+  const along = plot('tp-delta');
+  const path3d = plot('tp-path');
+  const refineBox = el('div', { class: 'refine', id: 'tp-refine-box' });
+  const refineButton = el('button', { type: 'button', id: 'tp-refine' }, 'Insert the points that keep every segment within the tolerance');
+  const refineOut = el('p', { id: 'tp-refine-out', 'aria-live': 'polite' });
+  const exportButton = el('button', { type: 'button', id: 'tp-export', disabled: '' }, 'Download the refined path');
+  refineBox.append(refineButton, refineOut, exportButton);
+  const plots = el('div', { class: 'plots' });
+  plots.append(along.wrap, path3d.wrap);
+  results.append(summary, tableWrap, refineBox, plots);
+
+  const runCompare = channel('toolpathCompare');
+  const runAnalyse = channel('toolpathAnalyse');
+  const engineError = engineErrors(inputs.byPath, machine);
+  let loaded: Loaded | null = null;
+  let refined: { type: string; r: ToolpathRefined; from: string } | null = null;
+
+  const fileText = (text: string) => (fileMsg.textContent = text);
+  const setSummary = (rows: [string, string][]) => {
+    summary.replaceChildren();
+    for (const [k, v] of rows) summary.append(el('dt', {}, k), el('dd', {}, v));
+  };
+
+  /** Reads a file's text with the engine; on a bad line the message names it and the last
+   *  analysis stays (greyed, still saying which file it came from). */
+  const load = async (name: string, text: string) => {
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own) return fileText(`${name}: fix the fields marked first.`);
+    fileText(`Reading ${name}…`);
+    try {
+      const parsed = await call('toolpathParse', text, { machine: m as Machine, format: own.format as 'auto' });
+      loaded = { name, parsed };
+      refined = null;
+      fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).`);
+      update();
+    } catch (err) {
+      const e = showAtField(err, inputs.byPath, machine);
+      fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
+      for (const p of [along.p, path3d.p]) stale(p, true);
+      tableWrap.classList.add('stale');
+    }
+  };
+
+  const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
+
+  const update = () => {
+    inputs.setContext(machine.context());
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own || !loaded) {
+      if (loaded) {
+        for (const p of [along.p, path3d.p]) stale(p, true);
+        tableWrap.classList.add('stale');
+      }
+      return;
+    }
+    const { name, parsed } = loaded;
+    const tolerance = own.tolerance as number;
+    const base = { machine: m as Machine, tolerance, ...(own.length === undefined ? {} : { length: own.length as number }) };
+    const t = chosenType(m);
+    runCompare(base, parsed.points).then((rows) => {
+      if (rows === SUPERSEDED) return;
+      ranking(rows, String(m.type ?? ''), t, tolerance, name);
+    }, (e) => {
+      engineError(e, along.p);
+      tableWrap.classList.add('stale');
+    });
+    runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, parsed.points).then((a) => {
+      if (a === SUPERSEDED) return;
+      showAnalysis(a, t, name, parsed);
+    }, (e) => engineError(e, along.p));
+    refineOut.textContent = refined && refined.type === t ? refineOut.textContent : '';
+    exportButton.toggleAttribute('disabled', !(refined && refined.type === t));
+  };
+
+  const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string) => {
+    const table = el('table', { class: 'ranking' });
+    table.append(el('caption', {}, `${name} on the twelve configurations of this kind, best first (tolerance ${show('errLength', tolerance)})`));
+    const head = el('tr');
+    for (const h of ['rank', 'type', 'largest δ', 'mean δ', '95 % of segments below', 'segments above the tolerance', 'flips', 'by the pole', 'travel K, M']) head.append(el('th', { scope: 'col' }, h));
+    table.append(el('thead'));
+    table.tHead?.append(head);
+    const body = el('tbody');
+    rows.forEach((r, i) => {
+      const tr = el('tr');
+      tr.dataset.type = r.type;
+      if (r.type === own) tr.classList.add('own');
+      if (r.type === shown) tr.classList.add('shown');
+      const cells = r.unreachable
+        ? [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, `cannot follow the path: point ${r.unreachable.point + 1} is ${r.unreachable.message}`]
+        : [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.num(r.kTravel, 4)}°, ${fmt.num(r.mTravel, 4)}°`];
+      cells.forEach((c, j) => {
+        const td = el('td', r.unreachable && j === 2 ? { colspan: '7' } : {}, c);
+        tr.append(td);
+      });
+      tr.addEventListener('click', () => {
+        typeSel.select.value = r.type;
+        update();
+      });
+      body.append(tr);
+    });
+    table.append(body);
+    tableWrap.replaceChildren(table);
+    tableWrap.classList.remove('stale');
+  };
+
+  const showAnalysis = (a: ToolpathAnalysis, t: string, name: string, parsed: ParsedToolpath) => {
+    const s = a.summary;
+    note(along.p, null);
+    setSummary([
+      ['File', `${name} (${parsed.count} points, ${parsed.format.toUpperCase()})`],
+      ['Configuration', t],
+      ['Largest δ', s.segments ? `${show('errLength', s.max)} (segment ${s.maxSegment + 1})` : '—'],
+      ['Segments above the tolerance', `${s.above} of ${s.segments}`],
+      ['Flips', String(s.flips)],
+      ['L', `${fmt.num(a.length)} mm`],
+    ]);
+    if (s.unreachable) note(along.p, `${t} cannot follow the path beyond point ${s.unreachable.point}: ${s.unreachable.message}`);
+    const x = Array.from({ length: a.delta.length }, (_, i) => i + 1);
+    const flips = a.flips.map((i) => i + 1);
+    const data: Data[] = [
+      { x, y: Array.from(a.delta, D), type: 'scatter', mode: 'lines', name: 'δ', line: { color: '#1f77b4', width: 1 }, hovertemplate: 'segment %{x}<br>δ %{y:.4g}<extra></extra>' },
+      { x: [1, Math.max(1, x.length)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
+    ];
+    if (flips.length) data.push({ x: flips, y: a.flips.map((i) => D(a.delta[i])), type: 'scatter', mode: 'markers', name: 'flip', marker: { color: '#d62728', size: 9, symbol: 'x' } });
+    draw(along.p, `δ along the path on ${t} (Fig 12 style): ${s.above} of ${s.segments} segments above the tolerance, ${s.flips} flips`, data,
+      { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }) }, 'toolpath-delta');
+    // The path, each point coloured by the δ of the segment that ends there.
+    const p = parsed.points;
+    const n = a.delta.length + 1;
+    const px = Array.from({ length: n }, (_, i) => p[6 * i]);
+    const py = Array.from({ length: n }, (_, i) => p[6 * i + 1]);
+    const pz = Array.from({ length: n }, (_, i) => p[6 * i + 2]);
+    const c = [0, ...Array.from(a.delta, D)];
+    draw(path3d.p, `The path on ${t}, coloured by δ of the segment ending at each point`, [{
+      type: 'scatter3d', mode: 'lines+markers', x: px, y: py, z: pz,
+      line: { color: c, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: c, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
+      hovertemplate: 'x %{x:.3f}<br>y %{y:.3f}<br>z %{z:.3f}<extra></extra>',
+    } as Data], { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto' }, margin: { l: 0, r: 0, b: 0 } }, 'toolpath-3d');
+  };
+
+  refineButton.addEventListener('click', async () => {
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own || !loaded) return;
+    const t = chosenType(m);
+    const from = loaded.name;
+    refineOut.textContent = 'Refining…';
+    try {
+      const r = await call('toolpathRefine', { machine: { ...(m as Machine), type: t as Machine['type'] }, tolerance: own.tolerance as number, ...(own.length === undefined ? {} : { length: own.length as number }) }, loaded.parsed.points);
+      refined = { type: t, r, from };
+      refineOut.textContent = `${r.added} points inserted into ${from} for ${t}: the largest δ is now ${show('errLength', r.max)} (${r.k.length} points in all).`;
+      exportButton.removeAttribute('disabled');
+    } catch (err) {
+      refineOut.textContent = `Could not refine: ${String((err as Error).message ?? err)}`;
+      exportButton.setAttribute('disabled', '');
+    }
+  });
+
+  exportButton.addEventListener('click', async () => {
+    const m = machine.current();
+    if (!m || !refined || !loaded) return;
+    const format = loaded.parsed.format as 'csv' | 'apt' | 'nc';
+    const { r, type, from } = refined;
+    const angles = new Float64Array(2 * r.k.length);
+    for (let i = 0; i < r.k.length; i++) (angles[2 * i] = r.k[i]), (angles[2 * i + 1] = r.m[i]);
+    try {
+      const text = await call('toolpathWrite', { machine: { ...(m as Machine), type: type as Machine['type'] }, format }, r.points, format === 'nc' ? angles : undefined);
+      const stem = from.replace(/\.[^.]*$/, '');
+      download(`${stem}-refined-${type}.${format}`, text, 'text/plain');
+    } catch (err) {
+      refineOut.textContent = `Could not write the refined path: ${String((err as Error).message ?? err)}`;
+    }
+  });
+
+  sample.select.addEventListener('change', async () => {
+    const name = sample.select.value;
+    if (!name) return;
+    try {
+      const res = await fetch(`samples/${name}`);
+      if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
+      await load(name, await res.text());
+    } catch (e) {
+      fileText(`Could not load the sample ${name}: ${String(e)}`);
+    }
+  });
+  const readFile = async (f: File) => {
+    sample.select.value = '';
+    await load(f.name, await f.text());
+  };
+  file.addEventListener('change', async () => {
+    const f = file.files?.[0];
+    if (f) await readFile(f);
+    file.value = '';
+  });
+  fileSet.addEventListener('dragover', (e) => {
+    e.preventDefault();
+    fileSet.classList.add('drop');
+  });
+  fileSet.addEventListener('dragleave', () => fileSet.classList.remove('drop'));
+  fileSet.addEventListener('drop', async (e) => {
+    e.preventDefault();
+    fileSet.classList.remove('drop');
+    const f = e.dataTransfer?.files?.[0];
+    if (f) await readFile(f);
+  });
+
+  form.addEventListener('input', (e) => {
+    const id = (e.target as HTMLElement).id;
+    if (id === 'tp-file' || id === 'tp-sample') return;
+    if (id === 'tp-format' && loaded) return fileText('The format applies to the next file read.');
+    update();
+  });
+  form.addEventListener('change', (e) => {
+    if ((e.target as HTMLElement).id === 'tp-type') update();
+  });
+  machine.onChange(update);
+  onUnitsChange(update);
+}
