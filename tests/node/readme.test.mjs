@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify } from '../../wasm/pkg/fiveaxis.js';
+import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare } from '../../wasm/pkg/fiveaxis.js';
 
 initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
@@ -74,4 +74,18 @@ test('README: the S-shape on Chanal et al.\'s machine', () => {
   assert.equal(all.estimates.length, 16);
   assert.ok(all.rank < 16);
   assert.ok(all.groups.some((g) => g.members.includes('E_X0B')));
+});
+
+test('README: the dome sample on the twelve types', () => {
+  const p = toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
+  assert.equal(p.count, 81);
+  const rows = toolpathCompare({ machine: { type: 'CBZ' }, tolerance: 0.01 }, p.points);
+  const row = (t) => rows.find((r) => r.type === t);
+  // Passing 0.3° beside the vertical with 1° steps, K about Z swings by about
+  // 2·atan(0.5/0.3) ≈ 118° on one side of the vertical: one flip before and one after it.
+  for (const t of ['CAZ', 'CBZ', 'CAY', 'CBX']) assert.equal(row(t).flips, 2, t);
+  // A vertical tool is 90° from X; ABX and ACX's M travels ±120° but the path starts 40° beyond.
+  for (const t of ['ABX', 'ACX']) assert.equal(row(t).unreachable.point, 0, t);
+  assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
+  assert.ok(row('BCY').max < 0.0025 && row('CAZ').max > 0.1);
 });
