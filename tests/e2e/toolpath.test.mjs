@@ -14,6 +14,8 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     await page.goto(url);
     await page.click('#tab-toolpath');
     await page.waitForSelector('#panel-toolpath[data-ready=true]');
+    // It opens with the impeller sample.
+    await page.waitForFunction(() => /751 points \(APT/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
     // The dome passes 0.3° beside the vertical: the four types whose K turns about Z flip
     // twice (see crate/tests/toolpath_compare.rs for why), ABX and ACX cannot start.
     await page.selectOption('#tp-sample', 'dome-past-the-pole.csv');

@@ -53,7 +53,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   // ---- inputs
   const fileSet = el('fieldset');
   fileSet.append(el('legend', {}, 'Toolpath file'));
-  const sample = selectField('tp-sample', 'Sample path', SAMPLES, '', 'Written by scripts/samples.mjs; the README explains their ranking.');
+  const sample = selectField('tp-sample', 'Sample path', SAMPLES, SAMPLES[1].value, 'Written by scripts/samples.mjs; the README explains their ranking. The panel opens with the impeller.');
   const fileLabel = el('label', { for: 'tp-file', class: 'file-label' }, 'Or a file of your own (drop it on this box)');
   const file = el('input', { type: 'file', id: 'tp-file', accept: '.apt,.cls,.cl,.csv,.txt,.nc,.ngc,.mpf,.tap,.iso,.h' });
   const fileMsg = el('p', { class: 'file-msg', id: 'tp-file-msg', role: 'status', 'aria-live': 'polite' });
@@ -99,18 +99,22 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   /** Reads a file's text with the engine; on a bad line the message names it and the last
    *  analysis stays (greyed, still saying which file it came from). */
+  let loads = 0;
   const load = async (name: string, text: string) => {
+    const mine = ++loads;
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) return fileText(`${name}: fix the fields marked first.`);
     fileText(`Reading ${name}…`);
     try {
       const parsed = await call('toolpathParse', text, { machine: m as Machine, format: own.format as 'auto' });
+      if (mine !== loads) return; // a newer file was chosen meanwhile
       loaded = { name, parsed };
       refined = null;
       fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).`);
       update();
     } catch (err) {
+      if (mine !== loads) return;
       const e = showAtField(err, inputs.byPath, machine);
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
       for (const p of [along.p, path3d.p]) stale(p, true);
@@ -293,4 +297,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   });
   machine.onChange(update);
   onUnitsChange(update);
+  // Open with the sample chosen (the impeller, or the one a saved state names).
+  if (sample.select.value) sample.select.dispatchEvent(new Event('change'));
 }
