@@ -1,6 +1,7 @@
 // `npm run bench`: times the engine's heavy kernels natively (crate/examples/bench.rs, release
 // build) and as WebAssembly in Node (the release package wasm/pkg) on the same inputs, and
-// prints both times and their ratio. Best of 3 runs each.
+// prints both times and their ratio (and, for the nonlinear maxima, the orientation evaluations
+// per move, counted natively). Best of 3 runs each.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -23,6 +24,18 @@ function moves(n) {
   return out;
 }
 
+/** Short moves (real toolpath segments, |Δθk| + |Δθm| < 5°): same formula as crate/examples/bench.rs. */
+function shortMoves(n) {
+  const out = new Float64Array(4 * n);
+  for (let i = 0; i < n; i++) {
+    const x = i * 0.001;
+    const k0 = 180 * Math.sin(7.3 * x);
+    const m0 = 90 * Math.sin(3.1 * x + 1);
+    out.set([k0, m0, k0 + 2.5 * Math.sin(1.3 * x + 0.5), m0 + 2.5 * Math.sin(2.3 * x + 1.5)], 4 * i);
+  }
+  return out;
+}
+
 function time(repeat, f, check) {
   let best = Infinity;
   let sum = 0;
@@ -39,6 +52,8 @@ const total = (a) => a.reduce((s, v) => s + v, 0);
 const wasm = {};
 const mv = moves(1_000_000);
 wasm['nonlinear: exact max of 10^6 moves'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
+const short = shortMoves(1_000_000);
+wasm['nonlinear: exact max of 10^6 short moves (< 5°)'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, short), total);
 wasm['nonlinear: 361x361 increment grid'] = time(
   3,
   () => fa.nonlinearGrid({ machine: { type: 'CAZ' }, length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
@@ -94,6 +109,8 @@ const rows = Object.keys(native).map((name) => {
     'wasm ms': w ? w.ms.toFixed(1) : '—',
     'wasm/native': w ? (w.ms / n.ms).toFixed(2) : '—',
     'same result': agree ? 'yes' : 'NO',
+    // Orientation evaluations per move of the exact maximum (native count, same algorithm).
+    'evaluations/move': n.evaluations === undefined ? '—' : n.evaluations.toFixed(2),
   };
 });
 console.table(rows);

@@ -1,10 +1,12 @@
 //! Native timings of the engine's heavy kernels, for `npm run bench` (scripts/bench.mjs times the
 //! same kernels as WebAssembly in Node on the same inputs and prints the ratio).
-//! Prints one JSON object per line: `{"name": ..., "ms": ..., "check": ...}`.
+//! Prints one JSON object per line: `{"name": ..., "ms": ..., "check": ...}`, for the nonlinear
+//! maxima also `"evaluations"`: orientation evaluations per move (native only, from
+//! `Deviation::peak_counted`).
 
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
-use fiveaxis::nonlinear;
-use fiveaxis::rotary::RotaryType;
+use fiveaxis::nonlinear::{self, Deviation, Move};
+use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
 use fiveaxis::sshape::{identify, overcut::ToolPath};
 use serde_json::{json, Value};
@@ -43,6 +45,21 @@ fn moves(n: usize) -> Vec<[f64; 4]> {
         .collect()
 }
 
+/// Short moves (real toolpath segments): the start angles of [`moves`], increments under 2.5°
+/// per axis, so `|Δθk| + |Δθm| < 5°`. Degrees, from the same formula as scripts/bench.mjs.
+fn short_moves(n: usize) -> Vec<[f64; 4]> {
+    (0..n)
+        .map(|i| {
+            let x = i as f64 * 0.001;
+            let k0 = 180.0 * (7.3 * x).sin();
+            let m0 = 90.0 * (3.1 * x + 1.0).sin();
+            let dk = 2.5 * (1.3 * x + 0.5).sin();
+            let dm = 2.5 * (2.3 * x + 1.5).sin();
+            [k0, m0, k0 + dk, m0 + dm]
+        })
+        .collect()
+}
+
 /// Best of `repeat` runs, milliseconds, and the last result's checksum.
 fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
     let mut best = f64::INFINITY;
@@ -60,11 +77,28 @@ fn report(name: &str, (ms, check): (f64, f64)) {
     println!("{{\"name\":\"{name}\",\"ms\":{ms:.3},\"check\":{check:.12e}}}");
 }
 
+/// [`report`] with the average number of orientation evaluations per move of `moves` (degrees).
+fn report_counted(name: &str, timed: (f64, f64), t: RotaryType, moves: &[[f64; 4]]) {
+    let total: usize = moves
+        .iter()
+        .map(|m| {
+            let [k0, m0, k1, m1] = m.map(f64::to_radians);
+            let mv = Move::new(t, Pose::new(k0, m0), Pose::new(k1, m1));
+            Deviation::new(mv).peak_counted().1
+        })
+        .sum();
+    let (ms, check) = timed;
+    let evaluations = total as f64 / moves.len() as f64;
+    println!(
+        "{{\"name\":\"{name}\",\"ms\":{ms:.3},\"check\":{check:.12e},\"evaluations\":{evaluations:.3}}}"
+    );
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t = RotaryType::parse("CAZ")?;
     let deg = moves(1_000_000);
     // The kernel takes radians; converting is part of what the wasm call does too.
-    report(
+    report_counted(
         "nonlinear: exact max of 10^6 moves",
         time(
             3,
@@ -74,6 +108,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
             |r| r.iter().sum(),
         ),
+        t,
+        &deg,
+    );
+    let short = short_moves(1_000_000);
+    report_counted(
+        "nonlinear: exact max of 10^6 short moves (< 5°)",
+        time(
+            3,
+            || {
+                let rad: Vec<[f64; 4]> = short.iter().map(|m| m.map(f64::to_radians)).collect();
+                nonlinear::max_errors(t, &rad)
+            },
+            |r| r.iter().sum(),
+        ),
+        t,
+        &short,
     );
     let r90 = 90f64.to_radians();
     report(

@@ -264,6 +264,33 @@ impl RotaryType {
         (v, d1, d2)
     }
 
+    /// The tool orientation and its first three derivatives along the straight line in angle
+    /// space `pose(u) = pose + u·(dk, dm)` at `u = 0`: returns `[V, V', V'', V''']`.
+    ///
+    /// With `K = [e_K×]`, `M = [e_M×]` (so `K³ = -K`, `M³ = -M`) and `w = R_M(θm) e_H`, the
+    /// derivative `d/du` acts as `dk·K` on the left of `R_K` plus `dm·M` between `R_K` and `R_M`
+    /// (each commutes with its own rotation), so
+    /// `V''' = dk³·K³V + 3·dk²·dm·K²R_K(Mw) + 3·dk·dm²·K R_K(M²w) + dm³·R_K(M³w)`.
+    /// `V`, `V'` and `V''` are computed exactly as in [`Self::tool_vector_derivatives`].
+    pub fn tool_vector_jet(&self, pose: Pose, dk: f64, dm: f64) -> [Vector3<f64>; 4] {
+        let (ka, ma) = (self.k.axis(), self.m.axis());
+        let w = rotate(ma, pose.m, &self.home.unit());
+        let mw = cross_axis(ma, &w);
+        let mmw = cross_axis(ma, &mw);
+        let v = rotate(ka, pose.k, &w);
+        let r_mw = rotate(ka, pose.k, &mw);
+        let r_mmw = rotate(ka, pose.k, &mmw);
+        let kv = cross_axis(ka, &v);
+        let k_rmw = cross_axis(ka, &r_mw);
+        let d1 = kv * dk + r_mw * dm;
+        let d2 = cross_axis(ka, &kv) * (dk * dk) + k_rmw * (2.0 * dk * dm) + r_mmw * (dm * dm);
+        let d3 = -kv * (dk * dk * dk)
+            + cross_axis(ka, &k_rmw) * (3.0 * dk * dk * dm)
+            + cross_axis(ka, &r_mmw) * (3.0 * dk * dm * dm)
+            - r_mw * (dm * dm * dm);
+        [v, d1, d2, d3]
+    }
+
     /// Every pose `(θk, θm)` with `V(θk, θm)` along `direction` (any non-zero vector; it is
     /// normalised), and the one that continues best from `previous`.
     ///
