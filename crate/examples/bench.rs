@@ -60,6 +60,27 @@ fn short_moves(n: usize) -> Vec<[f64; 4]> {
         .collect()
 }
 
+/// The benchmark toolpath: `n` points `[x, y, z, i, j, k]` (mm, unit axis), from the same formula
+/// as scripts/bench.mjs: the tool tilted 10° to 60° from Z, its azimuth swinging ±170°, at most
+/// about 0.5° of rotary motion a segment (a finishing path).
+pub fn bench_path(n: usize) -> Vec<[f64; 6]> {
+    (0..n)
+        .map(|i| {
+            let s = i as f64;
+            let tilt = (35.0 + 25.0 * (0.0071 * s).sin()).to_radians();
+            let az = (170.0 * (0.003 * s).sin()).to_radians();
+            [
+                100.0 * (0.001 * s).sin(),
+                100.0 * (0.0013 * s).cos(),
+                1e-5 * s,
+                tilt.sin() * az.cos(),
+                tilt.sin() * az.sin(),
+                tilt.cos(),
+            ]
+        })
+        .collect()
+}
+
 /// Best of `repeat` runs, milliseconds, and the last result's checksum.
 fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
     let mut best = f64::INFINITY;
@@ -95,6 +116,23 @@ fn report_counted(name: &str, timed: (f64, f64), t: RotaryType, moves: &[[f64; 4
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let path = bench_path(1_000_000);
+    let axes: Vec<nalgebra::Vector3<f64>> = path
+        .iter()
+        .map(|p| nalgebra::Vector3::new(p[3], p[4], p[5]))
+        .collect();
+    let machine = fiveaxis::machine::Machine::standard()?;
+    report(
+        "toolpath: 10^6 points on the 12 types (one thread)",
+        time(
+            1,
+            || fiveaxis::toolpath::compare(&machine, &axes, 100.0, 0.01),
+            |r| {
+                r.as_ref()
+                    .map_or(f64::NAN, |rows| rows.iter().map(|r| r.max + r.mean).sum())
+            },
+        ),
+    );
     let t = RotaryType::parse("CAZ")?;
     let deg = moves(1_000_000);
     // The kernel takes radians; converting is part of what the wasm call does too.

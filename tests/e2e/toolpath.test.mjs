@@ -30,6 +30,10 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
       else assert.equal(r.cells[6], '0', r.type);
     }
     assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
+    // The page's workers share the types among them; the order is the engine's own ranking.
+    const dome = fa.toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
+    const engineOrder = fa.toolpathCompare({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, dome.points).map((r) => r.type);
+    assert.deepEqual(rows.map((r) => r.type), engineOrder);
     assert.match(await page.textContent('#tp-file-msg'), /81 points \(CSV/);
     // The machine is the default CBZ table: δ along its 80 segments, two flips marked.
     assert.equal((await traceY(page, 'tp-delta')).length, 80);

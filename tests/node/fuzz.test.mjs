@@ -101,6 +101,24 @@ function toolpathPoints(r) {
   for (let i = 0; i < n; i++) out.push(r() * 100, r() * 100, r() * 50, r() - 0.5, r() - 0.5, 1);
   return new Float64Array(out);
 }
+/** A short toolpath file as text (CSV, APT or NC for a C/A machine), sometimes with a broken line. */
+function toolpathText(r) {
+  const n = small(0, 6)(r);
+  const num = () => (r() * 200 - 100).toFixed(3);
+  const kind = small(0, 2)(r);
+  const lines = [];
+  for (let i = 0; i < n; i++) {
+    if (kind === 0) lines.push([num(), num(), num(), (r() - 0.5).toFixed(3), (r() - 0.5).toFixed(3), '1'].join(','));
+    else if (kind === 1) lines.push(`GOTO/${[num(), num(), num(), (r() - 0.5).toFixed(3), (r() - 0.5).toFixed(3), '1'].join(',')}`);
+    else lines.push(`N${i} G1 X${num()} Y${num()} Z${num()} A${num()} C${num()}`);
+  }
+  if (lines.length && r() < 0.3) {
+    const i = Math.floor(r() * lines.length);
+    lines[i] = lines[i].replace(/\d/, pick(['x', '.', ',', ' ', 'e', ''])(r));
+  }
+  return lines.join(pick(['\n', '\r\n', '\r'])(r));
+}
+const toolpathRead = { machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: maybe(pick(['auto', 'csv', 'apt', 'nc'])) };
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -120,6 +138,19 @@ export const SPECS = {
   sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },
   sshapeIdentify: { args: [sshapeIdentifyCase] },
   toolpathAnalyse: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
+  toolpathParse: { args: [toolpathText, toolpathRead] },
+  toolpathWrite: { args: [{ machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: pick(['csv', 'apt', 'nc']) }, toolpathPoints, maybe((r) => new Float64Array(Array.from({ length: 2 * small(0, 8)(r) }, () => angle(r))))] },
+  // A class: new, two pieces fed, finished.
+  ToolpathReader: {
+    args: [toolpathRead, toolpathText, toolpathText],
+    run: ([options, a, b]) => {
+      const reader = new fa.ToolpathReader(options);
+      reader.feed(a);
+      reader.feed(b);
+      return reader.finish();
+    },
+  },
+  toolpathSummary: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
   toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
   toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPoints] },
 };
@@ -218,7 +249,7 @@ test(`fuzz: ${CASES} cases over the exported API (seed ${SEED})`, () => {
     tried.add(key);
     let result;
     try {
-      result = fa[name](...args);
+      result = SPECS[name].run ? SPECS[name].run(args) : fa[name](...args);
     } catch (err) {
       const replay = `case ${i}: ${name}(${describe(args)})`;
       assert.ok(!(err instanceof WebAssembly.RuntimeError), `panic (${err.message}) in ${replay}`);

@@ -187,6 +187,19 @@ pub fn toolpath_analyse(
     })
 }
 
+/// The totals of the path on the machine (a row of the ranking), without the per-segment
+/// series: what the page's workers compute for each type.
+#[wasm_bindgen(js_name = toolpathSummary, unchecked_return_type = "ToolpathSummary")]
+pub fn toolpath_summary(
+    #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+) -> Result<JsValue, JsError> {
+    let c = case(&value)?;
+    let (_, axes) = points(&path)?;
+    let s: ToolpathSummary = c.analyse(&axes).map_err(js_error)?.summary.into();
+    output(&s)
+}
+
 /// The path on each of the twelve rotary-axis types (the machine's kind, geometry, senses and
 /// travel), ranked: those that follow the whole path first, by largest δ.
 #[wasm_bindgen(js_name = toolpathCompare, unchecked_return_type = "ToolpathSummary[]")]
@@ -301,8 +314,27 @@ impl ToolpathReader {
         })
     }
 
-    /// Reads the next piece of the file; returns the lines read so far.
-    pub fn feed(&mut self, text: &str) -> Result<u32, JsError> {
+    /// Reads the next piece of the file; returns the lines read so far. (The piece is taken as a
+    /// `JsValue` and checked: wasm-bindgen does not check that a `&str` argument is a string.)
+    pub fn feed(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    ) -> Result<u32, JsError> {
+        let text = text
+            .as_string()
+            .ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
+        self.feed_str(&text)
+    }
+
+    /// Ends the file: the points read.
+    #[wasm_bindgen(unchecked_return_type = "ParsedToolpath")]
+    pub fn finish(&mut self) -> Result<JsValue, JsError> {
+        self.finish_points()
+    }
+}
+
+impl ToolpathReader {
+    fn feed_str(&mut self, text: &str) -> Result<u32, JsError> {
         let parser = match &mut self.parser {
             Some(p) => p,
             None => {
@@ -319,11 +351,9 @@ impl ToolpathReader {
         Ok(parser.lines())
     }
 
-    /// Ends the file: the points read.
-    #[wasm_bindgen(unchecked_return_type = "ParsedToolpath")]
-    pub fn finish(&mut self) -> Result<JsValue, JsError> {
+    fn finish_points(&mut self) -> Result<JsValue, JsError> {
         if self.parser.is_none() {
-            self.feed("")?;
+            self.feed_str("")?;
         }
         let parser = self
             .parser
@@ -362,8 +392,8 @@ pub fn toolpath_parse(
         .as_string()
         .ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
     let mut r = ToolpathReader::new(options)?;
-    r.feed(&text)?;
-    r.finish()
+    r.feed_str(&text)?;
+    r.finish_points()
 }
 
 /// Writes points (`[x, y, z, i, j, k]` each) in a format: CSV, APT, or NC blocks for the

@@ -35,10 +35,12 @@
 //! # Fixing the path
 //! [`refine`] inserts points into each segment whose δ exceeds the tolerance: `n − 1` points at
 //! equal steps of the intended motion (tip on the straight line, axis on the great circle,
-//! `u = i/n`), with the smallest `n` for which every piece, interpolated by the control as
-//! before, stays within the tolerance. The inserted axes lie on the segment's great circle, so
-//! each piece is measured against the same plane as the whole segment. Segments within the
-//! tolerance get no point.
+//! `u = i/n`), `n` such that every piece, interpolated by the control as before, stays within the
+//! tolerance and `n − 1` pieces would not: `n` doubles from 2 until the pieces are within, then
+//! is bisected (a piece's δ falls about as `1/n²`, so that is the smallest `n` in practice, found
+//! in `O(log n)` trials). The inserted axes lie on the segment's great circle, so each piece is
+//! measured against the same plane as the whole segment. Segments within the tolerance get no
+//! point.
 
 use crate::error::{check_positive, Error, Result};
 use crate::geometry::angle_between;
@@ -323,8 +325,11 @@ fn segment(
     let turn = angle_between(a0, a1);
     let flip = dk.max(dm) > FLIP_ANGLE_DEG.to_radians() && dk + dm > FLIP_RATIO * turn;
     let e_k = lay.rtype.k.axis().unit();
-    let pole =
-        arc_distance(a0, a1, &e_k).min(arc_distance(a0, a1, &-e_k)) < POLE_ANGLE_DEG.to_radians();
+    let zone = POLE_ANGLE_DEG.to_radians();
+    // Every point of the arc is within `turn` of a0, so an a0 farther than `zone + turn` from
+    // ±K rules the pole out without measuring the arc.
+    let near = a0.dot(&e_k).abs() >= (zone + turn).min(std::f64::consts::FRAC_PI_2).cos();
+    let pole = near && arc_distance(a0, a1, &e_k).min(arc_distance(a0, a1, &-e_k)) < zone;
     Segment {
         delta: length * peak.value,
         u: peak.u,
@@ -454,12 +459,11 @@ pub fn compare(
     length: f64,
     tolerance: f64,
 ) -> Result<Vec<Summary>> {
-    let unit: Vec<Vector3<f64>> = axes.iter().map(|a| a.normalize()).collect();
     let mut rows = RotaryType::ALL
         .iter()
         .map(|&t| {
             let model = machine_of_type(machine, t).build()?;
-            Ok(analyse(&model, &unit, length, tolerance)?.summary)
+            Ok(analyse(&model, axes, length, tolerance)?.summary)
         })
         .collect::<Result<Vec<Summary>>>()?;
     rank(&mut rows);
@@ -530,6 +534,7 @@ pub fn refine(
             out.max = out.max.max(s.delta);
         } else {
             let pieces = split(model, length, tolerance, &out, (tips[i + 1], unit[i + 1]))
+                .map_err(|e| Error::field(format!("points[{}]", i + 1), e.message))?
                 .ok_or_else(|| {
                     Error::field(
                         format!("points[{}]", i + 1),
@@ -570,36 +575,39 @@ pub fn refine(
     Ok(out)
 }
 
-/// The points after the last of `done` that cut the segment to `(tip, axis)` into the fewest
-/// equal pieces within the tolerance: tips, axes and commands of the inner points and the end
-/// (the end last); `None` beyond [`MAX_PIECES`].
+/// The points after the last of `done` that cut the segment to `(tip, axis)` into equal pieces
+/// within the tolerance: tips, axes and commands of the inner points and the end (the end last).
+/// `n` pieces are tried doubling from 2, then bisected, so that `n` pieces are within the
+/// tolerance and `n − 1` are not (when `n > 2`). `Ok(None)` beyond [`MAX_PIECES`]; an error when
+/// an inner point is outside the travel.
 fn split(
     model: &Model,
     length: f64,
     tolerance: f64,
     done: &Refined,
     (tip1, a1): (Vector3<f64>, Vector3<f64>),
-) -> Option<Pieces> {
+) -> Result<Option<Pieces>> {
     let last = done.k.len() - 1;
     let (tip0, a0, start) = (
         done.tips[last],
         done.axes[last],
         (done.k[last], done.m[last]),
     );
-    (2..=MAX_PIECES).find_map(|n| {
+    // `n` equal pieces, or `None` when one exceeds the tolerance.
+    let pieces = |n: usize| -> Result<Option<Pieces>> {
         let mut p = Pieces::default();
         let mut prev = start;
         let mut prev_axis = a0;
         for i in 1..=n {
             let u = i as f64 / n as f64;
             let axis = slerp(&a0, &a1, u);
-            let o = model
-                .orientations(&axis, BranchRule::Nearest, Some([prev.0, prev.1]))
-                .ok()?;
-            let c = o.solutions[o.chosen?];
+            let o = model.orientations(&axis, BranchRule::Nearest, Some([prev.0, prev.1]))?;
+            let c = o.solutions[o.chosen.ok_or_else(|| {
+                Error::field("points", o.unreachable.clone().unwrap_or_default())
+            })?];
             let s = segment(model, length, prev, (c.k, c.m), &prev_axis, &axis);
             if s.delta > tolerance {
-                return None;
+                return Ok(None);
             }
             p.max = p.max.max(s.delta);
             p.tips.push(tip0 + (tip1 - tip0) * u);
@@ -609,8 +617,33 @@ fn split(
             prev = (c.k, c.m);
             prev_axis = axis;
         }
-        Some(p)
-    })
+        Ok(Some(p))
+    };
+    // Doubling: `fails` pieces exceed the tolerance (1: the segment itself), `works` do not.
+    let mut fails = 1;
+    let mut works = 2;
+    let mut found = loop {
+        if let Some(p) = pieces(works)? {
+            break p;
+        }
+        if works >= MAX_PIECES {
+            return Ok(None);
+        }
+        fails = works;
+        works = (2 * works).min(MAX_PIECES);
+    };
+    // Bisection between them.
+    while works - fails > 1 {
+        let mid = fails + (works - fails) / 2;
+        match pieces(mid)? {
+            Some(p) => {
+                works = mid;
+                found = p;
+            }
+            None => fails = mid,
+        }
+    }
+    Ok(Some(found))
 }
 
 #[derive(Default)]

@@ -4,6 +4,7 @@
 import type { Data } from 'plotly.js';
 import type { Machine, ParsedToolpath, ToolpathAnalysis, ToolpathRefined, ToolpathSummary } from '@engine';
 import { call, channel, SUPERSEDED } from '../engine/client';
+import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
 import { download } from '../ui/export';
 import { el, selectField } from '../ui/fields';
@@ -15,7 +16,6 @@ import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
-const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
 /** Sample paths shipped in public/samples/ (written by scripts/samples.mjs). */
 const SAMPLES = [
   { value: '', label: 'none: drop or choose a file' },
@@ -57,7 +57,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fileLabel = el('label', { for: 'tp-file', class: 'file-label' }, 'Or a file of your own (drop it on this box)');
   const file = el('input', { type: 'file', id: 'tp-file', accept: '.apt,.cls,.cl,.csv,.txt,.nc,.ngc,.mpf,.tap,.iso,.h' });
   const fileMsg = el('p', { class: 'file-msg', id: 'tp-file-msg', role: 'status', 'aria-live': 'polite' });
-  fileSet.append(sample.root, fileLabel, file, fileMsg);
+  const progress = el('progress', { id: 'tp-progress', max: '1', value: '0', 'aria-label': 'Part of the file read' });
+  progress.hidden = true;
+  fileSet.append(sample.root, fileLabel, file, progress, fileMsg);
   form.append(fileSet);
   const fieldsOf = toolpathPanel.exports.flatMap((name) => schema.exports[name]);
   const inputs = renderFields(fieldsOf, 'tp', form, machine.context());
@@ -85,7 +87,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   plots.append(along.wrap, path3d.wrap);
   results.append(summary, tableWrap, refineBox, plots);
 
-  const runCompare = channel('toolpathCompare');
+  let ranks = 0;
   const runAnalyse = channel('toolpathAnalyse');
   const engineError = engineErrors(inputs.byPath, machine);
   let loaded: Loaded | null = null;
@@ -100,21 +102,27 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** Reads a file's text with the engine; on a bad line the message names it and the last
    *  analysis stays (greyed, still saying which file it came from). */
   let loads = 0;
-  const load = async (name: string, text: string) => {
+  const load = async (name: string, text: Blob | string) => {
     const mine = ++loads;
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) return fileText(`${name}: fix the fields marked first.`);
     fileText(`Reading ${name}…`);
     try {
-      const parsed = await call('toolpathParse', text, { machine: m as Machine, format: own.format as 'auto' });
+      progress.hidden = false;
+      progress.value = 0;
+      const parsed = await readToolpath(text, { machine: m as Machine, format: own.format as 'auto' }, (f) => {
+        if (mine === loads) progress.value = f;
+      });
       if (mine !== loads) return; // a newer file was chosen meanwhile
+      progress.hidden = true;
       loaded = { name, parsed };
       refined = null;
       fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).`);
       update();
     } catch (err) {
       if (mine !== loads) return;
+      progress.hidden = true;
       const e = showAtField(err, inputs.byPath, machine);
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
       for (const p of [along.p, path3d.p]) stale(p, true);
@@ -139,10 +147,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const tolerance = own.tolerance as number;
     const base = { machine: m as Machine, tolerance, ...(own.length === undefined ? {} : { length: own.length as number }) };
     const t = chosenType(m);
-    runCompare(base, parsed.points).then((rows) => {
-      if (rows === SUPERSEDED) return;
-      ranking(rows, String(m.type ?? ''), t, tolerance, name);
+    const mine = ++ranks;
+    rankTypes(base, parsed.points).then((rows) => {
+      if (mine === ranks) ranking(rows, String(m.type ?? ''), t, tolerance, name);
     }, (e) => {
+      if (mine !== ranks) return;
       engineError(e, along.p);
       tableWrap.classList.add('stale');
     });
@@ -260,14 +269,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     try {
       const res = await fetch(`samples/${name}`);
       if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
-      await load(name, await res.text());
+      await load(name, await res.blob());
     } catch (e) {
       fileText(`Could not load the sample ${name}: ${String(e)}`);
     }
   });
   const readFile = async (f: File) => {
     sample.select.value = '';
-    await load(f.name, await f.text());
+    await load(f.name, f);
   };
   file.addEventListener('change', async () => {
     const f = file.files?.[0];

@@ -1,0 +1,72 @@
+// The toolpath workers: as many as the processor has cores (at most 6, each holds a copy of the
+// path), the twelve types shared among them. Also on `window.fiveaxisToolpath` for the console
+// and the benchmark (scripts/bench.mjs).
+import type { ParsedToolpath, ToolpathCase, ToolpathReadInput, ToolpathSummary } from '@engine';
+import { EngineError } from '../engine/client';
+
+/** The twelve types, Group I then Group II (the engine's order). */
+export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
+
+/** Workers the pool uses by default. */
+export const WORKERS = Math.max(1, Math.min(navigator.hardwareConcurrency || 2, 6));
+
+interface Job {
+  resolve: (v: unknown) => void;
+  reject: (e: Error) => void;
+  progress?: (fraction: number) => void;
+}
+
+const workers: Worker[] = [];
+const jobs = new Map<number, Job>();
+let nextId = 1;
+
+function worker(i: number): Worker {
+  while (workers.length <= i) {
+    const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+    w.onmessage = (event: MessageEvent<{ id: number; ok?: boolean; result?: unknown; error?: string; progress?: number }>) => {
+      const { id, ok, result, error, progress } = event.data;
+      const job = jobs.get(id);
+      if (!job) return;
+      if (progress !== undefined) return job.progress?.(progress);
+      jobs.delete(id);
+      if (ok) job.resolve(result);
+      else job.reject(new EngineError(error ?? 'unknown toolpath error'));
+    };
+    w.onerror = (event) => {
+      for (const job of jobs.values()) job.reject(new EngineError(`toolpath worker failed: ${event.message}`));
+      jobs.clear();
+    };
+    workers.push(w);
+  }
+  return workers[i];
+}
+
+function run<T>(i: number, message: Record<string, unknown>, progress?: (f: number) => void): Promise<T> {
+  const id = nextId++;
+  return new Promise<T>((resolve, reject) => {
+    jobs.set(id, { resolve: resolve as (v: unknown) => void, reject, progress });
+    worker(i).postMessage({ id, ...message });
+  });
+}
+
+/** Reads a toolpath file (or text) in a worker, piece by piece; `progress` gets the fraction read. */
+export function readToolpath(file: Blob | string, options: ToolpathReadInput, progress?: (fraction: number) => void): Promise<ParsedToolpath> {
+  const blob = typeof file === 'string' ? new Blob([file], { type: 'text/plain' }) : file;
+  return run<ParsedToolpath>(0, { op: 'read', file: blob, options }, progress);
+}
+
+/**
+ * The ranking rows of the path on each of `types` (the machine's kind and travel), computed by
+ * `workers` workers, in the engine's order (`fiveaxis::toolpath::rank`: the types that follow the
+ * whole path first, by largest δ, then mean δ).
+ */
+export async function rankTypes(input: ToolpathCase, points: Float64Array, types = TYPES, count = WORKERS): Promise<ToolpathSummary[]> {
+  const n = Math.max(1, Math.min(count, types.length));
+  const shares = Array.from({ length: n }, (_, i) => types.filter((_, j) => j % n === i));
+  const parts = await Promise.all(shares.map((share, i) => run<ToolpathSummary[]>(i, { op: 'summaries', input, points, types: share })));
+  // In the types' order first, so that ties keep it, as the engine's stable sort does.
+  const rows = parts.flat().sort((a, b) => TYPES.indexOf(a.type) - TYPES.indexOf(b.type));
+  return rows.sort((a, b) => Number(a.unreachable !== null) - Number(b.unreachable !== null) || a.max - b.max || a.mean - b.mean);
+}
+
+(window as unknown as { fiveaxisToolpath: unknown }).fiveaxisToolpath = { readToolpath, rankTypes, TYPES, WORKERS };

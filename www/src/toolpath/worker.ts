@@ -1,0 +1,53 @@
+/// <reference lib="webworker" />
+// A toolpath worker: reads a file piece by piece (so that a large file never becomes one string,
+// and the page shows progress), and computes the ranking rows of the types it is given. The page
+// keeps a few of them (./pool.ts), one per processor core.
+// Messages in: { id, op: 'read', file, options } | { id, op: 'summaries', input, points, types };
+// out: { id, progress } while reading, then { id, ok, result | error }.
+import init, * as engine from '@engine';
+
+const ready = init();
+const post = (msg: unknown, transfer: Transferable[] = []) => (self as DedicatedWorkerGlobalScope).postMessage(msg, transfer);
+
+/** Reads `file` through the engine's ToolpathReader, posting the fraction of bytes read. */
+async function read(id: number, file: Blob, options: engine.ToolpathReadInput) {
+  const reader = new engine.ToolpathReader(options);
+  try {
+    const decoder = new TextDecoder();
+    const source = file.stream().getReader();
+    let bytes = 0;
+    let shown = 0;
+    for (;;) {
+      const { value, done } = await source.read();
+      if (done) break;
+      bytes += value.byteLength;
+      reader.feed(decoder.decode(value, { stream: true }));
+      if (bytes - shown > file.size / 50) {
+        shown = bytes;
+        post({ id, progress: bytes / Math.max(1, file.size) });
+      }
+    }
+    reader.feed(decoder.decode());
+    const result = reader.finish() as engine.ParsedToolpath;
+    const transfer = [result.points.buffer, result.lines.buffer, ...(result.angles ? [result.angles.buffer] : [])] as ArrayBuffer[];
+    post({ id, ok: true, result }, transfer);
+  } finally {
+    reader.free();
+  }
+}
+
+self.onmessage = async (event: MessageEvent) => {
+  const msg = event.data as
+    | { id: number; op: 'read'; file: Blob; options: engine.ToolpathReadInput }
+    | { id: number; op: 'summaries'; input: engine.ToolpathCase; points: Float64Array; types: string[] };
+  try {
+    await ready;
+    if (msg.op === 'read') return await read(msg.id, msg.file, msg.options);
+    const rows = msg.types.map((type) =>
+      engine.toolpathSummary({ ...msg.input, machine: { ...(msg.input.machine ?? {}), type: type as engine.RotaryType } }, msg.points),
+    );
+    post({ id: msg.id, ok: true, result: rows });
+  } catch (err) {
+    post({ id: msg.id, ok: false, error: err instanceof Error ? err.message : String(err) });
+  }
+};
