@@ -99,7 +99,7 @@ console.error('building and running the native benchmark (cargo run --release --
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
 const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
 
-const rows = Object.keys(native).map((name) => {
+const rows = Object.keys(native).filter((name) => !name.startsWith('toolpath')).map((name) => {
   const n = native[name];
   const w = wasm[name];
   const agree = w ? Math.abs(w.check - n.check) <= 1e-9 * Math.max(1, Math.abs(n.check)) : false;
@@ -114,6 +114,49 @@ const rows = Object.keys(native).map((name) => {
   };
 });
 console.table(rows);
+
+// The toolpath ranking in headless Chromium: the built page's workers (www/src/toolpath/pool.ts),
+// one worker and as many as the page uses (navigator.hardwareConcurrency, at most 6), on the same
+// path as crate/examples/bench.rs, beside the native time on one thread.
+const { startBrowser } = await import('../tests/e2e/harness.mjs');
+const b = await startBrowser();
+try {
+  const page = await (await b.browser.newContext()).newPage();
+  await page.goto(b.url);
+  await page.waitForFunction(() => window.fiveaxisToolpath);
+  const chromium = await page.evaluate(async () => {
+    const tp = window.fiveaxisToolpath;
+    /** Same formula as bench_path in crate/examples/bench.rs. */
+    const path = (n) => {
+      const out = new Float64Array(6 * n);
+      for (let i = 0; i < n; i++) {
+        const tilt = ((35 + 25 * Math.sin(0.0071 * i)) * Math.PI) / 180;
+        const az = (170 * Math.sin(0.003 * i) * Math.PI) / 180;
+        out.set([100 * Math.sin(0.001 * i), 100 * Math.cos(0.0013 * i), 1e-5 * i, Math.sin(tilt) * Math.cos(az), Math.sin(tilt) * Math.sin(az), Math.cos(tilt)], 6 * i);
+      }
+      return out;
+    };
+    const input = { machine: {}, length: 100, tolerance: 0.01 };
+    await tp.rankTypes(input, path(1000), tp.TYPES, tp.WORKERS); // start the workers and their engines
+    const points = path(1_000_000);
+    const timed = async (workers) => {
+      const t = performance.now();
+      const rows = await tp.rankTypes(input, points, tp.TYPES, workers);
+      return { ms: performance.now() - t, check: rows.reduce((s, r) => s + r.max + r.mean, 0) };
+    };
+    return { one: await timed(1), all: await timed(tp.WORKERS), workers: tp.WORKERS, cores: navigator.hardwareConcurrency };
+  });
+  const n = native['toolpath: 10^6 points on the 12 types'];
+  const same = (w) => (Math.abs(w.check - n.check) <= 1e-9 * Math.max(1, Math.abs(n.check)) ? 'yes' : 'NO');
+  console.table([
+    { kernel: 'toolpath: 10^6 points x 12 types, native, one thread', ms: n.ms.toFixed(0), 'vs native': '1.00', 'same result': 'yes', 'evaluations/segment': n.evaluations.toFixed(2) },
+    { kernel: 'the same, wasm in Chromium, 1 worker', ms: chromium.one.ms.toFixed(0), 'vs native': (chromium.one.ms / n.ms).toFixed(2), 'same result': same(chromium.one), 'evaluations/segment': '—' },
+    { kernel: `the same, wasm in Chromium, ${chromium.workers} workers (${chromium.cores} cores)`, ms: chromium.all.ms.toFixed(0), 'vs native': (chromium.all.ms / n.ms).toFixed(2), 'same result': same(chromium.all), 'evaluations/segment': '—' },
+  ]);
+  if (same(chromium.one) !== 'yes' || same(chromium.all) !== 'yes') process.exitCode = 1;
+} finally {
+  await b.close();
+}
 if (rows.some((r) => r['same result'] !== 'yes')) {
   console.error('native and wasm results differ: see the checksums');
   process.exitCode = 1;

@@ -74,6 +74,11 @@ pub fn quaternion(axis: Axis, angle: f64) -> UnitQuaternion<f64> {
 /// `rotation(axis, angle) * v`.
 pub fn rotate(axis: Axis, angle: f64, v: &Vector3<f64>) -> Vector3<f64> {
     let (s, c) = angle.sin_cos();
+    rotate_sc(axis, s, c, v)
+}
+
+/// [`rotate`] by the angle whose sine and cosine are `s` and `c`.
+pub fn rotate_sc(axis: Axis, s: f64, c: f64, v: &Vector3<f64>) -> Vector3<f64> {
     match axis {
         Axis::X => Vector3::new(v.x, c * v.y - s * v.z, s * v.y + c * v.z),
         Axis::Y => Vector3::new(c * v.x + s * v.z, v.y, -s * v.x + c * v.z),

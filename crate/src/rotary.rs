@@ -33,7 +33,7 @@
 //! nonlinear error depends only on the type, not the machine type (paper, end of Section 2).
 
 use crate::error::{Error, Result};
-use crate::geometry::{cross_axis, rotate, wrap_pi, Axis};
+use crate::geometry::{cross_axis, rotate, rotate_sc, wrap_pi, Axis};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -323,13 +323,23 @@ impl RotaryType {
         let b = e_k.dot(&cross_axis(ma, &e_h));
         let vk = v.dot(&e_k).clamp(-1.0, 1.0);
         let v_perp = v - e_k * vk;
-        let pole_angle = v_perp.norm().atan2(vk.abs());
         let phase = b.atan2(a);
         // acos(v_K), computed as an atan2 so that it stays accurate next to the poles.
         let spread = v_perp.norm().atan2(vk);
+        let pole_angle = if vk >= 0.0 {
+            spread
+        } else {
+            v_perp.norm().atan2(-vk)
+        };
         let singular = pole_angle < SINGULAR_ANGLE;
-        let theta_k_for = |theta_m: f64| -> f64 {
-            let w = rotate(ma, theta_m, &e_h);
+        // sin and cos of θm = phase + sign·spread by the angle-sum formulas (no trigonometry):
+        // cos(phase), sin(phase) = (a, b)/|(a, b)|, cos(spread), sin(spread) = (v_K, |v⊥|)/|v|.
+        let r = a.hypot(b);
+        let (sp, cp) = (b / r, a / r);
+        let rho = v_perp.norm().hypot(vk);
+        let (ss, cs) = (v_perp.norm() / rho, vk / rho);
+        let theta_k_for = |sign: f64| -> f64 {
+            let w = rotate_sc(ma, sp * cs + sign * cp * ss, cp * cs - sign * sp * ss, &e_h);
             let w_perp = w - e_k * w.dot(&e_k);
             let s = e_k.dot(&w_perp.cross(&v_perp));
             let c = w_perp.dot(&v_perp);
@@ -343,7 +353,7 @@ impl RotaryType {
         } else {
             for sign in [1.0, -1.0] {
                 let theta_m = wrap_pi(phase + sign * spread);
-                solutions.push(Pose::new(theta_k_for(theta_m), theta_m));
+                solutions.push(Pose::new(theta_k_for(sign), theta_m));
             }
         }
         let chosen = match previous {

@@ -150,8 +150,7 @@ export const SPECS = {
       return reader.finish();
     },
   },
-  toolpathSummary: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
-  toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
+  toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints, maybe((r) => TYPES.filter(() => r() < 0.3))] },
   toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPoints] },
 };
 

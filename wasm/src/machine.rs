@@ -60,7 +60,6 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("nonlinearMove", both::<NonlinearCase, NonlinearMoveInput>());
     put("toolpathAnalyse", fields::<ToolpathCase>());
     put("toolpathCompare", fields::<ToolpathCase>());
-    put("toolpathSummary", fields::<ToolpathCase>());
     put("toolpathRefine", fields::<ToolpathCase>());
     put("toolpathParse", fields::<ToolpathReadInput>());
     put("toolpathWrite", fields::<ToolpathReadInput>());

@@ -288,6 +288,10 @@ pub fn nonlinear_max_errors(
     for (n, c) in moves.chunks_exact(4).enumerate() {
         let mut q = [0.0; 4];
         for (j, v) in c.iter().enumerate() {
+            q[j] = v.to_radians();
+            if v.is_finite() && v.abs() <= lim {
+                continue; // the message (and its formatted path) only for a bad value
+            }
             fiveaxis::error::check_range(
                 &format!("moves[{}]", 4 * n + j),
                 *v,
@@ -296,7 +300,6 @@ pub fn nonlinear_max_errors(
                 "degrees",
             )
             .map_err(js_error)?;
-            q[j] = v.to_radians();
         }
         quads.push(q);
     }

@@ -4,7 +4,7 @@
 //! coordinates), the case (machine, `L`, tolerance) as a plain object.
 
 use crate::{f64_array, js_error, json, output, Series};
-use fiveaxis::rotary::Group;
+use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::toolpath::parse::{write, Format, Parser, Point};
 use fiveaxis::toolpath::{Summary, ToolpathCase, ToolpathReadInput, Unreachable};
 use fiveaxis::Error;
@@ -38,6 +38,9 @@ pub(crate) fn points(value: &JsValue) -> Result<TipsAndAxes, JsError> {
     let mut axes = Vec::with_capacity(a.len() / 6);
     for (n, p) in a.chunks_exact(6).enumerate() {
         for (j, v) in p.iter().enumerate() {
+            if v.is_finite() && v.abs() <= MAX_COORDINATE {
+                continue; // the message (and its formatted path) only for a bad value
+            }
             fiveaxis::error::check_range(
                 &format!("points[{n}][{j}]"),
                 *v,
@@ -187,30 +190,44 @@ pub fn toolpath_analyse(
     })
 }
 
-/// The totals of the path on the machine (a row of the ranking), without the per-segment
-/// series: what the page's workers compute for each type.
-#[wasm_bindgen(js_name = toolpathSummary, unchecked_return_type = "ToolpathSummary")]
-pub fn toolpath_summary(
-    #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
-) -> Result<JsValue, JsError> {
-    let c = case(&value)?;
-    let (_, axes) = points(&path)?;
-    let s: ToolpathSummary = c.analyse(&axes).map_err(js_error)?.summary.into();
-    output(&s)
-}
-
 /// The path on each of the twelve rotary-axis types (the machine's kind, geometry, senses and
-/// travel), ranked: those that follow the whole path first, by largest δ.
+/// travel), or on `types` (names such as `"CAZ"`) when given, ranked: those that follow the whole
+/// path first, by largest δ.
 #[wasm_bindgen(js_name = toolpathCompare, unchecked_return_type = "ToolpathSummary[]")]
 pub fn toolpath_compare(
     #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
     #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "RotaryType[] | undefined")] types: JsValue,
 ) -> Result<JsValue, JsError> {
     let c = case(&value)?;
     let (_, axes) = points(&path)?;
+    let types = if types.is_undefined() || types.is_null() {
+        RotaryType::ALL.to_vec()
+    } else {
+        let list = json(&types)?;
+        let names = list.as_array().ok_or_else(|| {
+            js_error(Error::field(
+                "types",
+                "expected a list of type names such as [\"CAZ\"]",
+            ))
+        })?;
+        names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| {
+                let name = n.as_str().ok_or_else(|| {
+                    Error::field(
+                        format!("types[{i}]"),
+                        "expected a type name such as \"CAZ\"",
+                    )
+                })?;
+                RotaryType::parse(name).map_err(|e| Error::field(format!("types[{i}]"), e.message))
+            })
+            .collect::<Result<Vec<_>, Error>>()
+            .map_err(js_error)?
+    };
     let rows: Vec<ToolpathSummary> = c
-        .compare(&axes)
+        .compare(&axes, &types)
         .map_err(js_error)?
         .into_iter()
         .map(Into::into)

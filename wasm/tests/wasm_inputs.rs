@@ -389,5 +389,5 @@ fn the_schema_lists_every_exports_inputs() {
     assert!(s.exports["toolpathParse"]
         .iter()
         .any(|f| f.path == "format"));
-    assert_eq!(s.exports.len(), 20);
+    assert_eq!(s.exports.len(), 19);
 }

@@ -163,9 +163,9 @@ impl ToolpathCase {
         analyse(&model, axes, self.length()?, self.tolerance)
     }
 
-    /// The path on the twelve types ([`compare`]).
-    pub fn compare(&self, axes: &[Vector3<f64>]) -> Result<Vec<Summary>> {
-        compare(&self.machine, axes, self.length()?, self.tolerance)
+    /// The path on `types` ([`compare_types`]), ranked.
+    pub fn compare(&self, axes: &[Vector3<f64>], types: &[RotaryType]) -> Result<Vec<Summary>> {
+        compare_types(&self.machine, axes, self.length()?, self.tolerance, types)
     }
 
     /// The path refined on the machine ([`refine`]).
@@ -322,14 +322,16 @@ fn segment(
     let pose = |k: f64, m: f64| Pose::new(lay.k_factor * k, lay.m_factor * m);
     let peak = Deviation::new(Move::new(lay.rtype, pose(k0, m0), pose(k1, m1))).peak();
     let (dk, dm) = ((k1 - k0).abs(), (m1 - m0).abs());
-    let turn = angle_between(a0, a1);
-    let flip = dk.max(dm) > FLIP_ANGLE_DEG.to_radians() && dk + dm > FLIP_RATIO * turn;
+    let flip =
+        dk.max(dm) > FLIP_ANGLE_DEG.to_radians() && dk + dm > FLIP_RATIO * angle_between(a0, a1);
     let e_k = lay.rtype.k.axis().unit();
     let zone = POLE_ANGLE_DEG.to_radians();
-    // Every point of the arc is within `turn` of a0, so an a0 farther than `zone + turn` from
-    // ±K rules the pole out without measuring the arc.
-    let near = a0.dot(&e_k).abs() >= (zone + turn).min(std::f64::consts::FRAC_PI_2).cos();
-    let pole = near && arc_distance(a0, a1, &e_k).min(arc_distance(a0, a1, &-e_k)) < zone;
+    // Every point of the arc is within `turn ≤ π/2·|a1 − a0|` of a0 (a chord is at least 2/π
+    // of its arc), so an a0 whose angle φ from ±K has sin φ = |a0 × e_K| > zone + that bound
+    // (sin φ ≤ φ) rules the pole out without measuring the arc.
+    let turn_bound = std::f64::consts::FRAC_PI_2 * (a1 - a0).norm();
+    let far = a0.cross(&e_k).norm() > zone + turn_bound;
+    let pole = !far && arc_distance(a0, a1, &e_k).min(arc_distance(a0, a1, &-e_k)) < zone;
     Segment {
         delta: length * peak.value,
         u: peak.u,
@@ -459,7 +461,18 @@ pub fn compare(
     length: f64,
     tolerance: f64,
 ) -> Result<Vec<Summary>> {
-    let mut rows = RotaryType::ALL
+    compare_types(machine, axes, length, tolerance, &RotaryType::ALL)
+}
+
+/// [`compare`] on the given types only (the page shares the twelve among its workers).
+pub fn compare_types(
+    machine: &Machine,
+    axes: &[Vector3<f64>],
+    length: f64,
+    tolerance: f64,
+    types: &[RotaryType],
+) -> Result<Vec<Summary>> {
+    let mut rows = types
         .iter()
         .map(|&t| {
             let model = machine_of_type(machine, t).build()?;

@@ -43,10 +43,7 @@ self.onmessage = async (event: MessageEvent) => {
   try {
     await ready;
     if (msg.op === 'read') return await read(msg.id, msg.file, msg.options);
-    const rows = msg.types.map((type) =>
-      engine.toolpathSummary({ ...msg.input, machine: { ...(msg.input.machine ?? {}), type: type as engine.RotaryType } }, msg.points),
-    );
-    post({ id: msg.id, ok: true, result: rows });
+    post({ id: msg.id, ok: true, result: engine.toolpathCompare(msg.input, msg.points, msg.types as engine.RotaryType[]) });
   } catch (err) {
     post({ id: msg.id, ok: false, error: err instanceof Error ? err.message : String(err) });
   }
