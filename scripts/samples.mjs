@@ -1,10 +1,11 @@
-// `node scripts/samples.mjs`: writes the sample toolpaths of public/samples/ (CL data in
+// `node scripts/samples.mjs [dir]`: writes the sample toolpaths of public/samples/ (or of `dir`) (CL data in
 // workpiece coordinates: tool tip in mm, unit tool axis from the tip towards the spindle). The
 // geometry is written out here so that anyone can check what the samples are; the README explains
 // how the twelve rotary-axis types rank on them.
 import { writeFileSync } from 'node:fs';
 
-const out = (name) => new URL(`../public/samples/${name}`, import.meta.url);
+const dir = process.argv[2] ? new URL(`file://${process.argv[2].replace(/\/?$/, '/')}`) : new URL('../public/samples/', import.meta.url);
+const out = (name) => new URL(name, dir);
 const rad = (d) => (d * Math.PI) / 180;
 const f = (x) => (Math.abs(x) < 5e-7 ? '0' : x.toFixed(6).replace(/0+$/, '').replace(/\.$/, ''));
 const unit = ([x, y, z]) => {
@@ -82,4 +83,4 @@ function dome() {
 
 writeFileSync(out('impeller-swarf.apt'), impeller());
 writeFileSync(out('dome-past-the-pole.csv'), dome());
-console.log('wrote public/samples/impeller-swarf.apt and public/samples/dome-past-the-pole.csv');
+console.log(`wrote impeller-swarf.apt and dome-past-the-pole.csv in ${dir.pathname}`);

@@ -57,8 +57,15 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     assert.ok(check.summary.max <= 0.0100001, `refined max ${check.summary.max}`);
     assert.equal(check.summary.above, 0);
 
-    // A bad file: the message names the line and column; the last ranking stays, greyed.
-    await page.setInputFiles('#tp-file', { name: 'bad.csv', mimeType: 'text/csv', buffer: Buffer.from('x,y,z,i,j,k\n0,0,0,0,0,1\n1,0,0,0,0,1x\n') });
+    // A bad file, dropped on the file box: the message names the line and column; the last
+    // ranking stays, greyed.
+    const dropped = await page.evaluateHandle(() => {
+      const dt = new DataTransfer();
+      dt.items.add(new File(['x,y,z,i,j,k\n0,0,0,0,0,1\n1,0,0,0,0,1x\n'], 'bad.csv', { type: 'text/csv' }));
+      return dt;
+    });
+    await page.dispatchEvent('#tp-file', 'dragover', { dataTransfer: dropped });
+    await page.dispatchEvent('#tp-file', 'drop', { dataTransfer: dropped });
     await page.waitForFunction(() => /could not be read/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
     const msg = await page.textContent('#tp-file-msg');
     assert.match(msg, /line 3, column 11/);

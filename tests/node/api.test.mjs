@@ -109,3 +109,14 @@ test('the machine in words, its inverse kinematics and tool vector', () => {
   assert.equal(fa.rotaryTypes().length, 12);
   assert.deepEqual(fa.rotaryTypes().filter((t) => t.group === 'I').map((t) => t.name).sort(), ['ABX', 'ACX', 'BAY', 'BCY', 'CAZ', 'CBZ']);
 });
+
+test('the sample toolpaths are what scripts/samples.mjs writes', async () => {
+  const { execFileSync } = await import('node:child_process');
+  const { mkdtempSync, readFileSync: read } = await import('node:fs');
+  const { tmpdir } = await import('node:os');
+  const dir = mkdtempSync(`${tmpdir()}/samples-`);
+  execFileSync(process.execPath, [new URL('../../scripts/samples.mjs', import.meta.url).pathname, dir]);
+  for (const name of ['impeller-swarf.apt', 'dome-past-the-pole.csv']) {
+    assert.equal(read(`${dir}/${name}`, 'utf8'), read(new URL(`../../public/samples/${name}`, import.meta.url), 'utf8'), name);
+  }
+});

@@ -149,7 +149,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const t = chosenType(m);
     const mine = ++ranks;
     rankTypes(base, parsed.points).then((rows) => {
-      if (mine === ranks) ranking(rows, String(m.type ?? ''), t, tolerance, name);
+      if (mine === ranks) ranking(rows, String(m.type ?? ''), t, tolerance, name, parsed.lines);
     }, (e) => {
       if (mine !== ranks) return;
       engineError(e, along.p);
@@ -163,7 +163,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     exportButton.toggleAttribute('disabled', !(refined && refined.type === t));
   };
 
-  const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string) => {
+  const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string, lines: Float64Array) => {
     const table = el('table', { class: 'ranking' });
     table.append(el('caption', {}, `${name} on the twelve configurations of this kind, best first (tolerance ${show('errLength', tolerance)})`));
     const head = el('tr');
@@ -177,7 +177,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       if (r.type === own) tr.classList.add('own');
       if (r.type === shown) tr.classList.add('shown');
       const cells = r.unreachable
-        ? [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, `cannot follow the path: point ${r.unreachable.point + 1} is ${r.unreachable.message}`]
+        ? [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, `cannot follow the path: point ${r.unreachable.point + 1} (line ${lines[r.unreachable.point]}) is ${r.unreachable.message}`]
         : [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.num(r.kTravel, 4)}°, ${fmt.num(r.mTravel, 4)}°`];
       cells.forEach((c, j) => {
         const td = el('td', r.unreachable && j === 2 ? { colspan: '7' } : {}, c);
@@ -205,7 +205,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['Flips', String(s.flips)],
       ['L', `${fmt.num(a.length)} mm`],
     ]);
-    if (s.unreachable) note(along.p, `${t} cannot follow the path beyond point ${s.unreachable.point}: ${s.unreachable.message}`);
+    if (s.unreachable) note(along.p, `${t} cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}`);
     const x = Array.from({ length: a.delta.length }, (_, i) => i + 1);
     const flips = a.flips.map((i) => i + 1);
     const data: Data[] = [
@@ -213,7 +213,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       { x: [1, Math.max(1, x.length)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
     ];
     if (flips.length) data.push({ x: flips, y: a.flips.map((i) => D(a.delta[i])), type: 'scatter', mode: 'markers', name: 'flip', marker: { color: '#d62728', size: 9, symbol: 'x' } });
-    draw(along.p, `δ along the path on ${t} (Fig 12 style): ${s.above} of ${s.segments} segments above the tolerance, ${s.flips} flips`, data,
+    draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} segments above the tolerance, ${s.flips} flips`, data,
       { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }) }, 'toolpath-delta');
     // The path, each point coloured by the δ of the segment that ends there.
     const p = parsed.points;
@@ -222,7 +222,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const py = Array.from({ length: n }, (_, i) => p[6 * i + 1]);
     const pz = Array.from({ length: n }, (_, i) => p[6 * i + 2]);
     const c = [0, ...Array.from(a.delta, D)];
-    draw(path3d.p, `The path on ${t}, coloured by δ of the segment ending at each point`, [{
+    draw(path3d.p, `The path on ${t}<br>coloured by δ of the segment ending at each point`, [{
       type: 'scatter3d', mode: 'lines+markers', x: px, y: py, z: pz,
       line: { color: c, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: c, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
       hovertemplate: 'x %{x:.3f}<br>y %{y:.3f}<br>z %{z:.3f}<extra></extra>',
