@@ -182,7 +182,7 @@ fn toolpath_exports_refuse_unknown_inputs_and_bad_points() {
     type Export = fn(JsValue, JsValue) -> Result<JsValue, wasm_bindgen::JsError>;
     let exports: [Export; 3] = [
         fa::toolpath_analyse,
-        fa::toolpath_compare,
+        |v, p| fa::toolpath_compare(v, p, JsValue::UNDEFINED),
         fa::toolpath_refine,
     ];
     for f in exports {
@@ -206,6 +206,25 @@ fn toolpath_exports_refuse_unknown_inputs_and_bad_points() {
         let m = error_message(f(jv(&json!({})), jv(&json!([1, 2, 3]))));
         assert!(m.starts_with("points: expected a Float64Array"), "{m}");
     }
+}
+
+#[wasm_bindgen_test]
+fn toolpath_compare_refuses_unknown_types() {
+    let input = jv(&json!({}));
+    let m = error_message(fa::toolpath_compare(
+        input.clone(),
+        path(),
+        jv(&json!(["CAZ", "CAW"])),
+    ));
+    assert!(m.starts_with("types[1]: unknown rotary-axis type"), "{m}");
+    let m = error_message(fa::toolpath_compare(
+        input.clone(),
+        path(),
+        jv(&json!("CAZ")),
+    ));
+    assert!(m.starts_with("types: expected a list"), "{m}");
+    let rows = fa::toolpath_compare(input, path(), jv(&json!(["ABZ", "CAZ"]))).unwrap();
+    assert_eq!(js_sys::Array::from(&rows).length(), 2);
 }
 
 #[wasm_bindgen_test]
