@@ -7,7 +7,7 @@
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::{self, analyse, compare, follow, machine_of_type, refine, slerp};
+use fiveaxis::toolpath::{analyse, compare, follow, machine_of_type, refine, slerp};
 use nalgebra::Vector3;
 use serde_json::json;
 
@@ -161,6 +161,27 @@ fn the_end_of_the_travel_unwinds_the_rotary_table_and_is_flagged() {
     }
     assert_eq!(a.summary.flips, 3);
     assert_eq!(a.summary.poles, 0);
+    // No number of points fixes a swing round at the end of the travel: refining leaves those
+    // three segments as they are, says so, and keeps every other segment within the tolerance
+    // (dense sampling of the commands it gives).
+    let tips = vec![Vector3::zeros(); path.len()];
+    let r = refine(&m, &tips, &path, 100.0, 0.01).unwrap();
+    assert_eq!(r.unfixed, [66, 126, 186]);
+    let t = rtype("CBZ");
+    let mut over = 0;
+    for i in 1..r.k.len() {
+        if dense_delta(
+            t,
+            (1.0, 1.0),
+            (r.k[i - 1], r.m[i - 1]),
+            (r.k[i], r.m[i]),
+            100.0,
+        ) > 0.01 + 1e-12
+        {
+            over += 1;
+        }
+    }
+    assert_eq!(over, 3);
 }
 
 #[test]
@@ -192,6 +213,12 @@ fn a_tilt_beyond_the_travel_stops_the_path_at_that_point() {
     assert!(rows[first_unreachable..]
         .iter()
         .all(|r| r.unreachable.is_some()));
+    // Among those, the farther a type gets along the path, the better it ranks.
+    let stops: Vec<usize> = rows[first_unreachable..]
+        .iter()
+        .map(|r| r.unreachable.as_ref().unwrap().point)
+        .collect();
+    assert!(stops.windows(2).all(|w| w[0] >= w[1]), "{stops:?}");
 }
 
 #[test]
@@ -307,7 +334,6 @@ fn inputs_that_cannot_be_analysed_are_refused_with_their_path() {
     assert_eq!(err.field, "length");
     let err = analyse(&m, &[Vector3::z(), Vector3::x()], 100.0, -1.0).unwrap_err();
     assert_eq!(err.field, "tolerance");
-    let _ = toolpath::POLE_ANGLE_DEG;
 }
 
 /// The tool axes of a sample file of `public/samples/` (written by `scripts/samples.mjs`).

@@ -56,6 +56,11 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     const check = fa.toolpathAnalyse({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, back.points);
     assert.ok(check.summary.max <= 0.0100001, `refined max ${check.summary.max}`);
     assert.equal(check.summary.above, 0);
+    // A refined path belongs to its inputs: another tolerance drops it.
+    await page.fill('#tp-tolerance', '20');
+    await page.waitForFunction(() => document.getElementById('tp-export')?.hasAttribute('disabled'));
+    assert.equal(await page.textContent('#tp-refine-out'), '');
+    await page.fill('#tp-tolerance', '10');
 
     // A bad file, dropped on the file box: the message names the line and column; the last
     // ranking stays, greyed.

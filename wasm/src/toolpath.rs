@@ -252,6 +252,9 @@ pub struct ToolpathRefined {
     pub added: usize,
     /// Largest δ of the refined path, mm.
     pub max: f64,
+    /// Segments (index of their first original point) that no number of points keeps within the
+    /// tolerance (a swing round at the end of the travel), left as they were.
+    pub unfixed: Vec<usize>,
 }
 
 /// The path with the fewest equally spaced points inserted into each segment above the
@@ -282,6 +285,7 @@ pub fn toolpath_refine(
         source: f64_array(&source),
         added: r.added,
         max: r.max,
+        unfixed: r.unfixed,
     })
 }
 

@@ -283,7 +283,8 @@ impl NonlinearCase {
     /// The move from `start` to `end` (this machine's commands) as a tool path, its start and end
     /// tool vectors, made by each of the twelve types (the machine's kind, senses and travel;
     /// [`crate::toolpath::follow`]: the smallest tilt at the start, the nearest solution at the
-    /// end), with its exact maximum error at this `L`.
+    /// end; the machine's own type by the commands given), with its exact maximum error at this
+    /// `L`.
     pub fn compare_types(&self, start: &MoveStart, end: &MoveEnd) -> Result<Vec<TypeComparison>> {
         let length = self.length()?;
         let mv = self.move_between(start, end);
@@ -293,7 +294,17 @@ impl NonlinearCase {
             .iter()
             .map(|&t| {
                 let model = crate::toolpath::machine_of_type(&self.machine, t).build()?;
-                let f = crate::toolpath::follow(&model, &ends)?;
+                // The machine's own type makes the move as commanded; the others as they would
+                // follow the tool vectors.
+                let f = if t == self.rtype() {
+                    crate::toolpath::Following {
+                        k: vec![start.k, end.k],
+                        m: vec![start.m, end.m],
+                        unreachable: None,
+                    }
+                } else {
+                    crate::toolpath::follow(&model, &ends)?
+                };
                 let lay = model.layout;
                 let pose = |i: usize| Pose::new(lay.k_factor * f.k[i], lay.m_factor * f.m[i]);
                 let reached = f.unreachable.is_none();

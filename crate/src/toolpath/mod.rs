@@ -24,13 +24,14 @@
 //!   than [`FLIP_ANGLE_DEG`] in one segment, and `|ΔK| + |ΔM|` exceeds [`FLIP_RATIO`] times the
 //!   angle between the segment's two tool axes. That is what passing next to the pole does (K
 //!   turns by up to 180° while the tool axis turns by a degree), and what unwinding at the end of
-//!   the travel does (a whole turn). Ordinary segments turn K by at most `1/sin(tilt)` times the
-//!   tool's turn, so tilts above 5.7° are never flagged.
+//!   the travel does (a whole turn). On a short segment K turns by about `1/sin(tilt)` times the
+//!   tool's turn, so short segments at tilts above about 6° are not flagged.
 //!
 //! # Ranking
 //! [`compare`] follows the path on each of the twelve types of [`RotaryType::ALL`] (the given
 //! machine with its type replaced: same kind, geometry, senses and travel) and ranks them:
-//! types that can follow the whole path first, by their largest δ; then the others.
+//! types that can follow the whole path first, by their largest δ; then the others, the farthest
+//! along the path first.
 //!
 //! # Fixing the path
 //! [`refine`] inserts points into each segment whose δ exceeds the tolerance: `n − 1` points at
@@ -483,13 +484,17 @@ pub fn compare_types(
     Ok(rows)
 }
 
-/// Sorts rows: those that follow the whole path first, by largest δ, then by mean δ.
+/// Sorts rows: those that follow the whole path first, by largest δ, then by mean δ; then those
+/// that cannot, the farthest along the path first.
 pub fn rank(rows: &mut [Summary]) {
     rows.sort_by(|a, b| {
-        (a.unreachable.is_some())
-            .cmp(&b.unreachable.is_some())
-            .then(a.max.total_cmp(&b.max))
-            .then(a.mean.total_cmp(&b.mean))
+        let stop = |s: &Summary| s.unreachable.as_ref().map(|u| u.point);
+        match (stop(a), stop(b)) {
+            (None, None) => a.max.total_cmp(&b.max).then(a.mean.total_cmp(&b.mean)),
+            (None, Some(_)) => std::cmp::Ordering::Less,
+            (Some(_), None) => std::cmp::Ordering::Greater,
+            (Some(x), Some(y)) => y.cmp(&x),
+        }
     });
 }
 
@@ -510,10 +515,16 @@ pub struct Refined {
     pub added: usize,
     /// Largest δ of the refined path, mm.
     pub max: f64,
+    /// Segments (by the index of their first point) that no number of pieces keeps within the
+    /// tolerance, left as they were: the rotary axes swing round in them whatever the steps
+    /// (unwinding at the end of the travel).
+    pub unfixed: Vec<usize>,
 }
 
-/// Inserts the fewest equally spaced points into each segment above `tolerance` (mm) so that
-/// every piece stays within it (module docs). The machine must reach the whole path.
+/// Inserts equally spaced points into each segment above `tolerance` (mm) so that every piece
+/// stays within it, one piece fewer would not (module docs), and segments within it get none;
+/// a segment that [`MAX_PIECES`] pieces do not fix is left as it is and listed in
+/// [`Refined::unfixed`]. The machine must reach the whole path.
 pub fn refine(
     model: &Model,
     tips: &[Vector3<f64>],
@@ -521,68 +532,73 @@ pub fn refine(
     length: f64,
     tolerance: f64,
 ) -> Result<Refined> {
-    if tips.len() != axes.len() {
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_positive("tolerance", tolerance, MAX_LENGTH_MM, "mm")?;
+    if tips.len() != axes.len() || axes.len() < 2 {
         return Err(Error::field(
             "points",
-            "as many tool tips as tool axes are needed",
+            "at least 2 points, each with a tool tip and a tool axis, are needed",
         ));
     }
-    let a = analyse(model, axes, length, tolerance)?;
-    if let Some((i, why)) = &a.following.unreachable {
-        return Err(Error::field(format!("points[{i}]"), why.clone()));
-    }
     let unit: Vec<Vector3<f64>> = axes.iter().map(|v| v.normalize()).collect();
-    let f = &a.following;
+    let first = follow(model, &unit[..1])?;
+    if let Some((i, why)) = first.unreachable {
+        return Err(Error::field(format!("points[{i}]"), why));
+    }
     let mut out = Refined {
         tips: vec![tips[0]],
         axes: vec![unit[0]],
-        k: vec![f.k[0]],
-        m: vec![f.m[0]],
+        k: vec![first.k[0]],
+        m: vec![first.m[0]],
         source: vec![Some(0)],
         added: 0,
         max: 0.0,
+        unfixed: Vec::new(),
     };
-    for (i, s) in a.segments.iter().enumerate() {
-        if s.delta <= tolerance {
-            out.max = out.max.max(s.delta);
-        } else {
-            let pieces = split(model, length, tolerance, &out, (tips[i + 1], unit[i + 1]))
-                .map_err(|e| Error::field(format!("points[{}]", i + 1), e.message))?
-                .ok_or_else(|| {
-                    Error::field(
-                        format!("points[{}]", i + 1),
-                        format!(
-                            "more than {MAX_PIECES} pieces would be needed to keep the segment \
-                             within the tolerance"
-                        ),
-                    )
-                })?;
-            out.max = out.max.max(pieces.max);
-            for p in 0..pieces.k.len() - 1 {
-                out.tips.push(pieces.tips[p]);
-                out.axes.push(pieces.axes[p]);
-                out.k.push(pieces.k[p]);
-                out.m.push(pieces.m[p]);
-                out.source.push(None);
-                out.added += 1;
-            }
-        }
-        out.tips.push(tips[i + 1]);
-        out.axes.push(unit[i + 1]);
+    for i in 0..unit.len() - 1 {
         let last = out.k.len() - 1;
-        let o = model.orientations(
-            &unit[i + 1],
-            BranchRule::Nearest,
-            Some([out.k[last], out.m[last]]),
-        )?;
+        let prev = (out.k[last], out.m[last]);
+        let at = |e: Error| Error::field(format!("points[{}]", i + 1), e.message);
+        let o = model
+            .orientations(&unit[i + 1], BranchRule::Nearest, Some([prev.0, prev.1]))
+            .map_err(at)?;
         let c = o.solutions[o.chosen.ok_or_else(|| {
             Error::field(
                 format!("points[{}]", i + 1),
                 o.unreachable.clone().unwrap_or_default(),
             )
         })?];
-        out.k.push(c.k);
-        out.m.push(c.m);
+        // The segment as it is now (its start may be an inserted point's commands).
+        let s = segment(model, length, prev, (c.k, c.m), &unit[i], &unit[i + 1]);
+        let mut end = (c.k, c.m);
+        if s.delta <= tolerance {
+            out.max = out.max.max(s.delta);
+        } else {
+            match split(model, length, tolerance, &out, (tips[i + 1], unit[i + 1])).map_err(at)? {
+                Some(pieces) => {
+                    out.max = out.max.max(pieces.max);
+                    let n = pieces.k.len();
+                    for p in 0..n - 1 {
+                        out.tips.push(pieces.tips[p]);
+                        out.axes.push(pieces.axes[p]);
+                        out.k.push(pieces.k[p]);
+                        out.m.push(pieces.m[p]);
+                        out.source.push(None);
+                        out.added += 1;
+                    }
+                    end = (pieces.k[n - 1], pieces.m[n - 1]);
+                }
+                None => {
+                    // No number of pieces helps (a flip at the end of the travel): left as it is.
+                    out.max = out.max.max(s.delta);
+                    out.unfixed.push(i);
+                }
+            }
+        }
+        out.tips.push(tips[i + 1]);
+        out.axes.push(unit[i + 1]);
+        out.k.push(end.0);
+        out.m.push(end.1);
         out.source.push(Some(i + 1));
     }
     Ok(out)

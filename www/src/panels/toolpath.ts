@@ -35,6 +35,10 @@ export const toolpathPanel: Panel = {
 interface Loaded {
   name: string;
   parsed: ParsedToolpath;
+  /** The file (to read NC blocks again for another machine). */
+  source: Blob | string;
+  /** The machine it was read for. */
+  machineKey: string;
 }
 
 async function mount(root: HTMLElement, machine: MachineSection) {
@@ -47,7 +51,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       'between two points the control turns the rotary axes linearly, and the tool tip leaves the programmed ' +
       'motion by δ (the nonlinear error). The ranking says which configuration machines the path more ' +
       'accurately; flips (the rotary axes swinging round near their pole or at the end of their travel) are ' +
-      'flagged. Geng, Wu & Qiu, Math. Problems in Engineering 2018, Section 5. The file stays in this browser.',
+      'flagged. δ is taken at one length L (the tool tip\'s distance from the axis it swings about), not point by ' +
+      'point. Geng, Wu & Qiu, Math. Problems in Engineering 2018, Section 5. The file stays in this browser.',
   );
 
   // ---- inputs
@@ -88,10 +93,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   results.append(summary, tableWrap, refineBox, plots);
 
   let ranks = 0;
+  let details = 0;
+  let refines = 0;
   const runAnalyse = channel('toolpathAnalyse');
   const engineError = engineErrors(inputs.byPath, machine);
   let loaded: Loaded | null = null;
-  let refined: { type: string; r: ToolpathRefined; from: string } | null = null;
+  let refined: { type: string; r: ToolpathRefined; from: Loaded } | null = null;
 
   const fileText = (text: string) => (fileMsg.textContent = text);
   const setSummary = (rows: [string, string][]) => {
@@ -99,68 +106,114 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const [k, v] of rows) summary.append(el('dt', {}, k), el('dd', {}, v));
   };
 
-  /** Reads a file's text with the engine; on a bad line the message names it and the last
-   *  analysis stays (greyed, still saying which file it came from). */
+  /** Reads a file in a worker; on a bad line the message names it and the last analysis stays
+   *  (greyed, still saying which file it came from). `get` fetches the file (a sample) or is it. */
   let loads = 0;
-  const load = async (name: string, text: Blob | string) => {
-    const mine = ++loads;
+  const load = async (name: string, get: () => Promise<Blob | string>) => {
+    const mine = ++loads; // taken first: a file chosen while a sample downloads wins
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) return fileText(`${name}: fix the fields marked first.`);
     fileText(`Reading ${name}…`);
     try {
+      const source = await get();
+      if (mine !== loads) return;
       progress.hidden = false;
       progress.value = 0;
-      const parsed = await readToolpath(text, { machine: m as Machine, format: own.format as 'auto' }, (f) => {
+      const parsed = await readToolpath(source, { machine: m as Machine, format: own.format as 'auto' }, (f) => {
         if (mine === loads) progress.value = f;
       });
       if (mine !== loads) return; // a newer file was chosen meanwhile
       progress.hidden = true;
-      loaded = { name, parsed };
-      refined = null;
-      fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).`);
+      loaded = { name, parsed, source, machineKey: JSON.stringify(m) };
+      fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).` +
+        (parsed.format === 'nc' ? ' NC blocks: the tool axes come from their commands on this machine; each configuration then follows those axes by its own continuity.' : ''));
       update();
     } catch (err) {
       if (mine !== loads) return;
       progress.hidden = true;
       const e = showAtField(err, inputs.byPath, machine);
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
-      for (const p of [along.p, path3d.p]) stale(p, true);
-      tableWrap.classList.add('stale');
+      greyAll();
     }
   };
 
   const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
+  const greyAll = () => {
+    for (const p of [along.p, path3d.p]) stale(p, true);
+    tableWrap.classList.add('stale');
+  };
+  /** A refined path belongs to the inputs it was made with: any change drops it. */
+  const dropRefined = () => {
+    refined = null;
+    refines++;
+    refineOut.textContent = '';
+    exportButton.setAttribute('disabled', '');
+  };
+
+  /** The inputs of the analyses, or null (messages at the fields). */
+  const current = () => {
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own || !loaded) return null;
+    const base = { machine: m as Machine, tolerance: own.tolerance as number, ...(own.length === undefined ? {} : { length: own.length as number }) };
+    return { m, base, t: chosenType(m), loaded };
+  };
+
+  /** The ranking of the twelve types (a moment after the last edit: each one copies the path to
+   *  every worker). */
+  let rankTimer: number | undefined;
+  const rerank = () => {
+    const mine = ++ranks;
+    clearTimeout(rankTimer);
+    const c = current();
+    if (!c) return;
+    rankTimer = window.setTimeout(() => {
+      const { m, base, t, loaded: l } = c;
+      rankTypes(base, l.parsed.points).then((rows) => {
+        if (mine === ranks) ranking(rows, String(m.type ?? ''), t, base.tolerance, l.name, l.parsed.lines);
+      }, (e) => {
+        if (mine !== ranks) return;
+        engineError(e, along.p);
+        tableWrap.classList.add('stale');
+      });
+    }, 150);
+  };
+
+  /** The detail of the configuration shown: δ along the path and the 3D path. */
+  const detail = () => {
+    const mine = ++details;
+    const c = current();
+    if (!c) return;
+    const { m, base, t, loaded: l } = c;
+    for (const tr of tableWrap.querySelectorAll<HTMLElement>('tbody tr')) tr.classList.toggle('shown', tr.dataset.type === t);
+    runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, l.parsed.points).then((a) => {
+      if (a === SUPERSEDED || mine !== details) return;
+      showAnalysis(a, t, l.name, l.parsed);
+    }, (e) => {
+      if (mine === details) engineError(e, along.p);
+    });
+  };
 
   const update = () => {
     inputs.setContext(machine.context());
+    dropRefined();
     const m = machine.current();
-    const own = inputs.read();
-    if (!m || !own || !loaded) {
-      if (loaded) {
-        for (const p of [along.p, path3d.p]) stale(p, true);
-        tableWrap.classList.add('stale');
-      }
+    // NC blocks are this machine's commands: another machine reads them again.
+    if (m && loaded && loaded.parsed.format === 'nc' && loaded.machineKey !== JSON.stringify(m)) {
+      const { name, source } = loaded;
+      void load(name, async () => source);
       return;
     }
-    const { name, parsed } = loaded;
-    const tolerance = own.tolerance as number;
-    const base = { machine: m as Machine, tolerance, ...(own.length === undefined ? {} : { length: own.length as number }) };
-    const t = chosenType(m);
-    const mine = ++ranks;
-    rankTypes(base, parsed.points).then((rows) => {
-      if (mine === ranks) ranking(rows, String(m.type ?? ''), t, tolerance, name, parsed.lines);
-    }, (e) => {
-      if (mine !== ranks) return;
-      engineError(e, along.p);
-      tableWrap.classList.add('stale');
-    });
-    runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, parsed.points).then((a) => {
-      if (a === SUPERSEDED) return;
-      showAnalysis(a, t, name, parsed);
-    }, (e) => engineError(e, along.p));
-    refineOut.textContent = refined && refined.type === t ? refineOut.textContent : '';
-    exportButton.toggleAttribute('disabled', !(refined && refined.type === t));
+    if (!current()) {
+      // Whatever is still being computed no longer answers the inputs.
+      ranks++;
+      details++;
+      if (loaded) greyAll();
+      return;
+    }
+    rerank();
+    detail();
   };
 
   const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string, lines: Float64Array) => {
@@ -185,7 +238,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       });
       tr.addEventListener('click', () => {
         typeSel.select.value = r.type;
-        update();
+        dropRefined();
+        detail();
       });
       body.append(tr);
     });
@@ -230,18 +284,22 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   refineButton.addEventListener('click', async () => {
-    const m = machine.current();
-    const own = inputs.read();
-    if (!m || !own || !loaded) return;
-    const t = chosenType(m);
-    const from = loaded.name;
+    const c = current();
+    if (!c) return;
+    const { base, t, loaded: l } = c;
+    const mine = ++refines;
     refineOut.textContent = 'Refining…';
     try {
-      const r = await call('toolpathRefine', { machine: { ...(m as Machine), type: t as Machine['type'] }, tolerance: own.tolerance as number, ...(own.length === undefined ? {} : { length: own.length as number }) }, loaded.parsed.points);
-      refined = { type: t, r, from };
-      refineOut.textContent = `${r.added} points inserted into ${from} for ${t}: the largest δ is now ${show('errLength', r.max)} (${r.k.length} points in all).`;
+      const r = await call('toolpathRefine', { ...base, machine: { ...base.machine, type: t as Machine['type'] } }, l.parsed.points);
+      if (mine !== refines || loaded !== l) return; // the inputs or the file changed meanwhile
+      refined = { type: t, r, from: l };
+      const unfixed = r.unfixed.length
+        ? ` ${r.unfixed.length} segment${r.unfixed.length > 1 ? 's' : ''} (from point${r.unfixed.length > 1 ? 's' : ''} ${r.unfixed.slice(0, 5).map((i) => i + 1).join(', ')}${r.unfixed.length > 5 ? ' …' : ''}) cannot be fixed by points: the rotary axes swing round there (the end of their travel).`
+        : '';
+      refineOut.textContent = `${r.added} points inserted into ${l.name} for ${t}: the largest δ is now ${show('errLength', r.max)} (${r.k.length} points in all).${unfixed}`;
       exportButton.removeAttribute('disabled');
     } catch (err) {
+      if (mine !== refines) return;
       refineOut.textContent = `Could not refine: ${String((err as Error).message ?? err)}`;
       exportButton.setAttribute('disabled', '');
     }
@@ -249,14 +307,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   exportButton.addEventListener('click', async () => {
     const m = machine.current();
-    if (!m || !refined || !loaded) return;
-    const format = loaded.parsed.format as 'csv' | 'apt' | 'nc';
+    if (!m || !refined) return;
     const { r, type, from } = refined;
+    const format = from.parsed.format as 'csv' | 'apt' | 'nc';
+    if (format === 'nc' && type !== String(m.type)) {
+      refineOut.textContent = `NC blocks are written for this machine (${String(m.type)}) only: choose it in the ranking, or set the machine to ${type}.`;
+      return;
+    }
     const angles = new Float64Array(2 * r.k.length);
     for (let i = 0; i < r.k.length; i++) (angles[2 * i] = r.k[i]), (angles[2 * i + 1] = r.m[i]);
     try {
       const text = await call('toolpathWrite', { machine: { ...(m as Machine), type: type as Machine['type'] }, format }, r.points, format === 'nc' ? angles : undefined);
-      const stem = from.replace(/\.[^.]*$/, '');
+      const stem = from.name.replace(/\.[^.]*$/, '');
       download(`${stem}-refined-${type}.${format}`, text, 'text/plain');
     } catch (err) {
       refineOut.textContent = `Could not write the refined path: ${String((err as Error).message ?? err)}`;
@@ -266,17 +328,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   sample.select.addEventListener('change', async () => {
     const name = sample.select.value;
     if (!name) return;
-    try {
+    await load(name, async () => {
       const res = await fetch(`samples/${name}`);
-      if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
-      await load(name, await res.blob());
-    } catch (e) {
-      fileText(`Could not load the sample ${name}: ${String(e)}`);
-    }
+      if (!res.ok) throw new Error(`could not load the sample: ${res.status} ${res.statusText}`);
+      return res.blob();
+    });
   });
   const readFile = async (f: File) => {
     sample.select.value = '';
-    await load(f.name, f);
+    await load(f.name, async () => f);
   };
   file.addEventListener('change', async () => {
     const f = file.files?.[0];
@@ -297,12 +357,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   form.addEventListener('input', (e) => {
     const id = (e.target as HTMLElement).id;
-    if (id === 'tp-file' || id === 'tp-sample') return;
+    if (id === 'tp-file' || id === 'tp-sample' || id === 'tp-type') return;
     if (id === 'tp-format' && loaded) return fileText('The format applies to the next file read.');
     update();
   });
   form.addEventListener('change', (e) => {
-    if ((e.target as HTMLElement).id === 'tp-type') update();
+    if ((e.target as HTMLElement).id === 'tp-type') {
+      dropRefined();
+      detail();
+    }
   });
   machine.onChange(update);
   onUnitsChange(update);

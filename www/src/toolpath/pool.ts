@@ -11,40 +11,48 @@ export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'B
 export const WORKERS = Math.max(1, Math.min(navigator.hardwareConcurrency || 2, 6));
 
 interface Job {
+  worker: number;
   resolve: (v: unknown) => void;
   reject: (e: Error) => void;
   progress?: (fraction: number) => void;
 }
 
-const workers: Worker[] = [];
+const workers: (Worker | undefined)[] = [];
 const jobs = new Map<number, Job>();
 let nextId = 1;
 
 function worker(i: number): Worker {
-  while (workers.length <= i) {
-    const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
-    w.onmessage = (event: MessageEvent<{ id: number; ok?: boolean; result?: unknown; error?: string; progress?: number }>) => {
-      const { id, ok, result, error, progress } = event.data;
-      const job = jobs.get(id);
-      if (!job) return;
-      if (progress !== undefined) return job.progress?.(progress);
+  const existing = workers[i];
+  if (existing) return existing;
+  const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  w.onmessage = (event: MessageEvent<{ id: number; ok?: boolean; result?: unknown; error?: string; progress?: number }>) => {
+    const { id, ok, result, error, progress } = event.data;
+    const job = jobs.get(id);
+    if (!job) return;
+    if (progress !== undefined) return job.progress?.(progress);
+    jobs.delete(id);
+    if (ok) job.resolve(result);
+    else job.reject(new EngineError(error ?? 'unknown toolpath error'));
+  };
+  // A worker that fails (out of memory, say) fails its own jobs and is replaced by the next call.
+  w.onerror = (event) => {
+    event.preventDefault();
+    for (const [id, job] of jobs) {
+      if (job.worker !== i) continue;
       jobs.delete(id);
-      if (ok) job.resolve(result);
-      else job.reject(new EngineError(error ?? 'unknown toolpath error'));
-    };
-    w.onerror = (event) => {
-      for (const job of jobs.values()) job.reject(new EngineError(`toolpath worker failed: ${event.message}`));
-      jobs.clear();
-    };
-    workers.push(w);
-  }
-  return workers[i];
+      job.reject(new EngineError(`toolpath worker failed: ${event.message || 'it stopped'}`));
+    }
+    w.terminate();
+    workers[i] = undefined;
+  };
+  workers[i] = w;
+  return w;
 }
 
 function run<T>(i: number, message: Record<string, unknown>, progress?: (f: number) => void): Promise<T> {
   const id = nextId++;
   return new Promise<T>((resolve, reject) => {
-    jobs.set(id, { resolve: resolve as (v: unknown) => void, reject, progress });
+    jobs.set(id, { worker: i, resolve: resolve as (v: unknown) => void, reject, progress });
     worker(i).postMessage({ id, ...message });
   });
 }
@@ -58,7 +66,7 @@ export function readToolpath(file: Blob | string, options: ToolpathReadInput, pr
 /**
  * The ranking rows of the path on each of `types` (the machine's kind and travel), computed by
  * `workers` workers, in the engine's order (`fiveaxis::toolpath::rank`: the types that follow the
- * whole path first, by largest δ, then mean δ).
+ * whole path first, by largest δ, then mean δ; then the others, the farthest along first).
  */
 export async function rankTypes(input: ToolpathCase, points: Float64Array, types = TYPES, count = WORKERS): Promise<ToolpathSummary[]> {
   const n = Math.max(1, Math.min(count, types.length));
@@ -66,7 +74,8 @@ export async function rankTypes(input: ToolpathCase, points: Float64Array, types
   const parts = await Promise.all(shares.map((share, i) => run<ToolpathSummary[]>(i, { op: 'summaries', input, points, types: share })));
   // In the types' order first, so that ties keep it, as the engine's stable sort does.
   const rows = parts.flat().sort((a, b) => TYPES.indexOf(a.type) - TYPES.indexOf(b.type));
-  return rows.sort((a, b) => Number(a.unreachable !== null) - Number(b.unreachable !== null) || a.max - b.max || a.mean - b.mean);
+  const stop = (r: ToolpathSummary) => r.unreachable?.point ?? Infinity;
+  return rows.sort((a, b) => stop(b) - stop(a) || a.max - b.max || a.mean - b.mean);
 }
 
 (window as unknown as { fiveaxisToolpath: unknown }).fiveaxisToolpath = { readToolpath, rankTypes, TYPES, WORKERS };
