@@ -249,18 +249,7 @@ impl RotaryType {
         dk: f64,
         dm: f64,
     ) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        let (ka, ma) = (self.k.axis(), self.m.axis());
-        let w = rotate(ma, pose.m, &self.home.unit());
-        let mw = cross_axis(ma, &w);
-        let mmw = cross_axis(ma, &mw);
-        let v = rotate(ka, pose.k, &w);
-        let r_mw = rotate(ka, pose.k, &mw);
-        let r_mmw = rotate(ka, pose.k, &mmw);
-        let kv = cross_axis(ka, &v);
-        let d1 = kv * dk + r_mw * dm;
-        let d2 = cross_axis(ka, &kv) * (dk * dk)
-            + cross_axis(ka, &r_mw) * (2.0 * dk * dm)
-            + r_mmw * (dm * dm);
+        let [v, d1, d2, _] = self.tool_vector_jet(pose, dk, dm);
         (v, d1, d2)
     }
 
@@ -271,7 +260,7 @@ impl RotaryType {
     /// derivative `d/du` acts as `dk·K` on the left of `R_K` plus `dm·M` between `R_K` and `R_M`
     /// (each commutes with its own rotation), so
     /// `V''' = dk³·K³V + 3·dk²·dm·K²R_K(Mw) + 3·dk·dm²·K R_K(M²w) + dm³·R_K(M³w)`.
-    /// `V`, `V'` and `V''` are computed exactly as in [`Self::tool_vector_derivatives`].
+    /// [`Self::tool_vector_derivatives`] is its first three terms.
     pub fn tool_vector_jet(&self, pose: Pose, dk: f64, dm: f64) -> [Vector3<f64>; 4] {
         let (ka, ma) = (self.k.axis(), self.m.axis());
         let w = rotate(ma, pose.m, &self.home.unit());

@@ -134,6 +134,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       progress.hidden = true;
       const e = showAtField(err, inputs.byPath, machine);
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
+      // What is still being computed for the last file must not make it look current again.
+      clearTimeout(rankTimer);
+      ranks++;
+      details++;
       greyAll();
     }
   };
