@@ -18,8 +18,17 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     await page.waitForFunction(() => /751 points \(APT/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
     // The dome passes 0.3° beside the vertical: the four types whose K turns about Z flip
     // twice (see crate/tests/toolpath_compare.rs for why), ABX and ACX cannot start.
-    await page.selectOption('#tp-sample', 'dome-past-the-pole.csv');
-    await page.waitForSelector('#tp-ranking table tbody tr');
+    // The dome sample, dropped on the file box as a user's file.
+    const domeText = readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8');
+    const domeFile = await page.evaluateHandle((text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], 'dome-past-the-pole.csv', { type: 'text/csv' }));
+      return dt;
+    }, domeText);
+    await page.dispatchEvent('#tp-file', 'drop', { dataTransfer: domeFile });
+    await page.waitForFunction(() => /Read dome-past-the-pole\.csv: 81 points/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    await page.waitForFunction(() => document.querySelector('#tp-ranking caption')?.textContent?.startsWith('dome-past-the-pole.csv'));
+    await page.waitForFunction(() => /dome-past-the-pole\.csv/.test(document.getElementById('tp-summary')?.textContent ?? ''));
     await waitPlotted(page, 'tp-delta');
     await waitPlotted(page, 'tp-path');
     const rows = await page.$$eval('#tp-ranking tbody tr', (trs) => trs.map((tr) => ({ type: tr.dataset.type, cells: [...tr.cells].map((c) => c.textContent) })));
