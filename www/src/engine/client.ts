@@ -95,10 +95,18 @@ export function channel<F extends FnName>(fn: F) {
       start(w.args, w.resolve, w.reject);
     }
   };
-  return (...args: Args<F>): Promise<Result<F> | typeof SUPERSEDED> =>
+  const run = (...args: Args<F>): Promise<Result<F> | typeof SUPERSEDED> =>
     new Promise((resolve, reject) => {
       if (!running) return start(args, resolve, reject);
       waiting?.resolve(SUPERSEDED);
       waiting = { args, resolve, reject };
     });
+  /** Drops the waiting request and makes the running one come back SUPERSEDED: for when the
+   *  inputs turn invalid, so that a late result does not look current. */
+  const cancel = () => {
+    generation++;
+    waiting?.resolve(SUPERSEDED);
+    waiting = null;
+  };
+  return Object.assign(run, { cancel });
 }

@@ -91,6 +91,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const rng = range.read();
     if (!m || !own || rng === null) {
       for (const p of [zonesPlot, mapPlot, sensPlot]) stale(p.p, true);
+      for (const run of [runTest, runMap]) run.cancel(); // a late result would look current
       return;
     }
     fixedRange = rng ? rng : null;

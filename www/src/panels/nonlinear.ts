@@ -85,6 +85,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       // Messages are at the fields; the plots no longer show what the inputs ask for.
       for (const p of allPlots) stale(p.p, true);
       stale(ikOut, true);
+      // A result still on its way would look current: drop it.
+      for (const run of [runMove, runSweepK, runSweepM, runGrid, runGridU, runCompare, runIk]) run.cancel();
       return;
     }
     const t = String(m.type ?? 'CBZ');

@@ -109,6 +109,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!i) {
       for (const p of [part3d, mapA, mapB, defects, fitPlot, residualPlot]) stale(p.p, true);
       stale(ident, true);
+      for (const run of [runOvercut, runDefects, runIdentify]) run.cancel(); // a late result would look current
       return;
     }
     runOvercut({ tool: i.tool, nu: i.nu, nv: i.nv } as never).then((o) => {

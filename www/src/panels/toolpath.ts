@@ -213,6 +213,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       // Whatever is still being computed no longer answers the inputs.
       ranks++;
       details++;
+      runAnalyse.cancel();
       if (loaded) greyAll();
       return;
     }
