@@ -133,6 +133,11 @@ pub(crate) fn f64_array(values: &[f64]) -> Series {
     Series(Float64Array::from(values))
 }
 
+/// A `Float64Array` of `radians` in degrees (angles at the API edge).
+pub(crate) fn degrees(radians: &[f64]) -> Series {
+    f64_array(&radians.iter().map(|x| x.to_degrees()).collect::<Vec<_>>())
+}
+
 /// The quantity of an error by ISO name; names not in the table (`"dR"`) are small lengths.
 pub(crate) fn error_quantity(name: &str) -> Quantity {
     fiveaxis::machine::errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity)

@@ -1,7 +1,7 @@
 //! Exports of the nonlinear-error study (see `fiveaxis::nonlinear`). Every input is the machine
 //! (its type, senses and pivot), optionally `L`, and the export's own fields, in one object.
 
-use crate::{f64_array, js_error, json, output, Series};
+use crate::{degrees, f64_array, js_error, json, output, Series};
 use fiveaxis::nonlinear::{
     self, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, Reference, SweepKInput,
     SweepMInput, TypeCompareInput,
@@ -191,12 +191,11 @@ pub fn nonlinear_grid(
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, NonlinearGridInput) = read(&value)?;
     let g = c.grid(&i).map_err(js_error)?;
-    let deg = |a: &[f64]| -> Vec<f64> { a.iter().map(|x| x.to_degrees()).collect() };
     output(&GridResult {
         nx: g.nx,
         ny: g.ny,
-        d_k: f64_array(&deg(&g.d_k)),
-        d_m: f64_array(&deg(&g.d_m)),
+        d_k: degrees(&g.d_k),
+        d_m: degrees(&g.d_m),
         max: f64_array(&g.max),
         u_at_max: g.u_at_max,
     })

@@ -3,7 +3,7 @@
 //! `Float64Array` of `[x, y, z, i, j, k]` per point (tip mm, tool axis any length, workpiece
 //! coordinates), the case (machine, `L`, tolerance) as a plain object.
 
-use crate::{f64_array, js_error, json, output, Series};
+use crate::{degrees, f64_array, js_error, json, output, Series};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::toolpath::parse::{write, Format, Parser, Point};
 use fiveaxis::toolpath::{Summary, ToolpathCase, ToolpathReadInput, Unreachable};
@@ -156,10 +156,6 @@ pub struct ToolpathAnalysis {
     pub flips: Vec<usize>,
     /// Indices of the segments passing by the pole.
     pub poles: Vec<usize>,
-}
-
-fn degrees(v: &[f64]) -> Series {
-    f64_array(&v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>())
 }
 
 /// The path on the machine: its commands, each segment's nonlinear error and where, flips and

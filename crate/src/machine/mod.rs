@@ -700,6 +700,15 @@ pub struct Orientations {
     pub pole_angle: f64,
 }
 
+impl Orientations {
+    /// The chosen solution, or an error on `field` saying why none is within the travel.
+    pub fn pick(&self, field: &str) -> Result<Candidate> {
+        self.chosen
+            .map(|i| self.solutions[i])
+            .ok_or_else(|| Error::field(field, self.unreachable.clone().unwrap_or_default()))
+    }
+}
+
 /// A pose from [`Model::inverse`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Solved {
@@ -835,10 +844,7 @@ impl Model {
             }
         }
         let o = self.orientations(direction, rule, previous.map(|p| [p[lay.k], p[lay.m]]))?;
-        let c = o
-            .chosen
-            .map(|i| o.solutions[i])
-            .ok_or_else(|| Error::field("", o.unreachable.unwrap_or_default()))?;
+        let c = o.pick("")?;
         let mut q = previous.map_or_else(|| vec![0.0; self.chain.len()], <[f64]>::to_vec);
         q[lay.k] = c.k;
         q[lay.m] = c.m;

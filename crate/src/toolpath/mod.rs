@@ -562,12 +562,7 @@ pub fn refine(
         let o = model
             .orientations(&unit[i + 1], BranchRule::Nearest, Some([prev.0, prev.1]))
             .map_err(at)?;
-        let c = o.solutions[o.chosen.ok_or_else(|| {
-            Error::field(
-                format!("points[{}]", i + 1),
-                o.unreachable.clone().unwrap_or_default(),
-            )
-        })?];
+        let c = o.pick(&format!("points[{}]", i + 1))?;
         // The segment as it is now (its start may be an inserted point's commands).
         let s = segment(model, length, prev, (c.k, c.m), &unit[i], &unit[i + 1]);
         let mut end = (c.k, c.m);
@@ -631,9 +626,7 @@ fn split(
             let u = i as f64 / n as f64;
             let axis = slerp(&a0, &a1, u);
             let o = model.orientations(&axis, BranchRule::Nearest, Some([prev.0, prev.1]))?;
-            let c = o.solutions[o.chosen.ok_or_else(|| {
-                Error::field("points", o.unreachable.clone().unwrap_or_default())
-            })?];
+            let c = o.pick("points")?;
             let s = segment(model, length, prev, (c.k, c.m), &prev_axis, &axis);
             if s.delta > tolerance {
                 return Ok(None);
