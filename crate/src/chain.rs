@@ -22,6 +22,11 @@
 //!   rad about, the axis direction. `s_i = ±1` ([`Link::sign`]).
 //! * `D(m_i(q_i))`: the axis's **position-dependent error motions** (ISO 230-1 `E_XX E_YX E_ZX
 //!   E_AX E_BX E_CX` for axis X, …), given as a function of the position; none by default.
+//!   They are of the tool relative to the workpiece (ISO 841 sense, as a laser reads them), so a
+//!   link on the workpiece branch applies `D(m_i)⁻¹`. A linear axis's error motion acts in
+//!   its moving frame, after `J_i` as written; a rotary axis's in the frame of its axis line
+//!   before it turns, `F_i = F_(i-1)·T(o_i)·D(l_i)·D(m_i(q_i))^(±1)·J_i(s_i·q_i)` (a radial
+//!   error motion `E_XC` stays along X whatever the angle, as a fixed sensor sees it).
 //!
 //! `D(x, y, z, a, b, c) = T(x, y, z) · R_X(a) · R_Y(b) · R_Z(c)` (exact rotations; to first order
 //! the order of the three rotations does not matter). The workpiece frame sits at
@@ -158,8 +163,9 @@ impl Joint {
 }
 
 /// Position-dependent error motions of an axis: its six error components (mm, rad) as a
-/// function of the axis position (mm or rad).
-pub type ErrorMotionFn = Arc<dyn Fn(f64) -> RigidError + Send + Sync>;
+/// function of the axis position (mm or rad), or why they cannot be given there (a measured
+/// table that does not reach the position).
+pub type ErrorMotionFn = Arc<dyn Fn(f64) -> Result<RigidError> + Send + Sync>;
 
 /// One axis of a branch. See the module documentation for the transform it stands for.
 #[derive(Clone)]
@@ -226,19 +232,32 @@ impl Link {
         self
     }
 
-    /// The frame of this link relative to the previous one, at command `q`.
-    fn transform(&self, q: f64, errors: bool) -> Isometry3<f64> {
+    /// The nominal frame of this link relative to the previous one, at command `q`.
+    fn nominal(&self, q: f64) -> Isometry3<f64> {
+        let offset =
+            Isometry3::from_parts(Translation3::from(self.offset), UnitQuaternion::identity());
+        offset * self.joint.motion(self.sign * q)
+    }
+
+    /// The frame of this link relative to the previous one, at command `q`, with (`errors`) or
+    /// without its errors (module docs); `on_work`: the link is on the workpiece branch.
+    fn transform(&self, q: f64, errors: bool, on_work: bool) -> Result<Isometry3<f64>> {
+        if !errors {
+            return Ok(self.nominal(q));
+        }
         let offset =
             Isometry3::from_parts(Translation3::from(self.offset), UnitQuaternion::identity());
         let motion = self.joint.motion(self.sign * q);
-        if !errors {
-            return offset * motion;
-        }
-        let mut t = offset * self.location.transform() * motion;
-        if let Some(m) = &self.motion {
-            t *= m(q).transform();
-        }
-        t
+        let located = offset * self.location.transform();
+        let Some(m) = &self.motion else {
+            return Ok(located * motion);
+        };
+        let d = m(q)?.transform();
+        let d = if on_work { d.inverse() } else { d };
+        Ok(match self.joint {
+            Joint::Linear(_) => located * motion * d,
+            Joint::Rotary(_) => located * d * motion,
+        })
     }
 
     /// ISO 230-1 name of location error component `k` (0..6): `E_X0B`.
@@ -398,19 +417,21 @@ impl Chain {
         Ok(())
     }
 
-    /// Products of one branch's link transforms: `F` (bed → end, end offset included).
+    /// Products of one branch's link transforms: `F` (bed → end, end offset included);
+    /// `on_work` for the workpiece branch.
     fn branch(
         &self,
         links: &[Link],
         q: &[f64],
         errors: bool,
         end: &Vector3<f64>,
-    ) -> Isometry3<f64> {
+        on_work: bool,
+    ) -> Result<Isometry3<f64>> {
         let mut f = Isometry3::identity();
         for (l, &qi) in links.iter().zip(q) {
-            f *= l.transform(qi, errors);
+            f *= l.transform(qi, errors, on_work)?;
         }
-        f * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity())
+        Ok(f * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity()))
     }
 
     /// The nominal frame of every axis in bed coordinates at `q` (chain order): where the axis
@@ -429,7 +450,7 @@ impl Chain {
                         UnitQuaternion::identity(),
                     ),
                 );
-                f *= l.transform(qi, false);
+                f *= l.nominal(qi);
             }
         }
         Ok(out)
@@ -441,8 +462,8 @@ impl Chain {
         self.check_positions(q)?;
         let nw = self.work.len();
         Ok((
-            self.branch(&self.work, &q[..nw], errors, &self.work_origin),
-            self.branch(&self.tool, &q[nw..], errors, &self.tool_tip),
+            self.branch(&self.work, &q[..nw], errors, &self.work_origin, true)?,
+            self.branch(&self.tool, &q[nw..], errors, &self.tool_tip, false)?,
         ))
     }
 
@@ -526,12 +547,14 @@ impl Chain {
                     } else {
                         (&self.tool, &qs[nw..], &self.tool_tip, i - nw)
                     };
-                    let mut t = match kind {
-                        ErrorKind::Location => links[j].joint.motion(links[j].sign * qb[j]),
-                        ErrorKind::Motion => Isometry3::identity(),
+                    // Location errors and rotary error motions sit before the axis's own
+                    // motion, linear error motions after it.
+                    let mut t = match (kind, links[j].joint) {
+                        (ErrorKind::Motion, Joint::Linear(_)) => Isometry3::identity(),
+                        _ => links[j].joint.motion(links[j].sign * qb[j]),
                     };
                     for (l, &qk) in links[j + 1..].iter().zip(&qb[j + 1..]) {
-                        t *= l.transform(qk, false);
+                        t *= l.nominal(qk);
                     }
                     t * Isometry3::from_parts(Translation3::from(*end), UnitQuaternion::identity())
                 };
@@ -542,6 +565,11 @@ impl Chain {
                     _ => None,
                 };
                 let link = self.link(i);
+                // A workpiece-side error motion enters as D(m)⁻¹ ≈ D(−m) (module docs).
+                let side = match kind {
+                    ErrorKind::Motion if on_work => -1.0,
+                    _ => 1.0,
+                };
                 for k in 0..6 {
                     // ξ_k applied to a point y: e_k (translation) or e_(k-3) × y (rotation).
                     let xi = |y: &Vector3<f64>| -> Vector3<f64> {
@@ -585,8 +613,8 @@ impl Chain {
                         link: i,
                         kind,
                         component: k,
-                        tip: dtip,
-                        axis: daxis,
+                        tip: dtip * side,
+                        axis: daxis * side,
                     });
                 }
             }

@@ -15,6 +15,8 @@
 //! * [`sshape`]: the S-shape test piece of ISO 10791-7 (Chanal, Duc & Chevalier 2022).
 //! * [`toolpath`]: the customer's toolpath on the twelve rotary-axis types, ranked by nonlinear
 //!   error, and refined to a tolerance.
+//! * [`volumetric`]: the tool tip's deviation over the working volume from every location
+//!   error and error motion, its budget, and Tan & Lim's RRTTT model beside it.
 
 pub mod schema;
 
@@ -28,5 +30,6 @@ mod numeric;
 pub mod rotary;
 pub mod sshape;
 pub mod toolpath;
+pub mod volumetric;
 
 pub use error::{Error, Result};

@@ -141,6 +141,9 @@ pub enum Kind {
     Errors,
     /// A list of ISO 230-1 error names (e.g. the errors to identify), no repeats.
     ErrorNames,
+    /// The machine's error motions: an object of ISO 230-1 names
+    /// ([`crate::machine::motions`]) to a number, a polynomial or a table against position.
+    Motions,
     /// A list of `min_len` to `max_len` numbers of `quantity` in `[min, max]` (none of them
     /// zero when `nonzero`).
     NumberList {
@@ -723,6 +726,7 @@ fn read_field(f: &Field, v: &Value, path: &str, machine_kind: &Option<String>) -
         }
         Kind::Errors => crate::machine::errors::read_values(v, path),
         Kind::ErrorNames => crate::machine::errors::read_names(v, path),
+        Kind::Motions => crate::machine::motions::read_motions(v, path),
     }
 }
 
@@ -823,6 +827,7 @@ fn describe_in(fields: &[Field], path: &str, section: &str, shown: bool) -> Vec<
             Kind::Text { max_len } => ("text", None, None, Some(max_len as f64), false, vec![]),
             Kind::Errors => ("errors", None, None, None, false, vec![]),
             Kind::ErrorNames => ("errorNames", None, None, None, false, vec![]),
+            Kind::Motions => ("motions", None, None, None, false, vec![]),
             Kind::NumberList {
                 quantity, min, max, ..
             } => (

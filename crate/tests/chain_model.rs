@@ -239,11 +239,7 @@ fn finite_difference(
                 e.set(k, v);
                 let here = q[link];
                 c.link_mut(link).motion = Some(std::sync::Arc::new(move |p| {
-                    if p == here {
-                        e
-                    } else {
-                        RigidError::default()
-                    }
+                    Ok(if p == here { e } else { RigidError::default() })
                 }));
             }
         }

@@ -21,12 +21,14 @@ mod machine;
 mod nonlinear;
 mod sshape;
 mod toolpath;
+mod volumetric;
 
 pub use cubic::*;
 pub use machine::*;
 pub use nonlinear::*;
 pub use sshape::*;
 pub use toolpath::*;
+pub use volumetric::*;
 
 use fiveaxis::schema::{join, Quantity};
 use fiveaxis::Error;

@@ -4,6 +4,7 @@
 use crate::{js_error, json, output};
 use fiveaxis::cubic::{CubicGrid, CubicInput};
 use fiveaxis::machine::errors::{ErrorDef, TABLE};
+use fiveaxis::machine::motions::MOTIONS;
 use fiveaxis::machine::schematic::{schematic, Schematic};
 use fiveaxis::machine::{AxisInfo, InverseInput, Machine, SchematicInput, ToolVectorInput};
 use fiveaxis::nonlinear::{
@@ -16,6 +17,7 @@ use fiveaxis::sshape::study::{
     SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
 };
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
+use fiveaxis::volumetric::{MotionTableInput, VolumetricInput, VolumetricPaperInput};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use tsify::Tsify;
@@ -30,6 +32,8 @@ pub struct Schema {
     pub machine: Vec<FieldInfo>,
     /// The error table: every ISO 230-1 location error a machine can have.
     pub errors: Vec<ErrorDef>,
+    /// The error motions of every axis (ISO 230-1 `E_XX` … `E_CC`), functions of its position.
+    pub motions: Vec<ErrorDef>,
     /// Per export, every field of its input object (the machine's included).
     pub exports: BTreeMap<String, Vec<FieldInfo>>,
 }
@@ -76,9 +80,13 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("sshapeOvercut", fields::<SShapeOvercutInput>());
     put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());
     put("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>());
+    put("volumetricMap", fields::<VolumetricInput>());
+    put("volumetricPaper", fields::<VolumetricPaperInput>());
+    put("volumetricReadTable", fields::<MotionTableInput>());
     output(&Schema {
         machine: describe(Machine::FIELDS, "machine"),
         errors: TABLE.to_vec(),
+        motions: MOTIONS.to_vec(),
         exports,
     })
 }

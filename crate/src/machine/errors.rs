@@ -21,9 +21,8 @@
 //! [`crate::cubic`]). Chanal et al. (2022) use the ISO names with the ISO signs.
 //!
 //! # Position-dependent error motions
-//! The chain also carries error motions `E_XX(X) …` ([`crate::chain::Link::motion`]); the table
-//! is prepared for them ([`ErrorKind::Motion`]; the chain names them, [`crate::chain::Link::motion_name`]) but lists none yet: the
-//! volumetric study will add them, with their values as functions of the axis position.
+//! The error motions `E_XX(X) … E_CC(C)` of every axis are the other half of the table:
+//! [`super::motions`], given in `machine.motions` as constants, polynomials or measured tables.
 
 use crate::error::{Error, Result};
 use crate::schema::{check_number, closest, join, Quantity};
@@ -80,6 +79,20 @@ pub struct ErrorDef {
 }
 
 const LI: &str = "Li et al. 2021 (cubic-machining test)";
+
+const TAN_LIM: &str = "Tan & Lim (volumetric error)";
+
+/// A Tan & Lim squareness symbol (their RRTTT loop, Section VI): the same angle between two
+/// axes, with another axis as the reference, so equal to the ISO error up to a rigid turn of
+/// the workpiece ([`crate::volumetric::paper`]).
+const fn tan_lim(symbol: &'static str, ascii: &'static str, sign: f64) -> Alias {
+    Alias {
+        symbol,
+        ascii,
+        sign,
+        source: TAN_LIM,
+    }
+}
 
 const fn alias(symbol: &'static str, ascii: &'static str) -> Alias {
     Alias {
@@ -278,7 +291,7 @@ pub const TABLE: [ErrorDef; 21] = [
         5,
         "Squareness of Y to X",
         "The Y axis is turned about Z: the angle between the X and Y motions is 90° plus this.",
-        &[],
+        &[tan_lim("α", "alpha", -1.0)],
     ),
     def(
         "E_A0Z",
@@ -286,7 +299,7 @@ pub const TABLE: [ErrorDef; 21] = [
         3,
         "Squareness of Z to Y",
         "The Z axis is turned about X: it leans towards −Y (positive value) as it moves up.",
-        &[],
+        &[tan_lim("β2", "beta2", 1.0)],
     ),
     def(
         "E_B0Z",
@@ -294,7 +307,7 @@ pub const TABLE: [ErrorDef; 21] = [
         4,
         "Squareness of Z to X",
         "The Z axis is turned about Y: it leans towards +X (positive value) as it moves up.",
-        &[],
+        &[tan_lim("β1", "beta1", -1.0)],
     ),
 ];
 
@@ -366,6 +379,15 @@ pub fn alias_of(symbol: &str) -> Option<(&'static ErrorDef, &'static Alias)> {
 /// The message for an unknown error name: a paper's symbol gets its ISO name, a slip the
 /// closest name.
 fn unknown_name(path: &str, name: &str) -> Error {
+    if let Some(d) = super::motions::find(name) {
+        return Error::field(
+            path,
+            format!(
+                "{name} is an error motion of {} (a function of its position); give it in machine.motions",
+                d.axis
+            ),
+        );
+    }
     if let Some((d, a)) = alias_of(name) {
         let sign = if a.sign < 0.0 { "−" } else { "" };
         return Error::field(

@@ -49,6 +49,7 @@
 //! then follow exactly ([`Chain::solve_linear`]).
 
 pub mod errors;
+pub mod motions;
 pub mod schematic;
 
 use crate::chain::{Chain, Joint, Link, RotaryLayout};
@@ -57,6 +58,7 @@ use crate::geometry::Axis;
 use crate::rotary::{Pose, RotaryAxis, RotaryType};
 use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
 use errors::{ErrorDef, ErrorValues, TABLE};
+use motions::{ErrorMotions, MOTIONS};
 use nalgebra::Vector3;
 use serde::Serialize;
 use std::f64::consts::TAU;
@@ -287,6 +289,15 @@ crate::inputs! {
             default: DefaultValue::Empty,
             group: "Errors",
         },
+        /// The error motions by ISO 230-1 name: constants, polynomials or tables against the
+        /// axis position (engine units inside).
+        pub motions: ErrorMotions = "motions" optional {
+            label: "Error motions (ISO 230-1)",
+            help: "The errors that change along an axis (positioning, straightness, roll, pitch, yaw; radial, axial, tilt and angular error motions of the rotary axes): each a constant, a polynomial in the position or a measured table.",
+            kind: Kind::Motions,
+            default: DefaultValue::Empty,
+            group: "Error motions",
+        },
     }
 }
 
@@ -484,6 +495,21 @@ impl Machine {
                 ));
             }
         }
+        for name in self.motions.0.keys() {
+            let p = schema::join(path, &format!("motions.{name}"));
+            let def = motions::find(name).ok_or_else(|| motions::unknown(&p, name))?;
+            if !self.has_axis(def.axis) {
+                return Err(Error::field(
+                    p,
+                    format!(
+                        "this machine has no {} axis (its axes are {}, {}, X, Y, Z)",
+                        def.axis,
+                        self.k().letter(),
+                        self.m().letter()
+                    ),
+                ));
+            }
+        }
         Ok(())
     }
 
@@ -491,8 +517,14 @@ impl Machine {
     pub fn without_errors(&self) -> Machine {
         Machine {
             errors: ErrorValues::none(),
+            motions: ErrorMotions::default(),
             ..self.clone()
         }
+    }
+
+    /// The error motions that belong to this machine's axes, in table order.
+    pub fn motion_defs(&self) -> Vec<&'static ErrorDef> {
+        MOTIONS.iter().filter(|d| self.has_axis(d.axis)).collect()
     }
 
     /// The machine's axes in chain order (module docs), with what each does.
@@ -620,6 +652,14 @@ impl Machine {
                 .link_mut(link)
                 .location
                 .set(def.component, self.errors.get(def.name));
+        }
+        for link in 0..chain.len() {
+            let axis = chain.link(link).name.chars().next().unwrap_or(' ');
+            if let Some(list) = self.motions.of_axis(axis) {
+                chain.link_mut(link).motion = Some(std::sync::Arc::new(move |p| {
+                    ErrorMotions::rigid(&list, p, axis)
+                }));
+            }
         }
         let layout = chain.rotary_type()?;
         Ok(Model {

@@ -1,0 +1,203 @@
+//! Error motions given as constants, polynomials and measured tables; the volumetric map, its
+//! worst point and its budget.
+
+#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+
+use fiveaxis::machine::motions::{read_table_csv, ErrorFunction};
+use fiveaxis::machine::Machine;
+use fiveaxis::schema::Inputs;
+use fiveaxis::volumetric::{map, VolumetricInput};
+use serde_json::{json, Value};
+
+fn input(motions: Value, errors: Value, region: Value) -> VolumetricInput {
+    VolumetricInput::read(&json!({
+        "machine": {
+            "kind": "table-table", "type": "CAZ", "linear": "table-x",
+            "geometry": { "rotaryOffset": 0, "tableHeight": 0, "toolLength": 100 },
+            "errors": errors,
+            "motions": motions,
+        },
+        "region": region,
+    }))
+    .unwrap()
+}
+
+fn function(v: Value, name: &str) -> ErrorFunction {
+    let m = Machine::from_value(&json!({ "motions": { name: v } }), "machine").unwrap();
+    m.motions.0[name].clone()
+}
+
+#[test]
+fn a_table_is_interpolated_linearly_and_exactly_at_its_points() {
+    let f = function(
+        json!({ "position": [0, 100, 300], "value": [0.0, 0.004, -0.002] }),
+        "E_XX",
+    );
+    let at = |p: f64| f.at(p, "E_XX", false).unwrap();
+    assert_eq!(at(0.0), 0.0);
+    assert_eq!(at(100.0), 0.004);
+    assert_eq!(at(300.0), -0.002);
+    // Midpoints: the mean of the neighbours; a quarter of the way: a quarter of the step.
+    assert!((at(50.0) - 0.002).abs() < 1e-15);
+    assert!((at(200.0) - 0.001).abs() < 1e-15);
+    assert!((at(150.0) - 0.0025).abs() < 1e-15);
+}
+
+#[test]
+fn outside_its_table_an_error_is_refused_not_extrapolated() {
+    let f = function(
+        json!({ "position": [-100, 100], "value": [0.001, 0.002] }),
+        "E_YY",
+    );
+    let e = f.at(150.0, "E_YY", false).unwrap_err();
+    assert_eq!(e.field, "machine.motions.E_YY");
+    assert!(
+        e.message.contains("-100 to 100 mm") && e.message.contains("150"),
+        "{e}"
+    );
+    // In the map: the pose is named.
+    let inp = input(
+        json!({ "E_YY": { "position": [-100, 100], "value": [0.001, 0.002] } }),
+        json!({}),
+        json!({ "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "steps": 5 }),
+    );
+    let e = map(&inp).unwrap_err();
+    assert!(e.message.contains("Y 150"), "{e}");
+}
+
+#[test]
+fn a_rotary_table_over_one_turn_serves_every_angle() {
+    // Degrees at the edge: 0..360 in steps of 90; −90° is 270°.
+    let f = function(
+        json!({ "position": [0, 90, 180, 270, 360], "value": [0, 0.001, 0, -0.001, 0] }),
+        "E_XC",
+    );
+    let v = f.at((-90f64).to_radians(), "E_XC", true).unwrap();
+    assert!((v + 0.001).abs() < 1e-15, "{v}");
+    let v = f.at(405f64.to_radians(), "E_XC", true).unwrap();
+    assert!((v - 0.0005).abs() < 1e-15, "{v}");
+}
+
+#[test]
+fn bad_tables_are_refused_with_the_place() {
+    for (v, field) in [
+        (
+            json!({ "position": [0, 0], "value": [1e-3, 2e-3] }),
+            "machine.motions.E_XX.position[1]",
+        ),
+        (
+            json!({ "position": [0, 1, 2], "value": [1e-3, 2e-3] }),
+            "machine.motions.E_XX.value",
+        ),
+        (
+            json!({ "position": [0, 1], "value": [1e-3, 6] }),
+            "machine.motions.E_XX.value[1]",
+        ),
+        (json!({ "poly": [0], "value": [1] }), "machine.motions.E_XX"),
+        (json!({ "slope": 1 }), "machine.motions.E_XX.slope"),
+        (json!("1"), "machine.motions.E_XX"),
+    ] {
+        let e = Machine::from_value(&json!({ "motions": { "E_XX": v } }), "machine").unwrap_err();
+        assert_eq!(e.field, field, "{e}");
+    }
+    let e = Machine::from_value(&json!({ "motions": { "E_X0B": 0.01 } }), "machine").unwrap_err();
+    assert!(e.message.contains("location error"), "{e}");
+    let e = Machine::from_value(&json!({ "errors": { "E_XX": 0.01 } }), "machine").unwrap_err();
+    assert!(e.message.contains("machine.motions"), "{e}");
+    let e = Machine::from_value(&json!({ "motions": { "dx(X)": 0.01 } }), "machine").unwrap_err();
+    assert!(e.message.contains("E_XX = δx(X)"), "{e}");
+    let e = Machine::from_value(&json!({ "motions": { "E_XXX": 0.01 } }), "machine").unwrap_err();
+    assert!(e.message.contains("Did you mean E_XX?"), "{e}");
+    // A machine without A refuses A's error motions (the standard machine is B/C).
+    let m = Machine::from_value(&json!({ "motions": { "E_XA": 0.001 } }), "machine").unwrap();
+    let e = m.validate("machine").unwrap_err();
+    assert_eq!(e.field, "machine.motions.E_XA");
+}
+
+#[test]
+fn csv_tables_read_units_from_the_header_and_name_bad_lines() {
+    let t = read_table_csv(
+        "# laser run 3\nX (mm), E_XX (µm)\n0, 0\n100, 2.5\n200, 4\n",
+        "E_XX",
+    )
+    .unwrap();
+    assert_eq!(t.position, vec![0.0, 100.0, 200.0]);
+    assert!((t.value[1] - 0.0025).abs() < 1e-15 && (t.value[2] - 0.004).abs() < 1e-15);
+    // Pitch in arc seconds: 3.6″ = 0.001°.
+    let t = read_table_csv("X [mm];pitch [arcsec]\n0;0\n500;3,6\n", "E_BX").unwrap();
+    assert!((t.value[1] - 0.001).abs() < 1e-15, "{:?}", t.value);
+    // Rotary positions in degrees, values in µrad.
+    let t = read_table_csv("C (deg)\tE_CC (µrad)\n0\t0\n90\t100\n", "E_CC").unwrap();
+    assert!((t.value[1] - 1e-4f64.to_degrees()).abs() < 1e-15);
+    for (text, line) in [
+        ("X (mm), E_XX (um)\n0, 0\n100, abc\n", "line 3"),
+        ("X (mm), E_XX (um)\n0, 0\n\n0, 1\n", "line 4"),
+        ("X (furlong), E_XX (um)\n0, 0\n", "line 1"),
+        ("X (mm), E_XX (um)\n0, 0, 1\n", "line 2"),
+        ("X (mm), E_XX (deg)\n0, 0\n", "line 1"),
+    ] {
+        let e = read_table_csv(text, "E_XX").unwrap_err();
+        assert!(e.message.starts_with(line), "{text:?}: {e}");
+    }
+    assert!(read_table_csv("X (mm), E_XX (um)\n0, 0\n", "E_XX")
+        .unwrap_err()
+        .message
+        .contains("two rows"));
+}
+
+#[test]
+fn zero_errors_give_a_zero_map_and_an_empty_budget() {
+    let m = map(&input(json!({}), json!({}), json!({ "steps": 5 }))).unwrap();
+    assert!(m.norm.iter().all(|&v| v == 0.0));
+    assert!(m.budget.is_empty());
+    assert!(m.summary().contains("exact"));
+}
+
+#[test]
+fn a_positioning_error_growing_with_x_is_worst_at_the_end_of_x() {
+    // E_XX = 10 µm/m · X (poly [0, 1e-5] mm per mm): |Δ| = 1e-5·|X|, along X only.
+    let m = map(&input(
+        json!({ "E_XX": { "poly": [0, 1e-5] } }),
+        json!({}),
+        json!({ "uFrom": -100, "uTo": 300, "vFrom": 0, "vTo": 50, "steps": 9 }),
+    ))
+    .unwrap();
+    assert_eq!(m.worst.position[0], 300.0);
+    assert!((m.worst.norm - 0.003).abs() < 1e-12, "{}", m.worst.norm);
+    assert!((m.worst.deviation[0] - 0.003).abs() < 1e-12);
+    for (k, &n) in m.norm.iter().enumerate() {
+        let x = m.u[k % m.u.len()];
+        assert!((n - 1e-5 * x.abs()).abs() < 1e-12);
+    }
+    assert_eq!(m.budget.len(), 1);
+    assert!((m.budget[0].share - 1.0).abs() < 1e-12);
+    assert!(m.summary().contains("E_XX"));
+}
+
+#[test]
+fn the_budget_adds_up_and_first_order_converges_quadratically() {
+    let motions = |s: f64| {
+        json!({
+            "E_XX": { "poly": [0, 2e-5 * s] },
+            "E_BX": { "position": [-300, 0, 300], "value": [-0.002 * s, 0.0, 0.003 * s] },
+            "E_AY": 0.001 * s,
+            "E_XC": 0.004 * s,
+            "E_AA": 0.002 * s,
+        })
+    };
+    let errors = |s: f64| json!({ "E_C0Y": 0.003 * s, "E_Y0A": 0.01 * s });
+    let region = json!({ "plane": "XZ", "uFrom": -250, "uTo": 250, "vFrom": -100, "vTo": 200, "at": 40, "k": 30, "m": -20, "steps": 61 });
+    let big = map(&input(motions(1.0), errors(1.0), region.clone())).unwrap();
+    let small = map(&input(motions(0.1), errors(0.1), region)).unwrap();
+    let total: f64 = big.budget.iter().map(|c| c.share).sum();
+    assert!((total - 1.0).abs() < 1e-9, "{total}");
+    let names: Vec<&str> = big.budget.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(big.budget.len(), 7, "{names:?}");
+    assert!(big.budget_side[0] <= 42 && big.budget_side[0] >= 21);
+    // Deviation scales by 1/10, the first-order gap by 1/100.
+    let r = big.first_order_gap / small.first_order_gap;
+    assert!((r - 100.0).abs() < 5.0, "gap ratio {r}");
+    assert!(big.first_order_gap < 1e-2 * big.first_order_max);
+    let r = big.worst.norm / small.worst.norm;
+    assert!((r - 10.0).abs() < 0.1, "{r}");
+}
