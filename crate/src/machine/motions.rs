@@ -529,16 +529,13 @@ pub fn unknown(path: &str, name: &str) -> Error {
             format!("{name} is a location error (a constant of the axis line); give it in machine.errors"),
         );
     }
-    if let Some(d) = MOTIONS.iter().find(|d| {
+    let alias = MOTIONS.iter().find_map(|d| {
         d.aliases
             .iter()
-            .any(|a| a.symbol == name || a.ascii == name)
-    }) {
-        let a = d
-            .aliases
-            .iter()
             .find(|a| a.symbol == name || a.ascii == name)
-            .unwrap_or(&d.aliases[0]);
+            .map(|a| (d, a))
+    });
+    if let Some((d, a)) = alias {
         let sign = if a.sign < 0.0 { "−" } else { "" };
         return Error::field(
             path,
