@@ -60,6 +60,26 @@ wasm['nonlinear: 361x361 increment grid'] = time(
   (g) => total(g.max),
 );
 
+// Volumetric: the same machine, errors and error motions as crate/examples/bench.rs.
+const tanLim = preset('C/A double turntable on an X table (Tan & Lim)');
+tanLim.errors = { E_C0Y: 0.001, E_B0Z: -0.0008, E_Y0A: 0.005 };
+tanLim.motions = {
+  E_XX: { poly: [0, 1e-5, 2e-9] },
+  E_BX: { position: [-400, -200, 0, 200, 400], value: [-0.0003, 0.0001, 0, 0.0002, -0.0001] },
+  E_YY: { poly: [0.001, -8e-6] },
+  E_AY: 0.0002,
+  E_ZZ: { poly: [0, 5e-6] },
+  E_XZ: { position: [-300, 0, 300], value: [0.002, 0, 0.003] },
+  E_XC: { position: [0, 90, 180, 270, 360], value: [0, 0.002, 0, -0.002, 0] },
+  E_CC: 0.001,
+  E_ZA: 0.003,
+};
+wasm['volumetric: 10^6 poses exact (1001 x 1001 plane) + budget'] = time(
+  3,
+  () => fa.volumetricMap({ machine: tanLim, region: { plane: 'XY', uFrom: -300, uTo: 300, vFrom: -200, vTo: 200, at: 50, k: 30, m: -20, steps: 1001 } }),
+  (m) => total(m.norm),
+);
+
 // Li et al.'s Table 5 in ISO names (E = −ε of the paper), on their machine's preset.
 const li = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
 li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };

@@ -9,6 +9,7 @@ use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
 use fiveaxis::sshape::{identify, overcut::ToolPath};
+use fiveaxis::volumetric;
 use serde_json::{json, Value};
 use std::time::Instant;
 
@@ -28,6 +29,27 @@ fn preset(prefix: &str) -> Result<Value, Box<dyn std::error::Error>> {
         })
         .map(|p| p["machine"].clone())
         .ok_or_else(|| format!("no machine preset {prefix}").into())
+}
+
+/// Location errors of the volumetric benchmark (same as scripts/bench.mjs).
+fn volumetric_errors() -> Value {
+    json!({ "E_C0Y": 0.001, "E_B0Z": -0.0008, "E_Y0A": 0.005 })
+}
+
+/// Error motions of the volumetric benchmark: polynomials, a measured table, constants, on
+/// every axis (same as scripts/bench.mjs).
+fn volumetric_motions() -> Value {
+    json!({
+        "E_XX": { "poly": [0, 1e-5, 2e-9] },
+        "E_BX": { "position": [-400, -200, 0, 200, 400], "value": [-0.0003, 0.0001, 0, 0.0002, -0.0001] },
+        "E_YY": { "poly": [0.001, -8e-6] },
+        "E_AY": 0.0002,
+        "E_ZZ": { "poly": [0, 5e-6] },
+        "E_XZ": { "position": [-300, 0, 300], "value": [0.002, 0, 0.003] },
+        "E_XC": { "position": [0, 90, 180, 270, 360], "value": [0, 0.002, 0, -0.002, 0] },
+        "E_CC": 0.001,
+        "E_ZA": 0.003,
+    })
 }
 
 /// The moves of the benchmark, degrees `[θk0, θm0, θk1, θm1]`, from the same formula as
@@ -147,6 +169,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let per = evaluations as f64 / segments.max(1) as f64;
     println!(
         "{{\"name\":\"toolpath: 10^6 points on the 12 types\",\"ms\":{ms:.3},\"check\":{check:.12e},\"evaluations\":{per:.3}}}"
+    );
+    // Volumetric: 10^6 exact poses on Tan & Lim's machine with error motions of every kind
+    // (the same input as scripts/bench.mjs).
+    let mut tan_lim = preset("C/A double turntable on an X table (Tan & Lim)")?;
+    tan_lim["errors"] = volumetric_errors();
+    tan_lim["motions"] = volumetric_motions();
+    let input = volumetric::VolumetricInput::read(&json!({
+        "machine": tan_lim,
+        "region": { "plane": "XY", "uFrom": -300, "uTo": 300, "vFrom": -200, "vTo": 200, "at": 50, "k": 30, "m": -20, "steps": 1001 },
+    }))?;
+    report(
+        "volumetric: 10^6 poses exact (1001 x 1001 plane) + budget",
+        time(
+            3,
+            || volumetric::map(&input),
+            |m| m.as_ref().map_or(f64::NAN, |m| m.norm.iter().sum()),
+        ),
     );
     let t = RotaryType::parse("CAZ")?;
     let deg = moves(1_000_000);

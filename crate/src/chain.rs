@@ -123,10 +123,14 @@ impl RigidError {
         *self = Self::from_array(v);
     }
 
-    /// `D = T(x, y, z) · R_X(a) · R_Y(b) · R_Z(c)`.
+    /// `D = T(x, y, z) · R_X(a) · R_Y(b) · R_Z(c)` (a zero angle adds no rotation).
     pub fn transform(&self) -> Isometry3<f64> {
-        let r =
-            quaternion(Axis::X, self.a) * quaternion(Axis::Y, self.b) * quaternion(Axis::Z, self.c);
+        let mut r = UnitQuaternion::identity();
+        for (axis, angle) in [(Axis::X, self.a), (Axis::Y, self.b), (Axis::Z, self.c)] {
+            if angle != 0.0 {
+                r *= quaternion(axis, angle);
+            }
+        }
         Isometry3::from_parts(Translation3::new(self.x, self.y, self.z), r)
     }
 }
@@ -509,6 +513,19 @@ impl Chain {
         })
     }
 
+    /// An evaluator of [`Chain::tool_pose`] (no set-up) for many poses that differ in a few
+    /// axes, as over a grid: it keeps each link's transform and each branch's partial products
+    /// and recomputes only from the first link whose position changed. Same results as
+    /// `tool_pose(q, errors, &Setup::None)`.
+    pub fn poses(&self, errors: bool) -> PoseEvaluator<'_> {
+        PoseEvaluator {
+            chain: self,
+            errors,
+            work: BranchCache::default(),
+            tool: BranchCache::default(),
+        }
+    }
+
     /// Where [`Chain::jacobian`] puts location error component `component` (0..6) of the link
     /// with chain index `link`: location errors come first, 6 per link, links in chain order.
     pub const fn location_index(link: usize, component: usize) -> usize {
@@ -790,4 +807,81 @@ pub struct RotaryLayout {
     pub k_factor: f64,
     /// θm = `m_factor`·q_M.
     pub m_factor: f64,
+}
+
+/// One branch's kept transforms: positions, each link's frame and the products from the bed.
+#[derive(Debug, Default)]
+struct BranchCache {
+    q: Vec<f64>,
+    link: Vec<Isometry3<f64>>,
+    prefix: Vec<Isometry3<f64>>,
+}
+
+impl BranchCache {
+    /// The branch's end frame at `q`, recomputing from the first link whose position changed.
+    fn end(
+        &mut self,
+        links: &[Link],
+        q: &[f64],
+        errors: bool,
+        on_work: bool,
+    ) -> Result<Isometry3<f64>> {
+        let n = links.len();
+        let mut from = if self.q.len() == n {
+            (0..n).find(|&i| self.q[i] != q[i]).unwrap_or(n)
+        } else {
+            self.q = q.to_vec();
+            self.link = vec![Isometry3::identity(); n];
+            self.prefix = vec![Isometry3::identity(); n];
+            for (i, l) in links.iter().enumerate() {
+                self.link[i] = l.transform(q[i], errors, on_work)?;
+            }
+            0
+        };
+        for i in from..n {
+            if self.q[i] != q[i] {
+                self.link[i] = links[i].transform(q[i], errors, on_work)?;
+                self.q[i] = q[i];
+            }
+        }
+        if n == 0 {
+            return Ok(Isometry3::identity());
+        }
+        if from == 0 {
+            self.prefix[0] = self.link[0];
+            from = 1;
+        }
+        for i in from..n {
+            self.prefix[i] = self.prefix[i - 1] * self.link[i];
+        }
+        Ok(self.prefix[n - 1])
+    }
+}
+
+/// See [`Chain::poses`].
+#[derive(Debug)]
+pub struct PoseEvaluator<'a> {
+    chain: &'a Chain,
+    errors: bool,
+    work: BranchCache,
+    tool: BranchCache,
+}
+
+impl PoseEvaluator<'_> {
+    /// The tool in workpiece coordinates at `q` (as [`Chain::tool_pose`] without a set-up).
+    pub fn tool_pose(&mut self, q: &[f64]) -> Result<ToolPose> {
+        let c = self.chain;
+        c.check_positions(q)?;
+        let nw = c.work.len();
+        let end = |v: &Vector3<f64>| {
+            Isometry3::from_parts(Translation3::from(*v), UnitQuaternion::identity())
+        };
+        let fw = self.work.end(&c.work, &q[..nw], self.errors, true)? * end(&c.work_origin);
+        let ft = self.tool.end(&c.tool, &q[nw..], self.errors, false)? * end(&c.tool_tip);
+        let g = fw.inverse() * ft;
+        Ok(ToolPose {
+            tip: (g * Point3::origin()).coords,
+            axis: g.rotation * c.tool_axis.unit(),
+        })
+    }
 }

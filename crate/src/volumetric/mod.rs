@@ -33,7 +33,7 @@
 
 pub mod paper;
 
-use crate::chain::{Chain, Setup};
+use crate::chain::{Chain, Setup, ToolPose};
 use crate::error::{Error, Result};
 use crate::geometry::Axis;
 use crate::machine::errors::{ErrorDef, ErrorKind};
@@ -331,12 +331,17 @@ fn linear_indices(chain: &Chain) -> Result<[usize; 3]> {
 pub fn deviation_at(model: &Model, q: &[f64]) -> Result<(Vector3<f64>, f64)> {
     let actual = model.chain.tool_pose(q, true, &Setup::None)?;
     let nominal = model.nominal().tool_pose(q, false, &Setup::None)?;
+    Ok(difference(&actual, &nominal))
+}
+
+/// The tip's deviation and the axis's tilt error of `actual` from `nominal`.
+fn difference(actual: &ToolPose, nominal: &ToolPose) -> (Vector3<f64>, f64) {
     let tilt = actual
         .axis
         .cross(&nominal.axis)
         .norm()
         .atan2(actual.axis.dot(&nominal.axis));
-    Ok((actual.tip - nominal.tip, tilt))
+    (actual.tip - nominal.tip, tilt)
 }
 
 /// First-order deviation at `q` and each active error's part of it.
@@ -389,11 +394,16 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
     let mut tilt = Vec::with_capacity(n);
     let mut worst = (0usize, -1.0);
     let mut sum2 = 0.0;
+    let mut actual = model.chain.poses(true);
+    let mut nominal = model.nominal().poses(false);
     for &vj in &v {
         q[iv] = vj;
         for &ui in &u {
             q[iu] = ui;
-            let (d, t) = deviation_at(&model, &q).map_err(|e| at_pose(e, &q, &lin))?;
+            let (d, t) = actual
+                .tool_pose(&q)
+                .and_then(|a| Ok(difference(&a, &nominal.tool_pose(&q)?)))
+                .map_err(|e| at_pose(e, &q, &lin))?;
             let len = d.norm();
             if len > worst.1 {
                 worst = (norm.len(), len);
