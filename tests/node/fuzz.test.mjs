@@ -64,6 +64,29 @@ function machine(r) {
   return m;
 }
 const length = maybe((r) => r() * 500);
+/** A machine with up to four error motions of its axes: constants, polynomials or tables. */
+function machineWithMotions(r) {
+  const m = machine(r);
+  const names = SCHEMA.motions.filter((e) => e.axis === m.type[0] || e.axis === m.type[1] || ['X', 'Y', 'Z'].includes(e.axis));
+  const motions = {};
+  for (let i = Math.floor(r() * 5); i > 0; i--) {
+    const e = pick(names)(r);
+    const q = r();
+    motions[e.name] = q < 0.3 ? (r() - 0.5) * 0.01 : q < 0.6 ? { poly: Array.from({ length: small(1, 4)(r) }, () => (r() - 0.5) * 1e-5) } : { position: [-400, 0, 400], value: [(r() - 0.5) * 0.01, 0, (r() - 0.5) * 0.01] };
+  }
+  m.motions = motions;
+  return m;
+}
+/** A short error-motion table as CSV, sometimes with a broken line. */
+function motionCsv(r) {
+  const lines = ['X (mm), E_XX (µm)', '0, 0', '100, 1.5', '200, 2'];
+  if (r() < 0.3) lines[1 + Math.floor(r() * 3)] = 'x, 1';
+  return lines.join('\n');
+}
+const region = {
+  plane: pick(['XY', 'XZ', 'YZ']), uFrom: (r) => -200 * r(), uTo: (r) => 200 * r() + 1, vFrom: (r) => -200 * r(), vTo: (r) => 200 * r() + 1,
+  at: (r) => (r() - 0.5) * 200, steps: small(2, 8), k: maybe(angle), m: maybe(angle),
+};
 // The cubic test: a machine, a set-up, the switches.
 const cubicCase = {
   machine,
@@ -152,6 +175,9 @@ export const SPECS = {
   },
   toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints, maybe((r) => TYPES.filter(() => r() < 0.3))] },
   toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPoints] },
+  volumetricMap: { args: [{ machine: machineWithMotions, region }] },
+  volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
+  volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare } from '../../wasm/pkg/fiveaxis.js';
+import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare, volumetricMap } from '../../wasm/pkg/fiveaxis.js';
 
 initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
@@ -88,4 +88,41 @@ test('README: the dome sample on the twelve types', () => {
   for (const t of ['ABX', 'ACX']) assert.equal(row(t).unreachable.point, 0, t);
   assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
   assert.ok(row('BCY').max < 0.0025 && row('CAZ').max > 0.1);
+});
+
+test('README: the volumetric map of an X table with positioning, pitch and squareness, by hand', () => {
+  const tanLim = { kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 },
+    rotary: { mFrom: -120, mTo: 120 },
+    errors: { E_C0Y: 0.001 },
+    motions: { E_XX: { poly: [0, 1e-5] }, E_BX: { position: [-300, 0, 300], value: [-0.0003, 0, 0.0002] } } };
+  const v = volumetricMap({ machine: tanLim, region: { plane: 'XY', uFrom: -300, uTo: 300, vFrom: -200, vTo: 200, at: 0, steps: 41 } });
+  // With A and C at zero the tip is (X, Y, −100) from the X carriage's reference point, in table
+  // coordinates. To first order: E_XX moves it (1e-5·X, 0, 0); the squareness ε of Y turns the
+  // spindle side about Z: ε·ẑ × (0, Y, −100) = (−ε·Y, 0, 0); the table's pitch b(X) turns the
+  // tool relative to the table about Y: b·ŷ × (X, Y, −100) = (−100·b, 0, −b·X).
+  const eps = rad(0.001);
+  const pitch = (x) => rad(x < 0 ? -0.0003 * (x / -300) : 0.0002 * (x / 300));
+  const parts = (x, y) => [[1e-5 * x, 0, 0], [-eps * y, 0, 0], [-100 * pitch(x), 0, -pitch(x) * x]];
+  let worst = { n: -1 };
+  const dot = [0, 0, 0];
+  let total2 = 0;
+  for (let j = 0; j < 41; j++) {
+    for (let i = 0; i < 41; i++) {
+      const [x, y] = [-300 + 15 * i, -200 + 10 * j];
+      const p = parts(x, y);
+      const d = [0, 1, 2].map((c) => p[0][c] + p[1][c] + p[2][c]);
+      const n = Math.hypot(...d);
+      if (n > worst.n) worst = { n, x, y, d };
+      total2 += n * n;
+      p.forEach((c, e) => (dot[e] += c[0] * d[0] + c[1] * d[1] + c[2] * d[2]));
+    }
+  }
+  assert.deepEqual(v.worst.position, [worst.x, worst.y, 0]);
+  assert.ok(Math.abs(v.worst.norm - worst.n) < 1e-8, `${v.worst.norm} vs ${worst.n}`);
+  assert.ok(Math.abs(v.worst.norm - 0.0062) < 5e-5);
+  const share = Object.fromEntries(v.budget.map((c) => [c.name, c.share]));
+  ['E_XX', 'E_C0Y', 'E_BX'].forEach((name, e) => assert.ok(Math.abs(share[name] - dot[e] / total2) < 1e-6, `${name}: ${share[name]} vs ${dot[e] / total2}`));
+  assert.equal(v.budget[0].name, 'E_C0Y');
+  assert.ok(Math.abs(v.budget[0].share - 0.61) < 0.005);
+  assert.match(v.summary, /^The tool tip is off by up to 0\.0062 mm \(at X 300, Y -200, Z 0 mm\)/);
 });

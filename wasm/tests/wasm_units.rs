@@ -352,3 +352,69 @@ fn alike_factors_are_per_unit_at_the_edge() {
     };
     assert!(has("E_A0B", "E_A0C"), "αBY and αCB alike");
 }
+
+#[wasm_bindgen_test]
+fn volumetric_outputs_are_mm_and_degrees_and_tables_are_read_in_api_units() {
+    #[derive(serde::Deserialize)]
+    struct Worst {
+        norm: f64,
+        tilt: f64,
+    }
+    #[derive(serde::Deserialize)]
+    struct Map {
+        worst: Worst,
+    }
+    let machine = |motions: serde_json::Value| {
+        let mut m = common::preset("C/A double turntable on an X table (Tan & Lim)");
+        m["motions"] = motions;
+        json!({ "machine": m, "region": { "steps": 3 } })
+    };
+    // A pitch of the spindle-side Y of 0.01° turns the tool axis by 0.01°: out in degrees.
+    let r: Map = common::read(fa::volumetric_map(common::jv(&machine(
+        json!({ "E_AY": 0.01 }),
+    ))));
+    assert!((r.worst.tilt - 0.01).abs() < 1e-12, "{}", r.worst.tilt);
+    // A positioning error of Y of 2 µm entered in mm moves the tip 0.002 mm.
+    let r: Map = common::read(fa::volumetric_map(common::jv(&machine(
+        json!({ "E_YY": 0.002 }),
+    ))));
+    assert!(
+        (r.worst.norm - 0.002).abs() < 1e-12 && r.worst.tilt.abs() < 1e-12,
+        "{} {}",
+        r.worst.norm,
+        r.worst.tilt
+    );
+    // A polynomial in degrees per degree: E_CC = 1e-4 °/° · C at C = 90° is 0.009°, so the
+    // paper's γ_C (= −E_CC) is −0.009 (degrees at the edge).
+    #[derive(serde::Deserialize)]
+    struct Symbol {
+        symbol: String,
+        value: f64,
+        unit: String,
+    }
+    #[derive(serde::Deserialize)]
+    struct Paper {
+        symbols: Vec<Symbol>,
+    }
+    let mut input = machine(json!({ "E_CC": { "poly": [0, 1e-4] } }));
+    input["k"] = json!(90);
+    input.as_object_mut().unwrap().remove("region");
+    let p: Paper = common::read(fa::volumetric_paper(common::jv(&input)));
+    let g = p.symbols.iter().find(|s| s.symbol == "γ_C").unwrap();
+    assert!(
+        (g.value + 0.009).abs() < 1e-15 && g.unit == "deg",
+        "{}",
+        g.value
+    );
+    // CSV values in arc seconds come out in degrees: 36″ = 0.01°.
+    #[derive(serde::Deserialize)]
+    struct Table {
+        position: Vec<f64>,
+        value: Vec<f64>,
+    }
+    let t: Table = common::read(fa::volumetric_read_table(common::jv(&json!({
+        "name": "E_CC", "text": "C (deg), E_CC (arcsec)\n0, 0\n90, 36\n"
+    }))));
+    assert_eq!(t.position, vec![0.0, 90.0]);
+    assert!((t.value[1] - 0.01).abs() < 1e-15);
+}

@@ -161,10 +161,10 @@ impl Test {
         })
     }
 
-    /// The same test on the machine with `errors` instead: the zones' poses come from the
-    /// nominal machine, so only the model is built again.
+    /// The same test on the machine with only the location errors `errors` (no error motions):
+    /// the zones' poses come from the nominal machine, so only the model is built again.
     pub(super) fn with_errors(&self, errors: ErrorValues) -> Result<Self> {
-        let mut machine = self.model.machine.clone();
+        let mut machine = self.model.machine.without_errors();
         machine.errors = errors;
         Ok(Self {
             model: placed(&machine, &self.piece, &self.frame)?,

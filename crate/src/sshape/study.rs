@@ -196,6 +196,13 @@ impl SShapeCase {
     pub fn read_with<B: Inputs>(value: &Value) -> Result<(SShapeCase, B)> {
         let (case, own): (SShapeCase, B) = schema::read_split(value, "")?;
         case.machine.validate("machine")?;
+        // Eq 14 is a model of the location errors: error motions would be left out unseen.
+        if let Some(name) = case.machine.motions.0.keys().next() {
+            return Err(Error::field(
+                format!("machine.motions.{name}"),
+                "the S-shape model (Chanal et al., eq 14) takes the location errors only; error motions are not in it. Clear the error motions (Volumetric tab) to run this study.",
+            ));
+        }
         Ok((case, own))
     }
 }

@@ -525,7 +525,7 @@ impl VolumetricMap {
         let top: Vec<String> = self
             .budget
             .iter()
-            .filter(|c| c.share > 0.0)
+            .filter(|c| c.share >= 0.005)
             .take(3)
             .map(|c| format!("{} ({}) {:.0} %", c.name, c.label, 100.0 * c.share))
             .collect();
