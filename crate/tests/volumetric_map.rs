@@ -201,3 +201,14 @@ fn the_budget_adds_up_and_first_order_converges_quadratically() {
     let r = big.worst.norm / small.worst.norm;
     assert!((r - 10.0).abs() < 0.1, "{r}");
 }
+
+#[test]
+fn a_polynomial_beyond_the_accepted_range_is_refused_where_it_leaves_it() {
+    // 1e-2 mm per mm: 5 mm at X = 500, beyond ±5 mm just after.
+    let f = function(json!({ "poly": [0, 1e-2] }), "E_XX");
+    assert!((f.at(400.0, "E_XX", false).unwrap() - 4.0).abs() < 1e-12);
+    let e = f.at(600.0, "E_XX", false).unwrap_err();
+    assert!(e.message.contains("gives 6 mm at 600 mm"), "{e}");
+    let f = function(json!({ "poly": [0, -1e308, -1e308] }), "E_ZZ");
+    assert!(f.at(-18.0, "E_ZZ", false).is_err());
+}

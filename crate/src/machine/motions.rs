@@ -434,7 +434,27 @@ impl ErrorFunction {
         match self {
             ErrorFunction::Constant(v) => Ok(*v),
             ErrorFunction::Polynomial { poly } => {
-                Ok(poly.iter().rev().fold(0.0, |acc, c| acc * p + c))
+                let v = poly.iter().rev().fold(0.0, |acc, c| acc * p + c);
+                // A polynomial can leave the accepted range where a table or a constant cannot.
+                let def = find(name);
+                let (q, limit) = def.map_or((Quantity::SmallLength, MAX_POSITION_ERROR), |d| {
+                    (d.quantity, d.limit)
+                });
+                if v.is_finite() && q.to_api(v).abs() <= limit {
+                    return Ok(v);
+                }
+                let pq = position_quantity(def.map_or('X', |d| d.axis));
+                Err(Error::field(
+                    join("machine.motions", name),
+                    format!(
+                        "the polynomial gives {} {} at {} {}, beyond the ±{limit} {} accepted",
+                        q.to_api(v),
+                        q.api_unit(),
+                        (pq.to_api(p) * 1e6).round() / 1e6,
+                        pq.api_unit(),
+                        q.api_unit()
+                    ),
+                ))
             }
             ErrorFunction::Table { position, value } => {
                 let (lo, hi) = (position[0], position[position.len() - 1]);
