@@ -11,7 +11,7 @@ import { displayQuantity, loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, plotBox, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
-import { fromDisplay, onUnitsChange, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
+import { fromDisplay, onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
 
 export const volumetricPanel: Panel = {
@@ -204,13 +204,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
     exportButton.removeAttribute('disabled');
 
-    // |Δ| with the in-plane deviation as arrows, scaled so that the longest is a tenth of the plane.
+    // |Δ| with the in-plane deviation as arrows, scaled so that the longest is 7 % of the plane.
     const span = Math.max(r.u[nu - 1] - r.u[0], r.v[nv - 1] - r.v[0]);
     const cu = comp[ua];
     const cv = comp[va];
     let longest = 0;
     for (let i = 0; i < nu * nv; i++) longest = Math.max(longest, Math.hypot(cu[i], cv[i]));
-    const scale = longest > 0 ? (0.1 * span) / longest : 0;
+    const scale = longest > 0 ? (0.07 * span) / longest : 0;
     const pick = (n: number) => Array.from(new Set(Array.from({ length: Math.min(n, ARROWS) }, (_, k) => Math.round((k * (n - 1)) / Math.max(1, Math.min(n, ARROWS) - 1)))));
     const arrows: Partial<Annotations>[] = [];
     if (scale > 0) {
@@ -237,15 +237,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
         hovertemplate: `${ua} %{x:.4g} mm, ${va} %{y:.4g} mm<br>|Δ| %{z:.4g} ${unit}<extra></extra>`,
       } as Data,
       {
-        type: 'scatter', mode: 'text+markers', x: [wu], y: [wv], name: 'worst point', showlegend: false,
+        type: 'scatter', mode: 'markers', x: [wu], y: [wv], name: 'worst point', showlegend: false,
         marker: { symbol: 'x', size: 13, color: '#0b5cad', line: { width: 2, color: '#0b5cad' } },
-        text: [`worst ${show('errLength', w.norm, 3)}`], textposition: wv > (r.v[0] + r.v[nv - 1]) / 2 ? 'bottom center' : 'top center',
-        textfont: { color: '#0b5cad', size: 12 }, hovertemplate: `worst point<br>|Δ| ${show('errLength', w.norm)}<extra></extra>`,
+        hovertemplate: `worst point<br>|Δ| ${show('errLength', w.norm)}<extra></extra>`,
       } as Data,
     ], {
       xaxis: axis(`${ua} (mm)`, { constrain: 'domain' }),
       yaxis: axis(`${va} (mm)`, { scaleanchor: 'x' }),
-      annotations: arrows,
+      // The worst point's label inside the plane, on a white ground over the arrows.
+      annotations: [...arrows, {
+        x: wu, y: wv, xref: 'x', yref: 'y', text: `worst ${show('errLength', w.norm, 3)}`, showarrow: true, arrowhead: 0, arrowcolor: '#0b5cad',
+        ax: wu > (r.u[0] + r.u[nu - 1]) / 2 ? -50 : 50, ay: wv > (r.v[0] + r.v[nv - 1]) / 2 ? 30 : -30,
+        font: { color: '#0b5cad', size: 12 }, bgcolor: 'rgba(255,255,255,0.9)', bordercolor: '#0b5cad', borderpad: 2,
+      }],
     }, 'volumetric-map');
 
     showComponent();
@@ -255,12 +259,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const tiltRange = tHi - tLo < 1e-6 * Math.max(tHi, 1e-30) ? `the same everywhere: ${show('errAngle', r.worst.tilt)}` : `from ${show('errAngle', fromAngle(tLo))} to ${show('errAngle', fromAngle(tHi))}`;
     drawFit(tiltPlot.p, `Tilt error of the tool axis over the ${ua}–${va} plane<br>actual vs commanded tool axis, ${tiltRange}`, [{
       type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(tilt, nu, nv),
-      colorscale: 'Viridis', zmin: 0, zmax: Math.max(tHi, 1e-12), name: 'tilt error', colorbar: { title: { text: titled('tilt', 'errAngle') }, exponentformat: 'none' },
+      colorscale: 'Viridis', zmin: 0, zmax: tHi > toDisplay('errAngle', ROUND_OFF) ? tHi : toDisplay('errAngle', 1e-4), name: 'tilt error', colorbar: { title: { text: titled('tilt', 'errAngle') }, exponentformat: 'none' },
       hovertemplate: `${ua} %{x:.4g} mm, ${va} %{y:.4g} mm<br>tilt %{z:.4g} ${unitDef('errAngle').label}<extra></extra>`,
     } as Data], { xaxis: axis(`${ua} (mm)`, { constrain: 'domain' }), yaxis: axis(`${va} (mm)`, { scaleanchor: 'x' }) }, 'volumetric-tilt');
 
     // The budget: the largest shares as bars (largest on top), every error in the table.
     const shown = r.budget.slice(0, 12).reverse();
+    budgetPlot.p.style.height = `${Math.max(200, 110 + 26 * shown.length)}px`;
     drawFit(budgetPlot.p, `Error budget: each error’s share of the squared deviation over the plane<br>${r.budget.length ? `largest: ${top.map((b) => b.name).join(', ')}` : 'no error entered'}`, [{
       type: 'bar', orientation: 'h', y: shown.map((b) => b.name), x: shown.map((b) => 100 * b.share), name: 'share',
       text: shown.map((b) => fmt.percent(b.share, 2)), textposition: 'auto', marker: { color: '#0b5cad' },
@@ -268,7 +273,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } as Data], {
       xaxis: axis('share of the squared deviation (%)', { rangemode: 'tozero' }),
       yaxis: axis('error (ISO 230-1)', { type: 'category' }),
-      height: Math.max(220, 90 + 26 * shown.length),
     }, 'volumetric-budget');
     budget(r);
   };
