@@ -74,6 +74,15 @@ test('volumetric panel: a measured table changes the map, heads the budget, is e
     const norms = lines.slice(1).map((l) => Number(l.split(',')[8]));
     assert.ok(Math.abs(Math.max(...norms) - expected.worst.norm * 1000) < 1e-6);
 
+    // A map reaching past the table is refused at E_XX (no extrapolation), the map greyed.
+    await page.fill('#vm-region-uTo', '400');
+    await page.waitForFunction(() => /covers -300 to 300 mm/.test(document.getElementById('vm-csv-msg-E_XX')?.textContent ?? ''));
+    assert.ok(await page.$eval('#vm-map', (e) => e.closest('.plot-wrap').classList.contains('stale')));
+    await page.fill('#vm-region-uTo', '200');
+    await page.waitForFunction(() => /x-positioning\.csv: 25 points/.test(document.getElementById('vm-csv-msg-E_XX')?.textContent ?? ''));
+    await page.waitForFunction(() => !document.getElementById('vm-map')?.closest('.plot-wrap').classList.contains('stale'));
+    assert.match(await page.textContent('#vm-functions'), /E_XX \(x-positioning\.csv, 25 points\)/);
+
     // A CSV with a bad third line: the message names the line at E_YY; the map stays, greyed.
     const shown = await waitPlotted(page, 'vm-map');
     const lastSentence = await sentence(page);

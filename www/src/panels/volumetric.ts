@@ -141,6 +141,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const name = e.field.startsWith('machine.motions.') ? e.field.slice('machine.motions.'.length) : '';
     const row = motionRows.get(name);
     if (row) {
+      row.msg.classList.remove('ok');
       row.msg.textContent = e.text;
       note(mapPlot.p, e.message);
       stale(mapPlot.p, true);
@@ -163,7 +164,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const input = { ...own, machine: m as Machine } as VolumetricInput;
     runMap(input).then((r) => {
       if (r === SUPERSEDED) return;
-      for (const row of motionRows.values()) if (!row.msg.dataset.csv) row.msg.textContent = '';
+      for (const row of motionRows.values()) if (!row.msg.dataset.csv) describe(row);
       last = { r, input };
       showMap(r);
       comparePaper(r, input);
@@ -198,6 +199,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['vm-worst-dev', 'There', `Δx ${show('errLength', w.deviation[0])}, Δy ${show('errLength', w.deviation[1])}, Δz ${show('errLength', w.deviation[2])}; tool tilted by ${show('errAngle', w.tilt)}`],
       ['vm-rms', 'rms of |Δ| over the plane', show('errLength', r.rms)],
       ['vm-top', 'Largest contributors', top.length ? top.map((b) => `${b.name} (${b.label}) ${fmt.percent(b.share, 2)}`).join(', ') : 'none: no error entered'],
+      ['vm-functions', 'Error motions as tables or polynomials', functionsText()],
       ['vm-linear', 'Exact vs first order', `the first-order (linear) deviation differs from the exact one by at most ${show('errLength', r.firstOrderGap)}, where the first-order |Δ| reaches ${show('errLength', r.firstOrderMax)} (${r.budgetSide[0]} × ${r.budgetSide[1]} points)`],
     ];
     summary.replaceChildren();
@@ -384,8 +386,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       try {
         const t = await call('volumetricReadTable', { name: def.name, text: await f.text() });
         delete msg.dataset.csv;
-        msg.textContent = `${f.name}: ${t.position.length} points, ${fmt.num(t.position[0])} to ${fmt.num(t.position[t.position.length - 1])} ${def.axis === 'X' || def.axis === 'Y' || def.axis === 'Z' ? 'mm' : '°'}.`;
-        msg.classList.add('ok');
         machine.setMotion(def.name, { position: t.position, value: t.value, file: f.name, units: t.units });
       } catch (err) {
         // The machine keeps what it had: the results stay, greyed, with the reason.
@@ -401,15 +401,36 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     });
     clear.addEventListener('click', () => {
       delete msg.dataset.csv;
-      msg.textContent = '';
       machine.setMotion(def.name, null);
     });
     return r;
   }
 
+  /** The error motions given as functions of the position, for the key numbers (and the print). */
+  function functionsText(): string {
+    const list = [...motionRows.values()].flatMap(({ def }) => {
+      const fn = machine.motionFunction(def.name);
+      if (!fn || !machine.current()?.motions?.[def.name]) return [];
+      return [`${def.name} (${'poly' in fn ? `polynomial of degree ${fn.poly.length - 1}` : `${fn.file ?? 'table'}, ${fn.position.length} points`})`];
+    });
+    return list.length ? list.join(', ') : 'none (constants only)';
+  }
+
+  /** What a row's table is (its file, points and range), under its field. */
+  function describe(row: MotionRow) {
+    const fn = machine.motionFunction(row.def.name);
+    const unit = ['X', 'Y', 'Z'].includes(row.def.axis) ? 'mm' : '°';
+    row.msg.classList.add('ok');
+    row.msg.textContent = fn && !('poly' in fn)
+      ? `${fn.file ?? 'Table'}: ${fn.position.length} points, ${row.def.axis} from ${fmt.num(fn.position[0])} to ${fmt.num(fn.position[fn.position.length - 1])} ${unit}, interpolated linearly.`
+      : '';
+  }
+
   /** A row's table or polynomial plotted beside its field (or nothing for a constant). */
   function showFunction(row: MotionRow) {
     const fn = machine.motionFunction(row.def.name);
+    // (A message of the engine or of a bad file stays until the next map or file.)
+    if (!row.msg.dataset.csv && (!row.msg.textContent || row.msg.classList.contains('ok'))) describe(row);
     const q: Quantity = displayQuantity(row.def.quantity);
     const key = fn ? `${JSON.stringify(fn)}|${unitDef(q).label}` : '';
     row.field.input.disabled = !!fn;
