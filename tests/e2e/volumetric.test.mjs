@@ -114,6 +114,16 @@ test('volumetric panel: a measured table changes the map, heads the budget, is e
     const wide = await other.page.$$eval('#panel-volumetric *', (els) => els.filter((e) => e.getBoundingClientRect().right > innerWidth + 0.5 && !e.closest('.visually-hidden')).map((e) => e.id || e.className).slice(0, 5));
     assert.deepEqual(wide, [], 'nothing of the panel reaches past the screen');
     await other.page.screenshot({ path: `${ARTIFACTS}volumetric-phone.png`, fullPage: true });
+    // Tan & Lim's model beside the machine's at the worst point, on their machine only.
+    await other.page.waitForSelector('#vm-paper-table', { state: 'attached' });
+    assert.match(await other.page.textContent('#vm-paper-table'), /Their printed first-order/);
+    // Resetting the machine clears its error motions as it clears its errors.
+    await other.page.click('#machine-reset');
+    await other.page.waitForFunction(() => /No error is entered/.test(document.getElementById('vm-sentence')?.textContent ?? ''));
+    assert.equal(await other.page.inputValue('#m-motions'), '');
+    assert.doesNotMatch(await other.page.textContent('#machine-summary'), /error motion/);
+    await other.page.waitForSelector('#vm-paper-note', { state: 'attached' });
+    assert.match(await other.page.textContent('#vm-paper-note'), /Choose the preset "C\/A double turntable on an X table \(Tan & Lim\)"/);
     other.assertClean();
   } finally {
     await b.close();
