@@ -133,6 +133,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const p of allPlots) stale(p, true);
     budgetTable.classList.add('stale');
     sentence.classList.add('stale');
+    paperBody.classList.add('stale');
   };
   /** An engine error: at the error motion it names (a table that does not cover the map), at the
    *  field, or over the map; every result greyed. */
@@ -323,9 +324,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const region = input.region ?? {};
     runPaper({ machine: input.machine, x, y, z, ...(region.k === undefined ? {} : { k: region.k }), ...(region.m === undefined ? {} : { m: region.m }) }).then((p) => {
       if (p === SUPERSEDED) return;
+      paperBody.classList.remove('stale');
       showPaper(p, r);
     }, (err) => {
       const e = EngineError.of(err);
+      paperBody.classList.remove('stale');
       paperBody.replaceChildren(el('p', { class: 'field-hint', id: 'vm-paper-note' }, `Not shown for this machine: ${e.field === 'machine' ? e.text : e.message}`));
     });
   };
