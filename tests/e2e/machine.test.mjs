@@ -16,6 +16,7 @@ const PANELS = [
   { tab: 'nonlinear', prefix: 'nl', exports: ['nonlinearMove', 'nonlinearSweepM', 'nonlinearGrid', 'machineInverse'] },
   { tab: 'cubic', prefix: 'cb', exports: ['cubicTest', 'cubicHeightMap'] },
   { tab: 'sshape', prefix: 'ss', exports: ['sshapeDefects', 'sshapeOvercut', 'sshapeIdentify'] },
+  { tab: 'volumetric', prefix: 'vm', exports: ['volumetricMap'] },
 ];
 const id = (prefix, path) => `${prefix}-${path.replace(/\./g, '-')}`;
 /** The default machine's letters: C (K) and B (M), a vertical spindle (face X, Y). */
@@ -62,7 +63,8 @@ test('every field of the schema is on the page with its label, unit and limits',
       return shown;
     };
     // The machine: its own fields (those of another kind hidden), the drawing's pose.
-    for (const f of schema.machine.filter((f) => f.kind !== 'errors')) {
+    // (Its errors and error motions are tables: checked below.)
+    for (const f of schema.machine.filter((f) => f.kind !== 'errors' && f.kind !== 'motions')) {
       const s = await check('m', { ...f, path: f.path.slice('machine.'.length) });
       assert.equal(s.hidden, f.kinds.length > 0 && !f.kinds.includes('table-table'), `${f.path} hidden on a table-table machine`);
     }
@@ -95,6 +97,16 @@ test('every field of the schema is on the page with its label, unit and limits',
         }
       }
       assert.ok(seen.size >= 3, `${p.tab}: fields`);
+    }
+    // Every error motion of the table, on the Volumetric panel: its ISO name and unit; those of
+    // X, Y, Z and of the default machine's B and C shown, the A axis's hidden.
+    for (const e of schema.motions) {
+      const s = await fieldOnPage(page, `m-motions-${e.name}`);
+      assert.ok(s, e.name);
+      assert.ok(s.label.startsWith(`${e.name}: `), `${e.name} label ${s.label}`);
+      assert.equal(s.unit, e.quantity === 'smallAngle' ? '°' : 'µm', `${e.name} unit`);
+      assert.equal(s.hidden, e.axis === 'A', `${e.name} hidden`);
+      checked++;
     }
     // A field of another kind appears when the machine is of that kind.
     await page.selectOption('#m-kind', 'head-table');

@@ -2,7 +2,7 @@
 // geometry, travel and its ISO 230-1 errors, entered once, with a drawing of the machine from its
 // chain. Its fields come from the engine's schema (machine fields and the error table); the
 // panels read the machine from here and recompute when it changes.
-import type { ErrorDef, Machine, SchematicResult } from '@engine';
+import type { ErrorDef, ErrorFunction, Machine, SchematicResult } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import { el, fields, numberField, type NumberField } from '../ui/fields';
 import { displayQuantity, fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
@@ -17,6 +17,15 @@ export const MACHINE_PREFIX = 'm';
 export const DRAWING_PREFIX = 'md';
 /** The linear axes: every machine has them, and their squareness errors. */
 const LINEAR = ['X', 'Y', 'Z'];
+
+/**
+ * An error motion given as a function of the axis position (API units: mm or degrees): a
+ * polynomial, or a measured table with the file it came from and the units of its header.
+ * A constant is the motion's field instead.
+ */
+export type MotionFunction =
+  | { poly: number[] }
+  | { position: number[]; value: number[]; file?: string; units?: [string, string] };
 
 export interface MachinePreset {
   name: string;
@@ -41,6 +50,18 @@ export interface MachineSection {
   apply(machine: Record<string, unknown>, reset?: boolean): void;
   /** The machine presets (public/presets/machines.json). */
   presets(): Promise<MachinePreset[]>;
+  /** The error motions (E_XX … E_CC) of the schema, and the field of each one's constant. */
+  motions(): { def: ErrorDef; field: NumberField }[];
+  /** An error motion given as a polynomial or table, or undefined (then its constant applies). */
+  motionFunction(name: string): MotionFunction | undefined;
+  /** Sets an error motion's polynomial or table (its constant goes back to 0), or clears it. */
+  setMotion(name: string, fn: MotionFunction | null): void;
+}
+
+/** The papers' symbols of an error, for its tooltip: " (δxBY of Li et al.: E_X0B = −δxBY)". */
+function aliasText(def: ErrorDef): string {
+  const aliases = def.aliases.map((a) => `${a.symbol} of ${a.source}: ${def.name} = ${a.sign < 0 ? '−' : ''}${a.symbol}`).join('; ');
+  return aliases ? ` (${aliases})` : '';
 }
 
 let presetCache: Promise<MachinePreset[]> | null = null;
@@ -74,7 +95,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   form.append(presetField);
 
   // ---- the machine's own fields (the schema's paths without "machine.")
-  const own = schema.machine.filter((f) => f.kind !== 'errors').map((f) => ({ ...f, path: f.path.slice('machine.'.length) }));
+  const own = schema.machine.filter((f) => f.kind !== 'errors' && f.kind !== 'motions').map((f) => ({ ...f, path: f.path.slice('machine.'.length) }));
   const machineForm: RenderedForm = renderFields(own, MACHINE_PREFIX, form);
 
   // ---- errors: one field per entry of the table, grouped by axis, shown for the machine's axes
@@ -93,7 +114,6 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
       errorSets.set(group, set);
       errorBox.append(set);
     }
-    const aliases = def.aliases.map((a) => `${a.symbol} of ${a.source}: ${def.name} = ${a.sign < 0 ? '−' : ''}${a.symbol}`).join('; ');
     const f = numberField({
       id: fieldId(MACHINE_PREFIX, `errors.${def.name}`),
       label: `${def.name}: ${def.label}`,
@@ -102,11 +122,68 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
       min: -def.limit,
       max: def.limit,
     });
-    f.root.title = aliases ? `${def.description} (${aliases})` : def.description;
+    f.root.title = `${def.description}${aliasText(def)}`;
     f.root.dataset.error = def.name;
     set.append(f.root);
     errorFields.set(def.name, { def, field: f });
   }
+  // ---- error motions (E_XX … E_CC): a constant each (its field, placed on the page by the
+  // Volumetric panel), or a polynomial or measured table (the store: one hidden field of the page
+  // state holding them as JSON, API units). current() puts them into `machine.motions`.
+  const motionFields = new Map<string, { def: ErrorDef; field: NumberField }>();
+  for (const def of schema.motions) {
+    const f = numberField({
+      id: fieldId(MACHINE_PREFIX, `motions.${def.name}`),
+      label: `${def.name}: ${def.label}`,
+      quantity: displayQuantity(def.quantity),
+      value: 0,
+      min: -def.limit,
+      max: def.limit,
+    });
+    f.root.title = `${def.description}${aliasText(def)}`;
+    f.root.dataset.motion = def.name;
+    // The field may sit outside this form (in the panel): its edits change the machine too.
+    f.input.addEventListener('input', () => onInput());
+    motionFields.set(def.name, { def, field: f });
+  }
+  const motionStore = new Map<string, MotionFunction>();
+  const motionInput = el('input', { type: 'hidden', id: fieldId(MACHINE_PREFIX, 'motions'), hidden: '' });
+  form.append(motionInput);
+  const storeMotions = () => {
+    const sorted = [...motionStore].sort(([a], [b]) => a.localeCompare(b));
+    motionInput.value = sorted.length ? JSON.stringify(Object.fromEntries(sorted)) : '';
+    motionInput.dispatchEvent(new Event('input', { bubbles: true }));
+  };
+  /** The store from its text in a page state: entries that are not a polynomial or a table of
+   *  numbers are dropped (the engine checks the rest). */
+  const readMotions = (text: string) => {
+    motionStore.clear();
+    let data: unknown = {};
+    try {
+      data = text ? JSON.parse(text) : {};
+    } catch {
+      data = {};
+    }
+    const numbers = (v: unknown): v is number[] => Array.isArray(v) && v.every((x) => typeof x === 'number');
+    for (const [name, v] of Object.entries((data && typeof data === 'object' ? data : {}) as Record<string, Record<string, unknown>>)) {
+      if (!motionFields.has(name) || !v || typeof v !== 'object') continue;
+      if (numbers(v.poly)) motionStore.set(name, { poly: v.poly });
+      else if (numbers(v.position) && numbers(v.value)) {
+        const units = Array.isArray(v.units) && v.units.length === 2 ? (v.units.map(String) as [string, string]) : undefined;
+        motionStore.set(name, { position: v.position, value: v.value, ...(typeof v.file === 'string' ? { file: v.file } : {}), ...(units ? { units } : {}) });
+      }
+    }
+    storeMotions();
+  };
+  fields.set(motionInput.id, {
+    id: motionInput.id,
+    control: motionInput,
+    text: () => motionInput.value,
+    defaultText: () => '',
+    setText: readMotions,
+    setBase: (v) => readMotions(typeof v === 'string' ? v : JSON.stringify(v)),
+  });
+
   const errorNote = el('p', { class: 'field-hint', id: 'machine-errors-note', 'aria-live': 'polite' });
   errorBox.append(errorNote);
   form.append(errorBox, resetButton);
@@ -161,8 +238,21 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
       if (v === null) ok = false;
       else if (typeof v === 'number' && v !== 0) errors[def.name] = v;
     }
+    const motions: Record<string, ErrorFunction> = {};
+    for (const { def, field } of motionFields.values()) {
+      if (!onMachine(def)) continue;
+      const fn = motionStore.get(def.name);
+      if (fn) {
+        motions[def.name] = 'poly' in fn ? { poly: fn.poly } : { position: fn.position, value: fn.value };
+        continue;
+      }
+      const v = field.read();
+      if (v === null) ok = false;
+      else if (typeof v === 'number' && v !== 0) motions[def.name] = v;
+    }
     if (!ok || !m) return null;
     m.errors = errors;
+    if (Object.keys(motions).length) m.motions = motions;
     return m as Machine;
   };
 
@@ -178,12 +268,15 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     machineForm.setContext(ctx);
     drawingForm.setContext(ctx);
     // Values entered for axes this machine does not have are kept but not used: say so.
-    const unused = machineFields().filter(({ def, field }) => !onMachine(def) && (field.read() ?? 0) !== 0);
+    const given = ({ def, field }: { def: ErrorDef; field: NumberField }) => motionStore.has(def.name) || (field.read() ?? 0) !== 0;
+    const unused = [...machineFields(), ...motionFields.values()].filter((e) => !onMachine(e.def) && given(e));
     errorNote.textContent = unused.length
       ? `Kept but not used (this machine has no such axis): ${unused.map((u) => u.def.name).join(', ')}.`
       : '';
     const entered = machineFields().filter(({ def, field }) => onMachine(def) && (field.read() ?? 0) !== 0);
-    summary.textContent = `Machine: ${ctx.kind}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}`;
+    const moving = [...motionFields.values()].filter((e) => onMachine(e.def) && given(e)).length;
+    summary.textContent = `Machine: ${ctx.kind}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}` +
+      (moving ? `; ${moving} error motion${moving === 1 ? '' : 's'} entered (Volumetric tab)` : '');
     roles.textContent = `${r.axes.filter((a) => a.motion === 'rotary').map((a) => a.description).join('. ')}. Group ${r.group}. ${r.swingLength === null ? '' : `Pivot to tool tip (the nonlinear study's L): ${fmt.num(r.swingLength)} mm.`}`;
   };
 
@@ -230,11 +323,25 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     },
     apply(machine, reset = true) {
       if (reset) resetPanel(MACHINE_PREFIX);
-      for (const [path, value] of leaves(machine)) {
+      const { motions = {}, ...rest } = machine as { motions?: Record<string, unknown> };
+      for (const [name, value] of Object.entries(motions)) {
+        if (typeof value === 'number') fields.get(fieldId(MACHINE_PREFIX, `motions.${name}`))?.setBase(value);
+        else if (value && typeof value === 'object') section.setMotion(name, value as MotionFunction);
+      }
+      for (const [path, value] of leaves(rest)) {
         fields.get(fieldId(MACHINE_PREFIX, path))?.setBase(value as number | string | boolean);
       }
     },
     presets: loadMachinePresets,
+    motions: () => [...motionFields.values()],
+    motionFunction: (name) => motionStore.get(name),
+    setMotion(name, fn) {
+      if (fn) {
+        motionStore.set(name, fn);
+        fields.get(fieldId(MACHINE_PREFIX, `motions.${name}`))?.setBase(0);
+      } else motionStore.delete(name);
+      storeMotions();
+    },
   };
 
   loadMachinePresets().then((presets) => {

@@ -153,7 +153,7 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
   const rendered: Rendered[] = [];
   const seen = new Set<string>();
   for (const info of fields) {
-    if (!info.shown || info.path.startsWith('machine.') || info.kind === 'errors' || seen.has(info.path)) continue;
+    if (!info.shown || info.path.startsWith('machine.') || info.kind === 'errors' || info.kind === 'motions' || seen.has(info.path)) continue;
     seen.add(info.path);
     const group = info.group || info.section || 'Inputs';
     let set = groups.get(group);

@@ -105,3 +105,15 @@ export function rows<T>(flat: ArrayLike<T>, nx: number, ny: number): T[][] {
   for (let iy = 0; iy < ny; iy++) out.push(Array.from({ length: nx }, (_, ix) => flat[iy * nx + ix]));
   return out;
 }
+
+/** A plot's element in its frame (`.plot-wrap`, which greys it when stale); `wide` spans the
+ *  row of plots, `tall` is higher. */
+export function plotBox(id: string, ...options: ('wide' | 'tall')[]): { wrap: HTMLElement; p: HTMLElement } {
+  const wrap = document.createElement('div');
+  wrap.className = options.includes('wide') ? 'plot-wrap wide' : 'plot-wrap';
+  const p = document.createElement('div');
+  p.className = options.includes('tall') ? 'plot tall' : 'plot';
+  p.id = id;
+  wrap.append(p);
+  return { wrap, p };
+}

@@ -19,9 +19,11 @@ let printing = false;
 function inputRows(section: HTMLElement, prefix: string): [string, string][] {
   const rows: [string, string][] = [];
   for (const f of fields.values()) {
-    if (!f.id.startsWith(`${prefix}-`) || !section.contains(f.control) || f.control.closest('[hidden]')) continue;
-    // Of the machine's errors only those entered.
-    if (f.id.startsWith('m-errors-') && Number(f.text()) === 0) continue;
+    // The machine's error motions are entered on the Volumetric panel: printed with its inputs.
+    const motion = f.id.startsWith('m-motions-');
+    if (!(f.id.startsWith(`${prefix}-`) || motion) || !section.contains(f.control) || f.control.closest('[hidden]')) continue;
+    // Of the machine's errors and error motions only those entered.
+    if ((f.id.startsWith('m-errors-') || motion) && Number(f.text()) === 0) continue;
     const label = section.querySelector(`label[for="${f.id}"]`)?.textContent?.trim() ?? f.id;
     const c = f.control;
     let value: string;
