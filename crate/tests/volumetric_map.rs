@@ -150,7 +150,16 @@ fn zero_errors_give_a_zero_map_and_an_empty_budget() {
     let m = map(&input(json!({}), json!({}), json!({ "steps": 5 }))).unwrap();
     assert!(m.norm.iter().all(|&v| v == 0.0));
     assert!(m.budget.is_empty());
-    assert!(m.summary().contains("exact"));
+    assert!(m.summary(0).starts_with("No error is entered"));
+    // An error entered that moves nothing here: the yaw of the spindle-side Y, the tool on
+    // Y's line (no Abbe offset), at A and C zero.
+    let m = map(&input(
+        json!({ "E_CY": 0.01 }),
+        json!({}),
+        json!({ "steps": 5 }),
+    ))
+    .unwrap();
+    assert!(m.norm.iter().all(|&v| v.abs() < 1e-12), "{:?}", m.worst);
 }
 
 #[test]
@@ -171,7 +180,7 @@ fn a_positioning_error_growing_with_x_is_worst_at_the_end_of_x() {
     }
     assert_eq!(m.budget.len(), 1);
     assert!((m.budget[0].share - 1.0).abs() < 1e-12);
-    assert!(m.summary().contains("E_XX"));
+    assert!(m.summary(1).contains("E_XX"));
 }
 
 #[test]

@@ -74,7 +74,9 @@ pub fn volumetric_map(
 ) -> Result<JsValue, JsError> {
     let i = VolumetricInput::read(&json(&input)?).map_err(js_error)?;
     let m = volumetric::map(&i).map_err(js_error)?;
-    let summary = m.summary();
+    let entered =
+        i.machine.errors.0.values().filter(|v| **v != 0.0).count() + i.machine.motions.0.len();
+    let summary = m.summary(entered);
     output(&VolumetricMapResult {
         axes: m.axes.map(|c| c.to_string()),
         u: f64_array(&m.u),

@@ -511,8 +511,20 @@ fn round(x: f64) -> f64 {
 }
 
 impl VolumetricMap {
-    /// One plain sentence: the worst deviation, where, and the errors most to blame.
-    pub fn summary(&self) -> String {
+    /// One plain sentence: the worst deviation, where, and the errors most to blame; `entered`
+    /// is the number of errors and error motions the machine has.
+    pub fn summary(&self, entered: usize) -> String {
+        if self.worst.norm == 0.0 {
+            return if entered == 0 {
+                "No error is entered: the tool tip is where the control puts it everywhere on the plane.".to_string()
+            } else {
+                format!(
+                    "The {entered} error{} entered do{} not move the tool tip anywhere on this plane.",
+                    if entered == 1 { "" } else { "s" },
+                    if entered == 1 { "es" } else { "" }
+                )
+            };
+        }
         let [x, y, z] = self.worst.position;
         let mut s = format!(
             "The tool tip is off by up to {:.4} mm (at X {}, Y {}, Z {} mm); rms {:.4} mm over the plane.",
@@ -529,9 +541,7 @@ impl VolumetricMap {
             .take(3)
             .map(|c| format!("{} ({}) {:.0} %", c.name, c.label, 100.0 * c.share))
             .collect();
-        if top.is_empty() {
-            s.push_str(" No error is entered: the machine is exact.");
-        } else {
+        if !top.is_empty() {
             s.push_str(&format!(" Most of it comes from {}.", top.join(", ")));
         }
         s
