@@ -153,7 +153,10 @@ pub(crate) fn levenberg_marquardt(
     let svd = js.clone().svd(false, true);
     let smax = svd.singular_values.max();
     if let Some(i) = svd.singular_values.iter().position(|v| *v < 1e-10 * smax) {
-        let v_t = svd.v_t.as_ref().map(|v| v.row(i).iter().map(|x| x.abs()).collect::<Vec<_>>());
+        let v_t = svd
+            .v_t
+            .as_ref()
+            .map(|v| v.row(i).iter().map(|x| x.abs()).collect::<Vec<_>>());
         let k = v_t.map_or(0, |row| {
             row.iter()
                 .enumerate()

@@ -38,12 +38,20 @@ fn commands_are_the_machine_inverse_kinematics_and_their_derivatives() {
             let mut prev = motion.base.clone();
             prev[motion.c_index] = cmd.c.x;
             let q = model
-                .inverse(&motion.tip(cmd.theta), &Vector3::z(), BranchRule::Nearest, Some(&prev))
+                .inverse(
+                    &motion.tip(cmd.theta),
+                    &Vector3::z(),
+                    BranchRule::Nearest,
+                    Some(&prev),
+                )
                 .unwrap()
                 .q;
             for k in 0..3 {
                 let want = q[motion.linear[k]];
-                assert!((cmd.linear[k].x - want).abs() < 1e-9, "{m}: axis {k} at t = {t}");
+                assert!(
+                    (cmd.linear[k].x - want).abs() < 1e-9,
+                    "{m}: axis {k} at t = {t}"
+                );
             }
             // Velocity and acceleration against central differences of the positions.
             let h = 1e-4;
@@ -54,7 +62,10 @@ fn commands_are_the_machine_inverse_kinematics_and_their_derivatives() {
             for k in 0..4 {
                 let v = (after[k].x - before[k].x) / (2.0 * h);
                 let acc = (after[k].x - 2.0 * now[k].x + before[k].x) / (h * h);
-                assert!((now[k].v - v).abs() < 1e-5 * (1.0 + v.abs()), "{m}: velocity at {t}");
+                assert!(
+                    (now[k].v - v).abs() < 1e-5 * (1.0 + v.abs()),
+                    "{m}: velocity at {t}"
+                );
                 assert!(
                     (now[k].a - acc).abs() < 1e-2 * (1.0 + acc.abs()),
                     "{m}: acceleration at {t}: {} vs {acc}",
@@ -79,7 +90,10 @@ fn x_and_y_keep_their_direction_when_c_reverses() {
         let c = case(json!({"test": {"feed": f, "offset": 25}}));
         let (m, tr) = simulate(&c).unwrap();
         for d in direction_checks(&m, &tr) {
-            assert!(!d.reverses && !d.actual_reverses && !d.stops, "F = {f}: {d:?}");
+            assert!(
+                !d.reverses && !d.actual_reverses && !d.stops,
+                "F = {f}: {d:?}"
+            );
             // And the velocity before and after C turns has the same sign.
             if d.name != "Z" {
                 assert!(d.before * d.after > 0.0, "F = {f}: {d:?}");
@@ -101,8 +115,10 @@ fn x_and_y_keep_their_direction_when_c_reverses() {
 #[test]
 fn ideal_drives_trace_the_exact_circle_on_any_machine_with_a_c_table() {
     for m in machines() {
-        let c = case(json!({"machine": m, "feedForward": "full", "c": {"friction": 0},
-                             "test": {"feed": 3000}}));
+        let c = case(
+            json!({"machine": m, "feedForward": "full", "c": {"friction": 0},
+                             "test": {"feed": 3000}}),
+        );
         let (_, tr) = simulate(&c).unwrap();
         let worst = tr.deviation.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         assert!(worst < 1e-9, "{m}: {worst:e} mm");
@@ -124,7 +140,10 @@ fn servo_lag_shrinks_the_radius_by_the_closed_form_and_nothing_else() {
         let thd = f / 60.0 / 50.0;
         let rate = m.rate;
         let g: &Drive = &lin[0];
-        for (from, to, omega) in [(60.0, 160.0, thd * (1.0 - rate)), (220.0, 340.0, thd * (1.0 + rate))] {
+        for (from, to, omega) in [
+            (60.0, 160.0, thd * (1.0 - rate)),
+            (220.0, 340.0, thd * (1.0 + rate)),
+        ] {
             let want = 50.0 * (g.response(omega) - 1.0);
             let devs: Vec<f64> = tr
                 .theta
@@ -155,7 +174,11 @@ fn machines_without_a_c_table_are_refused() {
         let c = case(json!({"machine": m}));
         let e = c.motion().unwrap_err();
         assert_eq!(e.field, "machine.type", "{m}");
-        assert!(e.message.contains("needs a rotary table C"), "{}", e.message);
+        assert!(
+            e.message.contains("needs a rotary table C"),
+            "{}",
+            e.message
+        );
     }
     // A C travel that does not reach the reversal angle.
     let c = case(json!({"machine": {"rotary": {"kFrom": -30, "kTo": 45}}}));

@@ -121,7 +121,11 @@ fn rates(d: &Drive, s: &AxisState, e: [f64; 3], r: &Reference) -> ([f64; 3], f64
     };
     let raw = d.kv * eps + d.ki * e[2] + ff;
     let tau = raw.clamp(-d.limit, d.limit);
-    let wind = if tau != raw && eps * raw > 0.0 { 0.0 } else { eps };
+    let wind = if tau != raw && eps * raw > 0.0 {
+        0.0
+    } else {
+        eps
+    };
     let f = d.friction((x - s.x_rev).abs(), s.dir);
     let acc = (tau - d.damping * v - f) / d.inertia;
     ([e[1], r.a - acc, wind], f, tau)
@@ -130,7 +134,8 @@ fn rates(d: &Drive, s: &AxisState, e: [f64; 3], r: &Reference) -> ([f64; 3], f64
 /// One RK4 step of length `h` from `s` with references at the start, middle and end.
 fn rk4(d: &Drive, s: &AxisState, h: f64, r: [&Reference; 3]) -> AxisState {
     let y = [s.e, s.ev, s.z];
-    let add = |y: [f64; 3], k: [f64; 3], c: f64| [y[0] + c * k[0], y[1] + c * k[1], y[2] + c * k[2]];
+    let add =
+        |y: [f64; 3], k: [f64; 3], c: f64| [y[0] + c * k[0], y[1] + c * k[1], y[2] + c * k[2]];
     let (k1, _, _) = rates(d, s, y, r[0]);
     let (k2, _, _) = rates(d, s, add(y, k1, h / 2.0), r[1]);
     let (k3, _, _) = rates(d, s, add(y, k2, h / 2.0), r[1]);

@@ -219,9 +219,9 @@ impl Motion {
             e[k] = 1.0;
             l.set_column(k, &(at(0.0, e)? - m0));
         }
-        let l_inv = l
-            .try_inverse()
-            .ok_or_else(|| Error::field("machine", "the linear axes do not span three directions"))?;
+        let l_inv = l.try_inverse().ok_or_else(|| {
+            Error::field("machine", "the linear axes do not span three directions")
+        })?;
         let q90 = at(FRAC_PI_2, Vector3::zeros())?;
         let turned = l_inv * (at(FRAC_PI_2, Vector3::x())? - q90);
         let sigma = turned.y.signum();
@@ -265,7 +265,12 @@ impl Motion {
             model: model.clone(),
         };
         // The closed form against the machine's inverse kinematics, and the travel of C.
-        for (c, th) in [(0.3, 0.4), (1.1, 2.0), (spec.reversal_angle, PI), (0.7, 5.5)] {
+        for (c, th) in [
+            (0.3, 0.4),
+            (1.1, 2.0),
+            (spec.reversal_angle, PI),
+            (0.7, 5.5),
+        ] {
             let c = c.min(spec.reversal_angle);
             let p = motion.tip(th);
             let want = at(c, p)?;
