@@ -19,12 +19,14 @@
 mod cubic;
 mod machine;
 mod nonlinear;
+mod reversal;
 mod sshape;
 mod toolpath;
 
 pub use cubic::*;
 pub use machine::*;
 pub use nonlinear::*;
+pub use reversal::*;
 pub use sshape::*;
 pub use toolpath::*;
 

@@ -10,6 +10,7 @@ use fiveaxis::nonlinear::{
     NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
     TypeCompareInput,
 };
+use fiveaxis::reversal::{ReversalCase, ReversalFitInput, ReversalRunInput};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
@@ -76,6 +77,9 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("sshapeOvercut", fields::<SShapeOvercutInput>());
     put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());
     put("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>());
+    put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
+    put("reversalDents", fields::<ReversalCase>());
+    put("reversalFit", both::<ReversalCase, ReversalFitInput>());
     output(&Schema {
         machine: describe(Machine::FIELDS, "machine"),
         errors: TABLE.to_vec(),

@@ -408,5 +408,8 @@ fn the_schema_lists_every_exports_inputs() {
     assert!(s.exports["toolpathParse"]
         .iter()
         .any(|f| f.path == "format"));
-    assert_eq!(s.exports.len(), 19);
+    assert!(s.exports["reversalFit"]
+        .iter()
+        .any(|f| f.path == "c.frictionSlope"));
+    assert_eq!(s.exports.len(), 22);
 }

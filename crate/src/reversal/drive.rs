@@ -171,19 +171,17 @@ impl AxisState {
         (f, tau)
     }
 
-    /// Advances by `h`: `reference(t)` gives the command at any time in `[t0, t0 + h]`; `mid`
-    /// and `end` are those at `t0 + h/2` and `t0 + h`, `start` at `t0`. A change of direction
+    /// Advances by `h` from `t0`: `reference(t)` gives the command at any time in
+    /// `[t0, t0 + h]`; `at` holds it at `t0`, `t0 + h/2` and `t0 + h`. A change of direction
     /// inside the step splits it there (module docs). Returns the number of direction changes.
     pub fn step(
         &mut self,
         d: &Drive,
-        t0: f64,
-        h: f64,
-        start: &Reference,
-        mid: &Reference,
-        end: &Reference,
+        (t0, h): (f64, f64),
+        at: [&Reference; 3],
         reference: &dyn Fn(f64) -> Reference,
     ) -> usize {
+        let [start, mid, end] = at;
         let next = rk4(d, self, h, [start, mid, end]);
         let v0 = start.v - self.ev;
         let v1 = end.v - next.ev;

@@ -10,7 +10,7 @@
 //! # The fit
 //! The model is the simulated trace of the case (the machine, the motion, every other drive
 //! parameter as entered) with `f_c`, `a` and `K_p` of C free, interpolated linearly at the
-//! measured angles (20 000 samples at least), plus a constant radius offset (a ball bar's length is only known to a few
+//! measured angles (10 000 samples at least), plus a constant radius offset (a ball bar's length is only known to a few
 //! µm). Parameters `ln f_c`, `ln a`, `ln K_p` (all positive) and the offset are found by
 //! Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt`]); the 95 % confidence intervals
 //! are `exp(ln x ± 1.96·σ_ln x)` from the linearised covariance (`n − p` ≥ 30 degrees of
@@ -174,6 +174,9 @@ pub struct FrictionFit {
     pub kp: Estimate,
     /// Radius offset, mm.
     pub offset: Estimate,
+    /// Where the fitted friction has turned half way after a reversal, `atanh(1/2)/a`, rad: with
+    /// `2·f_c`, the torque step, what a friction compensator of eq 2's form is set with.
+    pub halfway: f64,
     /// The model at the measured angles (offset included), mm.
     pub fitted: Vec<f64>,
     /// Measured − fitted, mm.
@@ -185,7 +188,7 @@ pub struct FrictionFit {
 }
 
 /// Samples of the model's trace in a fit (at least).
-pub const FIT_SAMPLES: usize = 20_000;
+pub const FIT_SAMPLES: usize = 10_000;
 
 /// 95 % two-sided normal quantile.
 const Z95: f64 = 1.959_963_984_540_054;
@@ -228,7 +231,7 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
             Vec::with_capacity(tr.angle.len()),
         );
         for (a, d) in tr.angle.iter().zip(&tr.deviation) {
-            if xs.last().is_none_or(|l| a > l) {
+            if xs.last().map_or(true, |l| a > l) {
                 xs.push(*a);
                 ys.push(*d);
             }
@@ -323,6 +326,7 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
             low: lsq.x[3] - Z95 * sd(3),
             high: lsq.x[3] + Z95 * sd(3),
         },
+        halfway: 0.5f64.atanh() / slope.value,
         fitted,
         residuals: lsq.residuals,
         sigma: lsq.sigma,

@@ -290,7 +290,38 @@ crate::inputs! {
     }
 }
 
+crate::inputs! {
+    /// What a simulation adds to the case.
+    pub struct ReversalRunInput {
+        /// Run again at half the step and report the difference.
+        pub check_step: bool = "checkStep" optional {
+            label: "Check the step", help: "Runs again with half the step and reports how much the trace changes.",
+            kind: Kind::Flag, default: DefaultValue::Flag(false), shown: false,
+        },
+    }
+}
+
+crate::inputs! {
+    /// What a fit adds to the case.
+    pub struct ReversalFitInput {
+        /// The measured trace.
+        pub csv: String = "csv" {
+            label: "Measured trace (CSV)",
+            help: "Header angle_deg,deviation_mm (or deviation_um): trace angle with C's reversal at 180°, radial deviation + outwards.",
+            kind: Kind::Text { max_len: 5_000_000 },
+            group: "Fit",
+        },
+    }
+}
+
 impl ReversalCase {
+    /// Reads a case and an export's own inputs from one object (the keys of `B` go to `B`).
+    pub fn read_with<B: schema::Inputs>(value: &Value) -> Result<(Self, B)> {
+        let (c, b): (Self, B) = schema::read_split(value, "")?;
+        c.machine.validate("machine")?;
+        Ok((c, b))
+    }
+
     /// Reads a case (and checks the machine).
     pub fn read(value: &Value) -> Result<Self> {
         let c: ReversalCase = schema::read(<Self as schema::Inputs>::FIELDS, value, "")?;
@@ -546,7 +577,8 @@ fn run(case: &ReversalCase, motion: &Motion, h: f64, stride: usize) -> Result<Tr
                 continue;
             }
             let one = |t: f64| refs(t)[k];
-            tr.direction_changes += state[k].step(&drives[k], t0, h, &r0[k], &rm[k], &r1[k], &one);
+            tr.direction_changes +=
+                state[k].step(&drives[k], (t0, h), [&r0[k], &rm[k], &r1[k]], &one);
         }
         r0 = r1;
         if (i + 1) % stride == 0 || i + 1 == steps {
