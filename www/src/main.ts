@@ -6,6 +6,7 @@ import { nonlinearPanel } from './panels/nonlinear';
 import { cubicPanel } from './panels/cubic';
 import { sshapePanel } from './panels/sshape';
 import { toolpathPanel } from './panels/toolpath';
+import { reversalPanel } from './panels/reversal';
 import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
@@ -13,7 +14,7 @@ import * as state from './ui/state';
 import { printReport, setupPrint } from './ui/print';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel];
+const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, reversalPanel];
 let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();
