@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare } from '../../wasm/pkg/fiveaxis.js';
+import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare, reversalSimulate } from '../../wasm/pkg/fiveaxis.js';
 
 initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
@@ -88,4 +88,15 @@ test('README: the dome sample on the twelve types', () => {
   for (const t of ['ABX', 'ACX']) assert.equal(row(t).unreachable.point, 0, t);
   assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
   assert.ok(row('BCY').max < 0.0025 && row('CAZ').max > 0.1);
+});
+
+test('README: the reversal dent doubles with r, X and Y keep their direction', () => {
+  const a = reversalSimulate({ test: { offset: 25 } });
+  const b = reversalSimulate({ test: { offset: 50 } });
+  // The dent is C's error at the reversal copied onto the circle at the radius r (Figs 12, 13):
+  // twice r, twice the dent; it sits just after C turns at 180°.
+  assert.ok(Math.abs(b.dent.depth / a.dent.depth - 2) < 0.01, `${b.dent.depth / a.dent.depth}`);
+  assert.ok(a.dent.angle > 180 && a.dent.angle < 183, `${a.dent.angle}`);
+  assert.ok(a.dent.depth > 0.005 && a.dent.depth < 0.01, `${a.dent.depth}`);
+  assert.deepEqual(a.directions.map((d) => [d.name, d.reverses]), [['X', false], ['Y', false], ['Z', false]]);
 });
