@@ -47,6 +47,16 @@ test('Rotary-axis reversal panel: trace, dent, directions, fit of the sample tra
     assert.match(dirs, /X keeps its direction.*Y keeps its direction/);
     assert.doesNotMatch(dirs, /REVERSES/);
     assert.match(await page.textContent('#rv-sum-step'), /halving it changes the trace by/);
+    // The ball-bar plot's CSV: trace angle and the radial deviations (µm), not the drawing's
+    // magnified radius; the engine's numbers.
+    const csvButton = await page.$('#rv-polar ~ .plot-tools button[data-export=csv]');
+    const [dl] = await Promise.all([page.waitForEvent('download'), csvButton.click()]);
+    const [header, ...csvLines] = readFileSync(await dl.path(), 'utf8').trim().split('\n');
+    assert.equal(header, 'trace angle θ (°),nominal circle [radial deviation (µm)],without friction [radial deviation (µm)],with friction (eq 2) [radial deviation (µm)]');
+    assert.equal(csvLines.length, r25.theta.length);
+    const k0 = r25.reversalIndex;
+    const cols = csvLines[k0].split(',').map(Number);
+    assert.ok(Math.abs(cols[0] - r25.theta[k0]) < 1e-9 && Math.abs(cols[3] - r25.deviation[k0] * 1000) < 1e-9, csvLines[k0]);
     // Table 1's six conditions in the dent table.
     await page.waitForFunction(() => document.querySelectorAll('#rv-dents-table tbody tr').length === 6);
     await page.screenshot({ path: `${ARTIFACTS}reversal.png`, fullPage: true });

@@ -180,7 +180,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const rp = (d: number[]) => d.map((v) => base + v / div);
     const hover = (what: string) => `${what}<br>θ %{theta:.2f}°<br>%{customdata:.4g} ${lu()}<extra></extra>`;
     draw(polar.p, `Ball-bar trace, deviation magnified:<br>${show('errLength', div, 2)} per division`, [
-      { type: 'scatterpolar', r: theta.map(() => base), theta, mode: 'lines', name: 'nominal circle', line: { color: '#8c959f', dash: 'dot', width: 1 }, hoverinfo: 'skip' } as Data,
+      { type: 'scatterpolar', r: theta.map(() => base), theta, customdata: theta.map(() => 0), mode: 'lines', name: 'nominal circle', line: { color: '#8c959f', dash: 'dot', width: 1 }, hoverinfo: 'skip' } as Data,
       { type: 'scatterpolar', r: rp(dry), theta, mode: 'lines', name: 'without friction', customdata: dry.map(D), line: { color: '#1f77b4', width: 1.5 }, hovertemplate: hover('without friction') } as Data,
       { type: 'scatterpolar', r: rp(dev), theta, mode: 'lines', name: 'with friction (eq 2)', customdata: dev.map(D), line: { color: '#d62728', width: 1.5 }, hovertemplate: hover('with friction') } as Data,
     ], {
@@ -190,6 +190,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       },
       legend: { orientation: 'h', x: 0, y: -0.08, yanchor: 'top' },
       margin: { l: 30, r: 30, b: 70 },
+      meta: { csvX: 'trace angle θ (°)', csvY: titled('radial deviation', 'errLength') },
     } as Partial<Layout>, 'reversal-polar');
 
     const i0 = theta.findIndex((t) => t > 150);
