@@ -115,6 +115,8 @@ wasm['sshape: identification of the 100-point sample (parse + SVD fit), 100 time
   (f) => f.rms,
 );
 
+wasm['reversal: default test with and without friction (2 simulations)'] = time(3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
+
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
 const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
@@ -134,6 +136,10 @@ const rows = Object.keys(native).filter((name) => !name.startsWith('toolpath')).
   };
 });
 console.table(rows);
+const rev = 'reversal: default test with and without friction (2 simulations)';
+if (native[rev] && wasm[rev]) {
+  console.log(`reversal: one simulation ${(wasm[rev].ms / 2).toFixed(1)} ms as wasm (target <= 50 ms), ${(native[rev].ms / 2).toFixed(1)} ms native`);
+}
 
 // The toolpath ranking in headless Chromium: the built page's workers (www/src/toolpath/pool.ts),
 // one worker and as many as the page uses (navigator.hardwareConcurrency, at most 6), on the same

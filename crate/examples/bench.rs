@@ -325,5 +325,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             |f| f.as_ref().map_or(f64::NAN, |f| f.rms),
         ),
     );
+    // The reversal test (Nishiguchi et al.): the default case, F = 1000 mm/min (19 s of motion,
+    // 0.2 ms steps), simulated with C's friction and again without it, as reversalSimulate does;
+    // one simulation is half of it.
+    let rev = fiveaxis::reversal::ReversalCase::read(&json!({}))?;
+    report(
+        "reversal: default test with and without friction (2 simulations)",
+        time(
+            3,
+            || -> Result<f64, fiveaxis::Error> {
+                let (m, with) = fiveaxis::reversal::simulate(&rev)?;
+                let without = fiveaxis::reversal::simulate_with_step(
+                    &rev.with_c_friction(0.0),
+                    &m,
+                    with.step,
+                )?;
+                std::hint::black_box(fiveaxis::reversal::dent(&with, &without));
+                Ok(with.deviation.iter().sum::<f64>())
+            },
+            |r| r.as_ref().map_or(f64::NAN, |v| *v),
+        ),
+    );
     Ok(())
 }

@@ -13,6 +13,7 @@
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
 //! * [`cubic`]: the cubic-machining test, 3 × 3 zone heights (Li, Sato, Shirase & Sakamoto 2021).
 //! * [`sshape`]: the S-shape test piece of ISO 10791-7 (Chanal, Duc & Chevalier 2022).
+//! * [`reversal`]: a rotary table's reversal with friction, as a ball bar sees it (Nishiguchi et al. 2017).
 //! * [`toolpath`]: the customer's toolpath on the twelve rotary-axis types, ranked by nonlinear
 //!   error, and refined to a tolerance.
 //! * [`volumetric`]: the tool tip's deviation over the working volume from every location
@@ -27,6 +28,7 @@ pub mod geometry;
 pub mod machine;
 pub mod nonlinear;
 mod numeric;
+pub mod reversal;
 pub mod rotary;
 pub mod sshape;
 pub mod toolpath;

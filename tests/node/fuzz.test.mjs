@@ -142,6 +142,33 @@ function toolpathText(r) {
   return lines.join(pick(['\n', '\r\n', '\r'])(r));
 }
 const toolpathRead = { machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: maybe(pick(['auto', 'csv', 'apt', 'nc'])) };
+// The reversal test: short, fast runs (a small circle at a high feed, a coarse step) so that a
+// case costs well under a millisecond unless a mutation takes the defaults back.
+const reversalCase = {
+  machine,
+  test: { radius: (r) => 3 + 20 * r(), offset: (r) => 30 * r(), feed: (r) => 5000 + 25000 * r(), reversalAngle: maybe((r) => 1 + 179 * r()), accelTime: maybe((r) => 1 + 20 * r()), reversalTime: maybe((r) => 0.5 + 10 * r()) },
+  linear: maybe((r) => build({ mass: (q) => 10 + 1000 * q(), positionGain: (q) => 5 + 60 * q(), friction: maybe((q) => 100 * q()) }, r)),
+  c: maybe((r) => build({ inertia: (q) => 0.1 + 5 * q(), friction: (q) => 30 * q(), frictionSlope: (q) => 10 ** (1 + 4 * q()), torqueLimit: maybe((q) => 1 + 500 * q()) }, r)),
+  feedForward: maybe(pick(['none', 'velocity', 'full'])),
+  step: (r) => 0.5 + 1.5 * r(),
+  samples: maybe(small(100, 400)),
+};
+/** A measured trace: a few points round the circle, sometimes a dense run over the reversal,
+ *  sometimes a damaged line. */
+function reversalCsv(r) {
+  const lines = [pick(['angle_deg,deviation_mm', 'angle_deg;deviation_um', 'angle,deviation'])(r)];
+  const n = small(0, 70)(r);
+  const dense = r() < 0.3;
+  for (let k = 0; k < n; k++) {
+    const a = dense ? 170 + (20 * k) / Math.max(1, n) : (360 * (k + 0.5)) / Math.max(1, n);
+    lines.push(`${a.toFixed(3)}${lines[0].includes(';') ? ';' : ','}${((r() - 0.5) * 0.02).toFixed(5)}`);
+  }
+  if (lines.length > 1 && r() < 0.3) {
+    const i = 1 + Math.floor(r() * (lines.length - 1));
+    lines[i] = lines[i].replace(/\d/, pick(['x', '', '-', 'e'])(r));
+  }
+  return lines.join('\n');
+}
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -178,6 +205,9 @@ export const SPECS = {
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
+  reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] },
+  reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] },
+  reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

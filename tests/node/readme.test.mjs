@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare, volumetricMap } from '../../wasm/pkg/fiveaxis.js';
+import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare, volumetricMap, reversalSimulate } from '../../wasm/pkg/fiveaxis.js';
 
 initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
@@ -125,4 +125,13 @@ test('README: the volumetric map of an X table with positioning, pitch and squar
   assert.equal(v.budget[0].name, 'E_C0Y');
   assert.ok(Math.abs(v.budget[0].share - 0.61) < 0.005);
   assert.match(v.summary, /^The tool tip is off by up to 0\.0062 mm \(at X 300, Y -200, Z 0 mm\)/);
+test('README: the reversal dent doubles with r, X and Y keep their direction', () => {
+  const a = reversalSimulate({ test: { offset: 25 } });
+  const b = reversalSimulate({ test: { offset: 50 } });
+  // The dent is C's error at the reversal copied onto the circle at the radius r (Figs 12, 13):
+  // twice r, twice the dent; it sits just after C turns at 180°.
+  assert.ok(Math.abs(b.dent.depth / a.dent.depth - 2) < 0.01, `${b.dent.depth / a.dent.depth}`);
+  assert.ok(a.dent.angle > 180 && a.dent.angle < 183, `${a.dent.angle}`);
+  assert.ok(a.dent.depth > 0.005 && a.dent.depth < 0.01, `${a.dent.depth}`);
+  assert.deepEqual(a.directions.map((d) => [d.name, d.reverses]), [['X', false], ['Y', false], ['Z', false]]);
 });

@@ -19,6 +19,7 @@
 mod cubic;
 mod machine;
 mod nonlinear;
+mod reversal;
 mod sshape;
 mod toolpath;
 mod volumetric;
@@ -26,6 +27,7 @@ mod volumetric;
 pub use cubic::*;
 pub use machine::*;
 pub use nonlinear::*;
+pub use reversal::*;
 pub use sshape::*;
 pub use toolpath::*;
 pub use volumetric::*;

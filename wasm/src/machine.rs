@@ -11,6 +11,7 @@ use fiveaxis::nonlinear::{
     NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
     TypeCompareInput,
 };
+use fiveaxis::reversal::{ReversalCase, ReversalFitInput, ReversalRunInput};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
@@ -83,6 +84,9 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("volumetricMap", fields::<VolumetricInput>());
     put("volumetricPaper", fields::<VolumetricPaperInput>());
     put("volumetricReadTable", fields::<MotionTableInput>());
+    put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
+    put("reversalDents", fields::<ReversalCase>());
+    put("reversalFit", both::<ReversalCase, ReversalFitInput>());
     output(&Schema {
         machine: describe(Machine::FIELDS, "machine"),
         errors: TABLE.to_vec(),

@@ -408,7 +408,13 @@ fn the_schema_lists_every_exports_inputs() {
     assert!(s.exports["toolpathParse"]
         .iter()
         .any(|f| f.path == "format"));
-    assert_eq!(s.exports.len(), 22);
+    assert!(s.exports["reversalFit"]
+        .iter()
+        .any(|f| f.path == "c.frictionSlope"));
+    assert!(s.exports["volumetricMap"]
+        .iter()
+        .any(|f| f.path == "region.steps"));
+    assert_eq!(s.exports.len(), 25);
 }
 
 fn tan_lim() -> Value {

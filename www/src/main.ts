@@ -7,6 +7,7 @@ import { cubicPanel } from './panels/cubic';
 import { sshapePanel } from './panels/sshape';
 import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
+import { reversalPanel } from './panels/reversal';
 import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
@@ -14,7 +15,7 @@ import * as state from './ui/state';
 import { printReport, setupPrint } from './ui/print';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel];
+const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
 let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();

@@ -6,12 +6,17 @@ interface Trace {
   name?: string;
   x?: ArrayLike<unknown>;
   y?: ArrayLike<unknown>;
+  /** Polar traces: the angle, and the value shown (`customdata` when the radius is scaled). */
+  theta?: ArrayLike<unknown>;
+  r?: ArrayLike<unknown>;
+  customdata?: ArrayLike<unknown>;
+  yaxis?: string;
   z?: ArrayLike<ArrayLike<unknown>>;
   showlegend?: boolean;
 }
 interface Graph extends HTMLElement {
   data?: Trace[];
-  layout?: { xaxis?: { title?: { text?: string } }; yaxis?: { title?: { text?: string } }; title?: { text?: string } };
+  layout?: { xaxis?: { title?: { text?: string } }; yaxis?: { title?: { text?: string } }; title?: { text?: string }; meta?: { csvX?: string; csvY?: string } } & Record<string, unknown>;
 }
 
 function cell(v: unknown): string {
@@ -29,9 +34,16 @@ const plain = (t: string | undefined, fallback: string) => (t ?? fallback).repla
  * first row holds the x values, each further row a y value then z along x.
  */
 export function graphCsv(gd: Graph): string {
-  const data = gd.data ?? [];
-  const xt = plain(gd.layout?.xaxis?.title?.text, 'x');
-  const yt = plain(gd.layout?.yaxis?.title?.text, 'y');
+  // A polar trace is exported as angle and value (its `customdata` when the radius is a scaled
+  // drawing of it); `layout.meta.csvX`/`csvY` name them.
+  const data = (gd.data ?? []).map((t) => (t.theta ? { ...t, x: t.theta, y: t.customdata ?? t.r } : t));
+  const xt = plain(gd.layout?.meta?.csvX ?? gd.layout?.xaxis?.title?.text, 'x');
+  const yt = plain(gd.layout?.meta?.csvY ?? gd.layout?.yaxis?.title?.text, 'y');
+  /** The unit column of a trace: its own y axis's title (plots with several y axes). */
+  const yOf = (t: Trace) => {
+    const axis = t.yaxis && t.yaxis !== 'y' ? (gd.layout?.[`yaxis${t.yaxis.slice(1)}`] as { title?: { text?: string } } | undefined) : undefined;
+    return axis?.title?.text ? plain(axis.title.text, yt) : yt;
+  };
   const lines: string[] = [];
   const heat = data.find((t) => t.type === 'heatmap' || t.type === 'surface');
   if (heat && heat.z) {
@@ -52,7 +64,7 @@ export function graphCsv(gd: Graph): string {
       return a.length === b.length && a.every((v, i) => v === b[i]);
     });
   if (sameX) {
-    lines.push([xt, ...series.map((t, i) => `${plain(t.name, `trace ${i + 1}`)} [${yt}]`)].map(cell).join(','));
+    lines.push([xt, ...series.map((t, i) => `${plain(t.name, `trace ${i + 1}`)} [${yOf(t)}]`)].map(cell).join(','));
     const xs = Array.from(series[0].x ?? []);
     xs.forEach((x, i) => lines.push([x, ...series.map((t) => Array.from(t.y ?? [])[i])].map(cell).join(',')));
   } else {

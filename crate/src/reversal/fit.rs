@@ -1,0 +1,335 @@
+//! Friction read off a measured trace: `f_c`, `a` (eq 2) and C's position-loop gain `K_p`
+//! fitted by least squares to a ball-bar trace (or a roundness profile of the cut cylinder).
+//!
+//! # The file
+//! CSV (comma, semicolon or tab; lines starting with `#` are comments): a header with
+//! `angle_deg` and `deviation_mm` (or `deviation_um`), then one row per point: the trace angle in
+//! degrees in this study's convention (0° at the start, the reversal of C at 180°, counter-clockwise
+//! in table coordinates) and the radial deviation (+ outwards). Angles must increase.
+//!
+//! # The fit
+//! The model is the simulated trace of the case (the machine, the motion, every other drive
+//! parameter as entered) with `f_c`, `a` and `K_p` of C free, interpolated linearly at the
+//! measured angles (10 000 samples at least), plus a constant radius offset (a ball bar's length is only known to a few
+//! µm). Parameters `ln f_c`, `ln a`, `ln K_p` (all positive) and the offset are found by
+//! Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt`]); the 95 % confidence intervals
+//! are `exp(ln x ± 1.96·σ_ln x)` from the linearised covariance (`n − p` ≥ 30 degrees of
+//! freedom, where Student's t is within 3 % of 1.96). A trace the model cannot fit is refused
+//! with the reason: too few points, no points around the reversal, parameters the trace does not
+//! determine, or no convergence.
+
+use super::{simulate_with_step, ReversalCase};
+use crate::error::{Error, Result};
+use crate::numeric::{levenberg_marquardt, LsqFailure};
+
+/// A measured trace: angles (rad) and deviations (mm), with the file line of each point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measured {
+    /// Trace angle, rad, increasing.
+    pub angle: Vec<f64>,
+    /// Radial deviation, mm.
+    pub deviation: Vec<f64>,
+    /// The file line of each point (1-based).
+    pub lines: Vec<usize>,
+}
+
+/// Reads a measured trace (module docs). Errors name the field `csv` and the line.
+pub fn parse_trace(text: &str) -> Result<Measured> {
+    let at = |line: usize, msg: String| Error::field("csv", format!("line {line}: {msg}"));
+    let mut rows = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let Some((hl, header)) = rows.next() else {
+        return Err(Error::field(
+            "csv",
+            "the file is empty: expected a header angle_deg,deviation_mm and one row per point",
+        ));
+    };
+    let sep = [',', ';', '\t']
+        .into_iter()
+        .find(|c| header.contains(*c))
+        .ok_or_else(|| {
+            at(
+                hl,
+                format!("the header {header:?} should be angle_deg,deviation_mm"),
+            )
+        })?;
+    let cols: Vec<String> = header
+        .split(sep)
+        .map(|s| s.trim().trim_matches('"').to_ascii_lowercase())
+        .collect();
+    let col = |names: &[&str]| cols.iter().position(|c| names.contains(&c.as_str()));
+    let a_col = col(&["angle_deg", "angle"])
+        .ok_or_else(|| at(hl, "missing column 'angle_deg' in the header".into()))?;
+    let (d_col, scale) = match (
+        col(&["deviation_mm", "deviation"]),
+        col(&["deviation_um", "deviation_µm"]),
+    ) {
+        (Some(c), None) => (c, 1.0),
+        (None, Some(c)) => (c, 1e-3),
+        (Some(_), Some(_)) => {
+            return Err(at(hl, "two deviation columns (mm and µm); keep one".into()))
+        }
+        (None, None) => {
+            return Err(at(
+                hl,
+                "missing column 'deviation_mm' (or 'deviation_um') in the header".into(),
+            ))
+        }
+    };
+    let mut m = Measured {
+        angle: Vec::new(),
+        deviation: Vec::new(),
+        lines: Vec::new(),
+    };
+    for (line, row) in rows {
+        let cells: Vec<&str> = row.split(sep).map(|c| c.trim().trim_matches('"')).collect();
+        if cells.len() != cols.len() {
+            return Err(at(
+                line,
+                format!(
+                    "expected {} columns like the header, got {}",
+                    cols.len(),
+                    cells.len()
+                ),
+            ));
+        }
+        let num = |i: usize, what: &str| -> Result<f64> {
+            cells[i]
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| at(line, format!("{what} {:?} is not a number", cells[i])))
+        };
+        let a = num(a_col, "angle")?;
+        let d = num(d_col, "deviation")? * scale;
+        if !(-30.0..=390.0).contains(&a) {
+            return Err(at(line, format!("angle {a}° is outside 0° to 360°")));
+        }
+        if d.abs() > 1.0 {
+            return Err(at(
+                line,
+                format!("deviation {d} mm is over 1 mm: is the unit right?"),
+            ));
+        }
+        if let (Some(&last), Some(&ll)) = (m.angle.last(), m.lines.last()) {
+            if a.to_radians() <= last {
+                return Err(at(
+                    line,
+                    format!(
+                        "angle {a}° does not increase (line {ll} has {:.4}°)",
+                        last.to_degrees()
+                    ),
+                ));
+            }
+        }
+        m.angle.push(a.to_radians());
+        m.deviation.push(d);
+        m.lines.push(line);
+    }
+    if m.angle.len() < 50 {
+        return Err(Error::field(
+            "csv",
+            format!("{} points: the fit needs at least 50", m.angle.len()),
+        ));
+    }
+    let near = m
+        .angle
+        .iter()
+        .filter(|a| (**a - std::f64::consts::PI).abs() <= 10f64.to_radians())
+        .count();
+    if near < 10 {
+        return Err(Error::field(
+            "csv",
+            format!(
+                "{near} points within ±10° of the reversal at 180°: the friction dent is there, \
+                 the fit needs at least 10"
+            ),
+        ));
+    }
+    Ok(m)
+}
+
+/// One fitted parameter with its 95 % confidence interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    /// Value.
+    pub value: f64,
+    /// Lower end of the 95 % interval.
+    pub low: f64,
+    /// Upper end.
+    pub high: f64,
+}
+
+/// A fit of a measured trace.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrictionFit {
+    /// `f_c`, N·m.
+    pub fc: Estimate,
+    /// `a`, 1/rad.
+    pub slope: Estimate,
+    /// C's position-loop gain, 1/s.
+    pub kp: Estimate,
+    /// Radius offset, mm.
+    pub offset: Estimate,
+    /// Where the fitted friction has turned half way after a reversal, `atanh(1/2)/a`, rad: with
+    /// `2·f_c`, the torque step, what a friction compensator of eq 2's form is set with.
+    pub halfway: f64,
+    /// The model at the measured angles (offset included), mm.
+    pub fitted: Vec<f64>,
+    /// Measured − fitted, mm.
+    pub residuals: Vec<f64>,
+    /// Residual standard deviation, mm.
+    pub sigma: f64,
+    /// Iterations.
+    pub iterations: usize,
+}
+
+/// Samples of the model's trace in a fit (at least).
+pub const FIT_SAMPLES: usize = 10_000;
+
+/// 95 % two-sided normal quantile.
+const Z95: f64 = 1.959_963_984_540_054;
+
+/// Linear interpolation of `y(x)` (x increasing) at `at`; clamped at the ends.
+fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
+    let i = x.partition_point(|v| *v < at);
+    if i == 0 {
+        return y[0];
+    }
+    if i >= x.len() {
+        return y[x.len() - 1];
+    }
+    let (x0, x1) = (x[i - 1], x[i]);
+    if x1 <= x0 {
+        return y[i];
+    }
+    y[i - 1] + (y[i] - y[i - 1]) * (at - x0) / (x1 - x0)
+}
+
+/// Fits `f_c`, `a`, C's `K_p` and a radius offset to `measured`, starting from the case's
+/// values (module docs).
+pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
+    // The model finely sampled, so that interpolating it at the measured angles costs nothing
+    // in accuracy (a dent is about 1° wide at 1000 mm/min).
+    let mut case = case.clone();
+    case.samples = case.samples.max(FIT_SAMPLES);
+    let case = &case;
+    let motion = case.motion()?;
+    let h = case.step * 1e-3;
+    let model = |p: &[f64]| -> Result<Vec<f64>> {
+        let mut c = case.clone();
+        c.c.friction = p[0].exp();
+        c.c.friction_slope = p[1].exp();
+        c.c.position_gain = p[2].exp();
+        let tr = simulate_with_step(&c, &motion, h)?;
+        // The trace by its actual angle, kept where the angle increases.
+        let (mut xs, mut ys) = (
+            Vec::with_capacity(tr.angle.len()),
+            Vec::with_capacity(tr.angle.len()),
+        );
+        for (a, d) in tr.angle.iter().zip(&tr.deviation) {
+            if xs.last().map_or(true, |l| a > l) {
+                xs.push(*a);
+                ys.push(*d);
+            }
+        }
+        Ok(measured
+            .angle
+            .iter()
+            .map(|a| interpolate(&xs, &ys, *a) + p[3])
+            .collect())
+    };
+    let residuals = |p: &[f64]| -> Result<Vec<f64>> {
+        Ok(model(p)?
+            .iter()
+            .zip(&measured.deviation)
+            .map(|(m, d)| d - m)
+            .collect())
+    };
+    if case.c.friction <= 0.0 {
+        return Err(Error::field(
+            "c.friction",
+            "the fit starts from the entered f_c: enter a guess above 0",
+        ));
+    }
+    let x0 = [
+        case.c.friction.ln(),
+        case.c.friction_slope.ln(),
+        case.c.position_gain.ln(),
+        0.0,
+    ];
+    let n = measured.angle.len();
+    if n < 4 + 30 {
+        return Err(Error::field(
+            "csv",
+            "too few points for the fit (at least 34)",
+        ));
+    }
+    let names = ["f_c", "a", "C's position-loop gain", "the radius offset"];
+    let lsq = levenberg_marquardt(residuals, &x0, &[1e-4, 1e-4, 1e-4, 1e-6], 40).map_err(|e| {
+        match e {
+        LsqFailure::Model(e) => e,
+        LsqFailure::Undetermined(k) => Error::field(
+            "csv",
+            format!(
+                "the trace does not determine {} (with the others): is there a friction dent \
+                 at 180°, and does the trace cover it?",
+                names[k]
+            ),
+        ),
+        LsqFailure::NoConvergence => Error::field(
+            "csv",
+            "the fit did not converge: the model cannot reproduce this trace (check the test's \
+             inputs: R, r, F, the machine)",
+        ),
+        LsqFailure::TooFewData => Error::field("csv", "too few points for the fit"),
+    }
+    })?;
+    let sd = |k: usize| lsq.covariance[k * 4 + k].sqrt();
+    let logs = |k: usize| {
+        let v = lsq.x[k];
+        Estimate {
+            value: v.exp(),
+            low: (v - Z95 * sd(k)).exp(),
+            high: (v + Z95 * sd(k)).exp(),
+        }
+    };
+    let fc = logs(0);
+    let slope = logs(1);
+    for (k, e) in [(0, fc), (1, slope)] {
+        if !(e.high / e.low).is_finite() || e.high / e.low > 10.0 {
+            return Err(Error::field(
+                "csv",
+                format!(
+                    "the trace hardly determines {}: its 95 % interval spans {:.3e} to {:.3e}; \
+                     is there a friction dent at 180°?",
+                    names[k], e.low, e.high
+                ),
+            ));
+        }
+    }
+    let fitted: Vec<f64> = measured
+        .deviation
+        .iter()
+        .zip(&lsq.residuals)
+        .map(|(d, r)| d - r)
+        .collect();
+    Ok(FrictionFit {
+        fc,
+        slope,
+        kp: logs(2),
+        offset: Estimate {
+            value: lsq.x[3],
+            low: lsq.x[3] - Z95 * sd(3),
+            high: lsq.x[3] + Z95 * sd(3),
+        },
+        halfway: 0.5f64.atanh() / slope.value,
+        fitted,
+        residuals: lsq.residuals,
+        sigma: lsq.sigma,
+        iterations: lsq.iterations,
+    })
+}

@@ -1,0 +1,170 @@
+//! The reversal study through the JavaScript API: inputs refused with their paths, units at the
+//! edge (degrees in and out), the ideal drive's exact circle, the dent's proportion to r, a
+//! machine without a C table refused, and a simulated trace fitted back to its friction.
+#![cfg(target_arch = "wasm32")]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+use common::{error_message, jv, read};
+use fiveaxis_wasm as fa;
+use serde::Deserialize;
+use serde_json::json;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+#[derive(Deserialize)]
+struct Dent {
+    depth: f64,
+    angle: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct Direction {
+    name: String,
+    reverses: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct Sim {
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    theta: js_sys::Float64Array,
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    angle: js_sys::Float64Array,
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    deviation: js_sys::Float64Array,
+    #[serde(with = "serde_wasm_bindgen::preserve")]
+    c_command: js_sys::Float64Array,
+    dent: Dent,
+    directions: Vec<Direction>,
+    step_check: Option<serde_json::Value>,
+}
+
+#[wasm_bindgen_test]
+fn reversal_inputs_are_refused_with_their_paths() {
+    for (input, want) in [
+        (json!({"colour": 1}), "colour: unknown input"),
+        (json!({"c": {"frction": 1}}), "c.frction: unknown input"),
+        (json!({"test": {"feed": -5}}), "test.feed:"),
+        (
+            json!({"test": {"radius": "50"}}),
+            "test.radius: expected a number",
+        ),
+        (
+            json!({"machine": {"type": "ABZ"}}),
+            "machine.type: the reversal test needs a rotary table C",
+        ),
+        (
+            json!({"machine": {"kind": "head-head", "type": "CAZ"}}),
+            "machine.type: the reversal test needs a rotary table C",
+        ),
+    ] {
+        let m = error_message(fa::reversal_simulate(jv(&input)));
+        assert!(m.starts_with(want), "{input}: {m}");
+    }
+    let m = error_message(fa::reversal_fit(jv(&json!({}))));
+    assert!(m.starts_with("csv: is required"), "{m}");
+    let m = error_message(fa::reversal_fit(jv(
+        &json!({"csv": "angle_deg,deviation_mm\n1,x\n"}),
+    )));
+    assert!(
+        m.starts_with("csv: line 2: deviation \"x\" is not a number"),
+        "{m}"
+    );
+    let m = error_message(fa::reversal_dents(jv(&json!({"checkStep": true}))));
+    assert!(m.starts_with("checkStep: unknown input"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn angles_cross_in_degrees_and_the_ideal_drive_traces_the_circle() {
+    let r: Sim = read(fa::reversal_simulate(jv(&json!({
+        "feedForward": "full", "c": {"friction": 0},
+        "test": {"feed": 3000, "reversalAngle": 45}, "checkStep": true,
+    }))));
+    let theta = r.theta.to_vec();
+    assert!((theta.last().unwrap() - 360.0).abs() < 1e-6);
+    let c = r.c_command.to_vec();
+    let peak = c.iter().copied().fold(f64::MIN, f64::max);
+    assert!((peak - 45.0).abs() < 1e-3, "C peaks at {peak}°");
+    let worst = r
+        .deviation
+        .to_vec()
+        .iter()
+        .fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(worst < 1e-9, "{worst}");
+    assert!(r.step_check.is_some());
+    assert!(
+        r.directions.iter().all(|d| !d.reverses),
+        "{:?}",
+        r.directions.iter().map(|d| &d.name).collect::<Vec<_>>()
+    );
+}
+
+#[wasm_bindgen_test]
+fn the_dent_doubles_with_r() {
+    let depth = |r: f64| -> Dent {
+        let s: Sim = read(fa::reversal_simulate(jv(
+            &json!({"test": {"offset": r, "feed": 3000}, "step": 0.5}),
+        )));
+        s.dent
+    };
+    let (a, b) = (depth(25.0), depth(50.0));
+    assert!(
+        (b.depth / a.depth - 2.0).abs() < 0.1,
+        "{} {}",
+        a.depth,
+        b.depth
+    );
+    assert!((180.0..190.0).contains(&a.angle), "{}", a.angle);
+}
+
+#[derive(Deserialize)]
+struct Est {
+    value: f64,
+    low: f64,
+    high: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct Fit {
+    friction: Est,
+    friction_slope: Est,
+    position_gain: Est,
+    halfway: f64,
+}
+
+#[wasm_bindgen_test]
+fn a_simulated_trace_fits_back_to_its_friction() {
+    // A trace simulated through the API with f_c = 12 N·m, a = 800 1/rad, K_p = 28 1/s (F =
+    // 3000 mm/min and a 1 ms step keep this quick in an unoptimised build), written as the CSV
+    // a user would load, fitted from f_c = 8, a = 500, K_p = 30: without noise the fit must
+    // land on the values simulated. (crate/tests/reversal_fit.rs fits the noisy sample file.)
+    let case = json!({"test": {"feed": 3000}, "step": 1.0,
+                      "c": {"friction": 12, "frictionSlope": 800, "positionGain": 28}});
+    let s: Sim = read(fa::reversal_simulate(jv(&case)));
+    let (angle, dev) = (s.angle.to_vec(), s.deviation.to_vec());
+    let mut csv = String::from("angle_deg,deviation_um\n");
+    let mut last = f64::MIN;
+    for (a, d) in angle.iter().zip(&dev) {
+        if *a > last + 0.05 && *a > 0.0 && *a < 360.0 {
+            csv.push_str(&format!("{a},{}\n", d * 1e3));
+            last = *a;
+        }
+    }
+    let start = json!({"test": {"feed": 3000}, "step": 1.0, "csv": csv,
+                       "c": {"friction": 8, "frictionSlope": 500, "positionGain": 30}});
+    let f: Fit = read(fa::reversal_fit(jv(&start)));
+    for (e, v) in [
+        (&f.friction, 12.0),
+        (&f.friction_slope, 800.0),
+        (&f.position_gain, 28.0),
+    ] {
+        assert!((e.value / v - 1.0).abs() < 0.01, "{} for {v}", e.value);
+        assert!(e.low <= e.value && e.value <= e.high);
+    }
+    // atanh(1/2)/a in degrees.
+    let want = 0.5f64.atanh() / 800.0 * 180.0 / std::f64::consts::PI;
+    assert!((f.halfway / want - 1.0).abs() < 0.01, "{}", f.halfway);
+}

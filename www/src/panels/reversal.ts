@@ -1,0 +1,341 @@
+// The "Rotary-axis reversal" panel: Nishiguchi, Hasegawa, Sato & Shirase (2017) on the machine of
+// the Machine section. C reciprocates 0° → 90° → 0° while X and Y keep the tool on a circle in
+// table coordinates; the simulated ball-bar trace with and without C's friction (eq 2), the axes
+// against time, the dent for Table 1's feeds and radii, and friction fitted from a measured trace.
+import type { Data, Layout } from 'plotly.js';
+import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult } from '@engine';
+import { channel, SUPERSEDED } from '../engine/client';
+import type { MachineSection } from '../machine/section';
+import { el, fields } from '../ui/fields';
+import { loadSchema, renderFields } from '../ui/form';
+import { axis, draw, note, stale } from '../ui/plot';
+import { presetPicker } from '../ui/presets';
+import * as fmt from '../ui/format';
+import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
+import { engineErrors, panelShell, type Panel } from './panel';
+
+export const reversalPanel: Panel = {
+  id: 'reversal',
+  prefix: 'rv',
+  title: 'Rotary-axis reversal',
+  exports: ['reversalSimulate', 'reversalFit'],
+  mount,
+};
+
+const SAMPLE = 'samples/reversal-measured.csv';
+
+/** A "nice" scale per division (1, 2 or 5 × 10^k) that puts `span` in about three divisions. */
+function perDivision(span: number): number {
+  const raw = Math.max(span, 1e-12) / 3;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  return [1, 2, 5, 10].map((m) => m * p).find((v) => v >= raw) ?? 10 * p;
+}
+
+async function mount(root: HTMLElement, machine: MachineSection) {
+  const schema = await loadSchema();
+  const { form, results } = panelShell(
+    root,
+    'Rotary-axis reversal: the C table’s direction change on a ball bar',
+    'C turns from 0° to 90° and back while X and Y keep the tool on a circle fixed to the table, so X and Y do not ' +
+      'reverse when C does: what happens at 180° of the trace is C’s own reversal, copied onto the circle in proportion ' +
+      'to the distance r of the circle’s centre from C’s axis. Every axis is a servo drive (position loop, velocity loop, ' +
+      'inertia); C has the friction of eq 2, which dents the trace just after the reversal. A measured trace gives back ' +
+      'the friction a compensator needs. Nishiguchi, Hasegawa, Sato & Shirase (2017), Sections 3–5, on any machine with a C table.',
+  );
+
+  // ---- inputs
+  form.append(presetPicker('reversal', 'rv', machine));
+  const inputs = renderFields(reversalPanel.exports.flatMap((n) => schema.exports[n]), 'rv', form, machine.context());
+  const sampleButton = el('button', { type: 'button', id: 'rv-load-sample' }, 'Load the sample trace');
+  const fileLabel = el('label', { class: 'import', for: 'rv-file' }, 'Choose a file ');
+  const file = el('input', { id: 'rv-file', type: 'file', accept: '.csv,text/csv,text/plain' });
+  fileLabel.append(file);
+  const fileMsg = el('p', { class: 'field-hint', id: 'rv-file-msg', 'aria-live': 'polite' });
+  const buttons = el('div', { class: 'file-row' });
+  buttons.append(sampleButton, fileLabel);
+  inputs.groups.get('Fit')?.querySelector('legend')?.after(buttons, fileMsg);
+  const csvArea = form.querySelector<HTMLTextAreaElement>('#rv-csv');
+  if (csvArea) csvArea.placeholder = 'angle_deg,deviation_um\n0.1,-4.9\n…';
+
+  // ---- outputs
+  const summary = el('dl', { class: 'summary', id: 'rv-summary', 'aria-live': 'polite' });
+  const plot = (id: string, wide = false, tall = false) => {
+    const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
+    const p = el('div', { class: 'plot', id });
+    if (tall) p.style.height = '560px';
+    wrap.append(p);
+    return { wrap, p };
+  };
+  const polar = plot('rv-polar', false, true);
+  const radial = plot('rv-radial');
+  const timePlot = plot('rv-time', true, true);
+  const linearPlot = plot('rv-linear', true);
+  const dentsBox = el('div', { class: 'ident', id: 'rv-dents', 'aria-live': 'polite' });
+  const fitBox = el('div', { class: 'ident', id: 'rv-fit', 'aria-live': 'polite' });
+  const fitPlot = plot('rv-fit-plot', true);
+  const residualPlot = plot('rv-residuals', true);
+  const plots = el('div', { class: 'plots' });
+  plots.append(polar.wrap, radial.wrap, timePlot.wrap, linearPlot.wrap);
+  const fitPlots = el('div', { class: 'plots' });
+  fitPlots.append(fitPlot.wrap, residualPlot.wrap);
+  results.append(
+    summary, plots,
+    el('h3', {}, 'The dent for Table 1’s feeds and radii'), dentsBox,
+    el('h3', {}, 'Friction from a measured trace'), fitBox, fitPlots,
+  );
+
+  const summaryItems = new Map<string, [string, string]>();
+  const setSummary = (id: string, label: string, value: string) => {
+    summaryItems.set(id, [label, value]);
+    summary.replaceChildren();
+    for (const [key, [k, v]] of summaryItems) summary.append(el('dt', {}, k), el('dd', { id: key }, v));
+  };
+
+  const runSim = channel('reversalSimulate');
+  const runDents = channel('reversalDents');
+  const runFit = channel('reversalFit');
+  const engineError = engineErrors(inputs.byPath, machine);
+  let last: ReversalResult | null = null;
+  let lastCase = '';
+
+  const read = () => {
+    inputs.setContext(machine.context());
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own) return null;
+    const { csv, ...rest } = own as Record<string, unknown>;
+    return { machine: m as Machine, rest, csv: (csv as string) ?? '' };
+  };
+
+  /** What the result came from, in words. */
+  const conditions = (i: NonNullable<ReturnType<typeof read>>) => {
+    const t = (i.rest.test ?? {}) as Record<string, number>;
+    const ff = String(i.rest.feedForward ?? 'none');
+    const c = (i.rest.c ?? {}) as Record<string, number>;
+    return `${machine.context()?.k ?? 'C'} table on ${String(i.machine.type ?? 'CBZ')}: R ${fmt.num(t.radius ?? 50)} mm, r ${fmt.num(t.offset ?? 25)} mm, F ${fmt.num(t.feed ?? 1000)} mm/min, ` +
+      `f_c ${fmt.num(c.friction ?? 10)} N·m, a ${fmt.num(c.frictionSlope ?? 500)} 1/rad, feed-forward ${ff}`;
+  };
+
+  const update = () => {
+    const i = read();
+    if (!i) {
+      for (const p of [polar, radial, timePlot, linearPlot, fitPlot, residualPlot]) stale(p.p, true);
+      stale(dentsBox, true);
+      stale(fitBox, true);
+      for (const run of [runSim, runDents, runFit]) run.cancel();
+      return;
+    }
+    const input = { machine: i.machine, ...i.rest };
+    const came = conditions(i);
+    runSim({ ...input, checkStep: true } as never).then((r) => {
+      if (r === SUPERSEDED) return;
+      last = r;
+      lastCase = came;
+      showSim(r, came);
+    }, (e) => {
+      for (const p of [radial, timePlot, linearPlot]) stale(p.p, true);
+      engineError(e, polar.p);
+    });
+    runDents(input as never).then((rows) => {
+      if (rows === SUPERSEDED) return;
+      showDents(rows, came);
+    }, (e) => {
+      dentsBox.replaceChildren(el('p', { class: 'warn' }, `No table: ${String((e as Error).message)}`));
+      stale(dentsBox, true);
+    });
+    fit(i, input, came);
+  };
+
+  const fit = (i: NonNullable<ReturnType<typeof read>>, input: Record<string, unknown>, came: string) => {
+    if (i.csv.trim() === '') {
+      inputs.byPath.csv?.setError(null);
+      fitBox.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measured trace (trace angle, radial deviation), choose a file, or load the sample trace (simulated with f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s and 0.3 µm of noise) to fit C’s friction.'));
+      stale(fitBox, false);
+      return;
+    }
+    fitBox.replaceChildren(el('p', { class: 'field-hint' }, 'Fitting… (a few dozen simulations)'));
+    runFit({ ...input, csv: i.csv } as never).then((f) => {
+      if (f === SUPERSEDED) return;
+      inputs.byPath.csv?.setError(null);
+      showFit(f, came);
+    }, (e) => {
+      fitBox.replaceChildren(el('p', { class: 'warn' }, 'No fit: see the message at the field or above the plot.'));
+      stale(fitBox, false);
+      engineError(e, fitPlot.p);
+      stale(residualPlot.p, true);
+    });
+  };
+
+  const D = (mm: number) => toDisplay('errLength', mm);
+  const lu = () => unitDef('errLength').label;
+
+  const showSim = (r: ReversalResult, came: string) => {
+    note(polar.p, null);
+    const theta = Array.from(r.theta);
+    const dev = Array.from(r.deviation);
+    const dry = Array.from(r.withoutFriction);
+    const span = Math.max(...dev.map(Math.abs), ...dry.map(Math.abs));
+    const div = perDivision(span);
+    const base = 4; // the nominal circle at 4 divisions
+    const rp = (d: number[]) => d.map((v) => base + v / div);
+    const hover = (what: string) => `${what}<br>θ %{theta:.2f}°<br>%{customdata:.4g} ${lu()}<extra></extra>`;
+    draw(polar.p, `Ball-bar trace, deviation magnified:<br>${show('errLength', div, 2)} per division`, [
+      { type: 'scatterpolar', r: theta.map(() => base), theta, customdata: theta.map(() => 0), mode: 'lines', name: 'nominal circle', line: { color: '#8c959f', dash: 'dot', width: 1 }, hoverinfo: 'skip' } as Data,
+      { type: 'scatterpolar', r: rp(dry), theta, mode: 'lines', name: 'without friction', customdata: dry.map(D), line: { color: '#1f77b4', width: 1.5 }, hovertemplate: hover('without friction') } as Data,
+      { type: 'scatterpolar', r: rp(dev), theta, mode: 'lines', name: 'with friction (eq 2)', customdata: dev.map(D), line: { color: '#d62728', width: 1.5 }, hovertemplate: hover('with friction') } as Data,
+    ], {
+      polar: {
+        radialaxis: { range: [0, base + 3], dtick: 1, showticklabels: false, ticks: '', gridcolor: '#e6e8eb' },
+        angularaxis: { direction: 'counterclockwise', rotation: 0, dtick: 30, ticksuffix: '°' },
+      },
+      legend: { orientation: 'h', x: 0, y: -0.08, yanchor: 'top' },
+      margin: { l: 30, r: 30, b: 70 },
+      meta: { csvX: 'trace angle θ (°)', csvY: titled('radial deviation', 'errLength') },
+    } as Partial<Layout>, 'reversal-polar');
+
+    const i0 = theta.findIndex((t) => t > 150);
+    const i1 = theta.findIndex((t) => t > 230);
+    const cut = <T,>(a: T[]) => a.slice(i0 < 0 ? 0 : i0, i1 < 0 ? undefined : i1);
+    draw(radial.p, `Radial deviation near C’s reversal (180°)<br>dent ${show('errLength', r.dent.depth, 3)} at ${fmt.num(r.dent.angle, 4)}°, ${fmt.num(r.dent.width, 3)}° wide`, [
+      { x: cut(theta), y: cut(dry).map(D), type: 'scatter', mode: 'lines', name: 'without friction', line: { color: '#1f77b4' } },
+      { x: cut(theta), y: cut(dev).map(D), type: 'scatter', mode: 'lines', name: 'with friction', line: { color: '#d62728' } },
+    ], {
+      xaxis: axis('trace angle θ (°)'),
+      yaxis: axis(titled('radial deviation', 'errLength')),
+      legend: { orientation: 'h', x: 0, y: -0.25, yanchor: 'top' },
+      shapes: [{ type: 'line', xref: 'x', yref: 'paper', x0: 180, x1: 180, y0: 0, y1: 1, line: { color: '#8c959f', width: 1, dash: 'dot' } }],
+    } as Partial<Layout>, 'reversal-radial');
+
+    const t = Array.from(r.time);
+    const line = (y: Float64Array, name: string, yaxis: string, color: string, scale = 1, dash = 'solid'): Data =>
+      ({ x: t, y: Array.from(y, (v) => v * scale), type: 'scatter', mode: 'lines', name, yaxis, line: { color, width: 1.3, dash } }) as Data;
+    const asec = 3600;
+    draw(timePlot.p, 'C against time: angle (command dotted),<br>velocity, following error, friction (eq 2)', [
+      line(r.cCommand, 'C command (°)', 'y', '#8c959f', 1, 'dot'),
+      line(r.cActual, 'C actual (°)', 'y', '#1f77b4'),
+      line(r.cVelocity, 'C velocity (°/s)', 'y2', '#2ca02c'),
+      line(r.cError, 'C following error (″)', 'y3', '#9467bd', asec),
+      line(r.cFriction, 'friction torque (N·m)', 'y4', '#d62728'),
+    ], {
+      xaxis: axis('time (s)', { anchor: 'y4' }),
+      yaxis: axis('C (°)', { domain: [0.78, 1] }),
+      yaxis2: axis('velocity (°/s)', { domain: [0.53, 0.75] }),
+      yaxis3: axis('error (″)', { domain: [0.28, 0.5] }),
+      yaxis4: axis('friction (N·m)', { domain: [0, 0.25] }),
+      showlegend: false,
+      shapes: [{ type: 'line', xref: 'x', yref: 'paper', x0: r.reversalTime, x1: r.reversalTime, y0: 0, y1: 1, line: { color: '#8c959f', width: 1, dash: 'dot' } }],
+    } as Partial<Layout>, 'reversal-time');
+
+    const moving = r.linear.filter((l) => Array.from(l.velocity).some((v) => Math.abs(v) > 1e-9));
+    const colors = ['#1f77b4', '#ff7f0e', '#2ca02c'];
+    draw(linearPlot.p, 'Linear axes’ velocities: no reversal<br>when C reverses (dotted line)', moving.map((l, k) => ({
+      x: t, y: Array.from(l.velocity, (v) => v * 60), type: 'scatter', mode: 'lines', name: `${l.name} (mm/min)`, line: { color: colors[k % 3], width: 1.3 },
+    }) as Data), {
+      xaxis: axis('time (s)'),
+      yaxis: axis('velocity (mm/min)'),
+      legend: { orientation: 'h', x: 0, y: -0.25, yanchor: 'top' },
+      shapes: [
+        { type: 'line', xref: 'x', yref: 'paper', x0: r.reversalTime, x1: r.reversalTime, y0: 0, y1: 1, line: { color: '#8c959f', width: 1, dash: 'dot' } },
+        { type: 'line', xref: 'paper', yref: 'y', x0: 0, x1: 1, y0: 0, y1: 0, line: { color: '#444', width: 0.8 } },
+      ],
+    } as Partial<Layout>, 'reversal-linear');
+
+    const mean = (a: number[], from: number, to: number) => {
+      const v = a.filter((_, k) => theta[k] > from && theta[k] < to);
+      return v.reduce((s, x) => s + x, 0) / Math.max(1, v.length);
+    };
+    setSummary('rv-sum-came', 'Computed for', came);
+    setSummary('rv-sum-dent', 'Friction dent', r.dent.depth > 0
+      ? `${show('errLength', r.dent.depth)} deep at ${fmt.num(r.dent.angle, 4)}° (C reverses at 180°), ${fmt.num(r.dent.width, 3)}° wide at half depth`
+      : 'none');
+    setSummary('rv-sum-radius', 'Radius change (servo lag)', `${show('errLength', mean(dry, 30, 150))} before the reversal, ${show('errLength', mean(dry, 210, 330))} after (without friction)`);
+    const dirs = r.directions.filter((d) => d.name !== 'Z' || Math.abs(d.before) > 1e-9);
+    setSummary('rv-sum-directions', 'X and Y at C’s reversal (±5°)', dirs.map((d) => `${d.name} ${d.reverses || d.actualReverses ? 'REVERSES' : d.stops ? 'stops, keeps its direction' : 'keeps its direction'} (${fmt.num(d.before * 60, 4)} → ${fmt.num(d.after * 60, 4)} mm/min)`).join('; '));
+    if (r.stepCheck) setSummary('rv-sum-step', 'Integration step', `${fmt.num(r.stepCheck.step, 3)} ms: halving it changes the trace by ${show('errLength', r.stepCheck.difference, 2)} (${fmt.percent(r.stepCheck.relative, 2)} of the largest deviation)`);
+  };
+
+  const showDents = (rows: ReversalDentRow[], came: string) => {
+    const table = el('table', { class: 'ident-table', id: 'rv-dents-table' });
+    const head = el('tr');
+    for (const h of ['F (mm/min)', 'r (mm)', `depth (${lu()})`, 'at (°)', 'width (°)']) head.append(el('th', { scope: 'col' }, h));
+    table.append(el('thead'), el('tbody'));
+    table.tHead!.append(head);
+    for (const row of rows) {
+      const tr = el('tr');
+      tr.append(el('td', {}, fmt.num(row.feed)), el('td', {}, fmt.num(row.offset)), el('td', {}, fmt.num(D(row.dent.depth), 4)), el('td', {}, fmt.num(row.dent.angle, 4)), el('td', {}, fmt.num(row.dent.width, 3)));
+      table.tBodies[0].append(tr);
+    }
+    dentsBox.replaceChildren(
+      el('p', {}, `The other inputs as entered (${came.replace(/, F [^,]+, /, ', ').replace(/r [^,]+, /, '')}). The dent lasts as long as C’s loop needs to take up the friction’s turn: its depth hardly depends on the feed, its width in trace angle grows with it; both scale with r.`),
+      table,
+    );
+    stale(dentsBox, false);
+  };
+
+  const showFit = (f: ReversalFitResult, came: string) => {
+    note(fitPlot.p, null);
+    const table = el('table', { class: 'ident-table', id: 'rv-fit-table' });
+    const head = el('tr');
+    for (const h of ['parameter', 'fitted', '95 % interval']) head.append(el('th', { scope: 'col' }, h));
+    table.append(el('thead'), el('tbody'));
+    table.tHead!.append(head);
+    const row = (name: string, key: string, e: { value: number; low: number; high: number }, unit: string, digits = 4) => {
+      const tr = el('tr');
+      tr.dataset.name = key;
+      tr.append(el('th', { scope: 'row' }, name), el('td', {}, `${fmt.num(e.value, digits)} ${unit}`), el('td', {}, `${fmt.num(e.low, 4)} to ${fmt.num(e.high, 4)} ${unit}`));
+      table.tBodies[0].append(tr);
+    };
+    row('Coulomb friction f_c', 'friction', f.friction, 'N·m');
+    row('friction slope a', 'frictionSlope', f.frictionSlope, '1/rad');
+    row('C position-loop gain', 'positionGain', f.positionGain, '1/s');
+    row(`radius offset (${lu()})`, 'offset', { value: D(f.offset.value), low: D(f.offset.low), high: D(f.offset.high) }, '');
+    fitBox.replaceChildren(
+      el('p', { id: 'rv-compensator' }, `For a friction compensator: a torque step of 2·f_c = ${fmt.num(2 * f.friction.value, 4)} N·m at each reversal of C, ` +
+        `built up over the first ${fmt.num(f.halfway, 3)}° of travel (half way; eq 2 with a = ${fmt.num(f.frictionSlope.value, 4)} 1/rad), C’s position-loop gain ${fmt.num(f.positionGain.value, 4)} 1/s.`),
+      table,
+      el('p', {}, `Residuals: ${show('errLength', f.sigma, 2)} standard deviation, ${f.iterations} iterations. Fitted with ${came}.`),
+    );
+    stale(fitBox, false);
+    const x = Array.from(f.angle);
+    draw(fitPlot.p, 'Measured and fitted trace<br>around the reversal', [
+      { x, y: Array.from(f.measured, D), type: 'scatter', mode: 'markers', name: 'measured', marker: { size: 3, color: '#1f77b4' } },
+      { x, y: Array.from(f.fitted, D), type: 'scatter', mode: 'lines', name: 'fitted model', line: { color: '#d62728' } },
+    ], { xaxis: axis('trace angle θ (°)', { range: [160, 220] }), yaxis: axis(titled('radial deviation', 'errLength')), legend: { orientation: 'h', x: 0, y: -0.25, yanchor: 'top' } } as Partial<Layout>, 'reversal-fit');
+    draw(residualPlot.p, `Residuals (measured − fitted)<br>standard deviation ${show('errLength', f.sigma, 2)}`, [
+      { x, y: Array.from(f.residuals, D), type: 'scatter', mode: 'markers', name: 'residual', marker: { size: 3, color: '#6e7781' } },
+    ], { xaxis: axis('trace angle θ (°)'), yaxis: axis(titled('residual', 'errLength')), showlegend: false }, 'reversal-residuals');
+  };
+
+  // ---- measured traces
+  sampleButton.addEventListener('click', async () => {
+    try {
+      const res = await fetch(SAMPLE);
+      if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
+      fields.get('rv-csv')?.setText(await res.text());
+      fileMsg.textContent = 'Loaded the sample trace (simulated with the default inputs but f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s; 0.3 µm noise).';
+    } catch (e) {
+      fileMsg.textContent = `Could not load the sample trace: ${String(e)}`;
+    }
+  });
+  file.addEventListener('change', async () => {
+    const f = file.files?.[0];
+    if (!f) return;
+    if (f.size > 5_000_000) {
+      fileMsg.textContent = `${f.name} is larger than 5 MB: not a trace file.`;
+      return;
+    }
+    fields.get('rv-csv')?.setText(await f.text());
+    fileMsg.textContent = `Loaded ${f.name}.`;
+    file.value = '';
+  });
+
+  form.addEventListener('input', (e) => {
+    if ((e.target as HTMLElement).id !== 'rv-file') update();
+  });
+  machine.onChange(update);
+  onUnitsChange(() => {
+    if (last) showSim(last, lastCase);
+    update();
+  });
+  update();
+}
