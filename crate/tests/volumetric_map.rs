@@ -221,3 +221,16 @@ fn a_polynomial_beyond_the_accepted_range_is_refused_where_it_leaves_it() {
     let f = function(json!({ "poly": [0, -1e308, -1e308] }), "E_ZZ");
     assert!(f.at(-18.0, "E_ZZ", false).is_err());
 }
+
+#[test]
+fn a_csv_whose_header_names_another_error_or_axis_is_refused() {
+    let e = read_table_csv("X (mm), E_XX (µm)\n0, 0\n1, 1\n", "E_YY").unwrap_err();
+    assert!(
+        e.message.starts_with("line 1: the header names E_XX"),
+        "{e}"
+    );
+    let e = read_table_csv("Y (mm), E_XX (µm)\n0, 0\n1, 1\n", "E_XX").unwrap_err();
+    assert!(e.message.starts_with("line 1: the header names Y"), "{e}");
+    // Other words are the program's own: accepted.
+    assert!(read_table_csv("position (mm), deviation (µm)\n0, 0\n1, 1\n", "E_YY").is_ok());
+}

@@ -405,8 +405,8 @@ pub fn position_quantity(letter: char) -> Quantity {
     }
 }
 
-/// One error motion's values against the axis position, engine units (mm, rad) in and out
-/// (module docs for the forms accepted at the edge).
+/// One error motion's values against the axis position. At the API: mm or degrees (positions
+/// and values, the forms in the module docs); inside the engine the same forms in mm and rad.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(untagged)]
@@ -781,6 +781,21 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
         }
         let Some((fp, fv, _)) = &header else {
             let (up, uv) = (header_unit(cells[0]), header_unit(cells[1]));
+            // A header that names another error motion or axis is a file for another error.
+            for (cell, expected) in [
+                (cells[1], name.to_string()),
+                (cells[0], def.axis.to_string()),
+            ] {
+                let word = cell.split(['(', '[']).next().unwrap_or("").trim();
+                let other_error = word.len() == 4 && find(word).is_some() && word != expected;
+                let other_axis = word.len() == 1 && "XYZABC".contains(word) && word != expected;
+                if other_error || other_axis {
+                    return Err(at(format!(
+                        "the header names {word}, but this table is for {name} (against the {} position)",
+                        def.axis
+                    )));
+                }
+            }
             let fp = unit_factor(up, angle_pos).ok_or_else(|| {
                 at(format!(
                     "the first line names the columns with their units, e.g. \"{} ({})\"; \"{}\" is not a unit of {}",

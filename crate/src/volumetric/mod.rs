@@ -506,6 +506,15 @@ fn at_pose(e: Error, q: &[f64], lin: &[usize; 3]) -> Error {
     )
 }
 
+/// A deviation in words: µm below 1 mm (one decimal), mm above.
+fn length(mm: f64) -> String {
+    if mm < 1.0 {
+        format!("{:.1} µm", mm * 1e3)
+    } else {
+        format!("{mm:.3} mm")
+    }
+}
+
 fn round(x: f64) -> f64 {
     (x * 1e6).round() / 1e6
 }
@@ -527,12 +536,12 @@ impl VolumetricMap {
         }
         let [x, y, z] = self.worst.position;
         let mut s = format!(
-            "The tool tip is off by up to {:.4} mm (at X {}, Y {}, Z {} mm); rms {:.4} mm over the plane.",
-            self.worst.norm,
+            "The tool tip is off by up to {} (at X {}, Y {}, Z {} mm); rms {} over the plane.",
+            length(self.worst.norm),
             round(x),
             round(y),
             round(z),
-            self.rms
+            length(self.rms)
         );
         let top: Vec<String> = self
             .budget
