@@ -59,11 +59,13 @@
 //! errors the test cannot see at all (zero height sensitivity in every zone) and which it cannot
 //! tell apart (proportional height sensitivities).
 
+pub mod design;
+pub mod identify;
 mod map;
 mod zones;
 
 pub use map::{height_map, HeightMap, MAX_GRID_POINTS, MAX_GRID_SIDE};
-pub use zones::{ZoneDef, ZONES};
+pub use zones::{ZoneDef, ZoneSpec, ZONES};
 
 use crate::error::{Error, Result};
 use crate::machine::errors::{ErrorDef, ErrorValues};
@@ -363,7 +365,7 @@ impl ZonePlane {
 
 /// Planes of the nine zones (Table 1 order) measured from `reference`: ZONE I (index 0) is the
 /// reference zone. Linear in the planes, so it applies to sensitivities as well.
-fn relative(
+pub(crate) fn relative(
     planes: &[ZonePlane],
     centres: &[(f64, f64)],
     reference: CubicReference,
@@ -485,12 +487,12 @@ pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Resu
         }
     }
 
-    let zones = test
-        .zones
+    let zones = ZONES
         .iter()
+        .zip(&test.zones)
         .zip(&exact)
         .zip(&sensitivity)
-        .map(|((z, p), k)| {
+        .map(|(((def, z), p), k)| {
             let linear = k
                 .iter()
                 .zip(&errors)
@@ -498,7 +500,7 @@ pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Resu
                     acc.plus(&k.scaled(machine.errors.get(d.name)))
                 });
             ZoneResult {
-                zone: z.def,
+                zone: *def,
                 centre: [z.centre.0, z.centre.1],
                 tool: z.dir.into(),
                 rotary: z.rotary,
