@@ -206,7 +206,7 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
     }
     let piece_col = table.column(&["piece_x_mm"]);
     let mut out: Vec<MeasuredZone> = Vec::new();
-    for (line, cells) in &table.rows {
+    for (line, cells) in &table.rows()? {
         let line = *line;
         let name = cells[zone_col].trim();
         let piece_x = match piece_col {

@@ -16,8 +16,9 @@ pub struct Table<'a> {
     pub header_line: usize,
     /// Column names, lower case.
     pub names: Vec<String>,
-    /// `(line number, cells)` per data row, each with as many cells as the header.
-    pub rows: Vec<(usize, Vec<&'a str>)>,
+    /// `(line number, text)` per data row.
+    lines: Vec<(usize, &'a str)>,
+    sep: char,
 }
 
 impl<'a> Table<'a> {
@@ -47,26 +48,38 @@ impl<'a> Table<'a> {
             .split(sep)
             .map(|s| s.trim().trim_matches('"').to_ascii_lowercase())
             .collect();
-        let mut rows = Vec::new();
-        for (line, row) in lines {
-            let cells: Vec<&str> = row.split(sep).map(|c| c.trim().trim_matches('"')).collect();
-            if cells.len() != names.len() {
-                return Err(line_error(
-                    line,
-                    format!(
-                        "expected {} columns like the header, got {}",
-                        names.len(),
-                        cells.len()
-                    ),
-                ));
-            }
-            rows.push((line, cells));
-        }
         Ok(Self {
             header_line,
             names,
-            rows,
+            lines: lines.collect(),
+            sep,
         })
+    }
+
+    /// `(line number, cells)` per data row, each with as many cells as the header (read after
+    /// the header's columns are checked, so that a header problem is reported first).
+    pub fn rows(&self) -> Result<Vec<(usize, Vec<&'a str>)>> {
+        self.lines
+            .iter()
+            .map(|&(line, row)| {
+                let cells: Vec<&str> = row
+                    .split(self.sep)
+                    .map(|c| c.trim().trim_matches('"'))
+                    .collect();
+                if cells.len() == self.names.len() {
+                    Ok((line, cells))
+                } else {
+                    Err(line_error(
+                        line,
+                        format!(
+                            "expected {} columns like the header, got {}",
+                            self.names.len(),
+                            cells.len()
+                        ),
+                    ))
+                }
+            })
+            .collect()
     }
 
     /// The index of the first column named one of `want`.

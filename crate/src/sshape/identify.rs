@@ -52,7 +52,7 @@ pub fn parse_measurements(text: &str) -> Result<Vec<f64>> {
     })?;
     let err = line_error;
     let mut values: Vec<Option<(f64, usize)>> = vec![None; N_POINTS];
-    for (line, cells) in table.rows {
+    for (line, cells) in table.rows()? {
         let curve = parse_curve(cells[col_curve]).map_err(|e| err(line, e.message))?;
         let number: usize = cells[col_point].parse().map_err(|_| {
             err(
