@@ -17,12 +17,14 @@
 //! writes. [`schema`] gives the page every input field with its label, help, unit and limits.
 
 mod cubic;
+mod identify;
 mod machine;
 mod nonlinear;
 mod sshape;
 mod toolpath;
 
 pub use cubic::*;
+pub use identify::*;
 pub use machine::*;
 pub use nonlinear::*;
 pub use sshape::*;

@@ -33,7 +33,7 @@
 //! short), until a sweep improves nothing (at most 8 sweeps). Deterministic.
 
 use super::identify::{layout, tool_of, LayoutZone};
-use super::zones::ZoneSpec;
+use super::zones::{Test, ZoneSpec};
 use super::{CubicInput, CubicPiece, Options, ZONES};
 use crate::error::{check_range, Error, Result};
 use crate::identify::{fit, Fit, DEFAULT_RTOL};
@@ -41,6 +41,9 @@ use crate::machine::errors::ErrorDef;
 use crate::machine::Machine;
 use crate::schema::{self, DefaultValue, Kind, Quantity};
 use nalgebra::DMatrix;
+
+/// The scaling of the designer's matrix, in words (module docs).
+pub const SCALING: &str = "Each error is scaled by a typical size (10 µm for a position, 10 µm over 100 mm = 20.6″ for an angle) and each measured value by its noise (a height by the height noise, a slope by that noise over half a zone). A singular value is then how many noise standard deviations the corresponding combination of typical errors moves the measurements; below about 3 the test hardly sees it.";
 
 /// Typical size of a position error, mm.
 pub const TYPICAL_POSITION: f64 = 0.01;
@@ -294,6 +297,11 @@ pub fn design(input: &CubicInput, own: &CubicDesignInput) -> Result<Design> {
     let mut candidates: Vec<Candidate> = Vec::new();
     let slots = positions.len() * setups.len();
     for (s, &px) in setups.iter().enumerate() {
+        let placed = CubicPiece {
+            workpiece_x: px,
+            ..piece.clone()
+        };
+        let test = Test::with_zones(machine, &placed, &options, &[])?;
         for (pi, &c) in positions.iter().enumerate() {
             let slot = s * positions.len() + pi;
             for &tilt in &tilts {
@@ -309,10 +317,17 @@ pub fn design(input: &CubicInput, own: &CubicDesignInput) -> Result<Design> {
                         tool: tool_of(tr, ar),
                     };
                     // Unreachable within the travel: not a candidate.
-                    let Ok(mut z) = layout(machine, piece, &options, &[(spec, px)], &errors) else {
+                    let Ok(z) = test.place(&spec) else {
                         continue;
                     };
-                    let Some(zone) = z.pop() else { continue };
+                    let zone = LayoutZone {
+                        piece_x: px,
+                        tool: z.dir.into(),
+                        rotary: z.rotary,
+                        singular: z.singular,
+                        sensitivity: test.sensitivities(&z, &errors)?,
+                        spec,
+                    };
                     let rows = zone_rows(&zone, &errors, piece, own.slopes, own.noise);
                     candidates.push(Candidate {
                         slot,

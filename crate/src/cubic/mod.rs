@@ -292,10 +292,15 @@ impl CubicInput {
     /// Reads and checks the inputs of the height map: the test's and the grid's keys in one
     /// object.
     pub fn read_with_grid(value: &Value) -> Result<(Self, CubicGrid)> {
-        let (input, grid): (Self, CubicGrid) = schema::read_split(value, "")?;
+        Self::read_with(value)
+    }
+
+    /// Reads and checks the test's inputs and an export's own (`B`) from one object.
+    pub fn read_with<B: Inputs>(value: &Value) -> Result<(Self, B)> {
+        let (input, own): (Self, B) = schema::read_split(value, "")?;
         input.machine.validate("machine")?;
         input.setup.validate()?;
-        Ok((input, grid))
+        Ok((input, own))
     }
 
     /// The options of the evaluation.

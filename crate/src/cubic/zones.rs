@@ -160,36 +160,50 @@ impl Test {
     ) -> Result<Self> {
         piece.validate()?;
         let frame = machine.face_frame();
-        let [u, v, n] = frame;
         let model = placed(machine, piece, &frame)?;
         let setup = if options.transform {
             Setup::AtPose(vec![0.0; model.chain.len()])
         } else {
             Setup::None
         };
-        let mut zones = Vec::with_capacity(specs.len());
-        for spec in specs {
-            let [i, j, k] = spec.tool;
-            let dir = u * i + v * j + n * k;
-            let centre = spec.centre;
-            let tip = nominal_tip(&frame, centre.0, centre.1, &dir, piece.tool_radius);
-            let s = model.inverse(&tip, &dir, BRANCH, None).map_err(|e| {
-                Error::field("machine", format!("ZONE {}: {}", spec.name, e.message))
-            })?;
-            zones.push(Zone {
-                centre,
-                dir,
-                rotary: model.rotary_of(&s.q),
-                q: s.q,
-                singular: s.singular,
-            });
-        }
-        Ok(Self {
+        let mut test = Self {
             model,
             setup,
             piece: piece.clone(),
             frame,
-            zones,
+            zones: Vec::with_capacity(specs.len()),
+        };
+        for spec in specs {
+            let zone = test.place(spec)?;
+            test.zones.push(zone);
+        }
+        Ok(test)
+    }
+
+    /// A zone of `spec` on this test's machine and set-up: its pose by the inverse kinematics
+    /// within the travel (an error naming the zone when out of it).
+    pub(super) fn place(&self, spec: &ZoneSpec) -> Result<Zone> {
+        let [u, v, n] = self.frame;
+        let [i, j, k] = spec.tool;
+        let dir = u * i + v * j + n * k;
+        let centre = spec.centre;
+        let tip = nominal_tip(
+            &self.frame,
+            centre.0,
+            centre.1,
+            &dir,
+            self.piece.tool_radius,
+        );
+        let s = self
+            .model
+            .inverse(&tip, &dir, BRANCH, None)
+            .map_err(|e| Error::field("machine", format!("ZONE {}: {}", spec.name, e.message)))?;
+        Ok(Zone {
+            centre,
+            dir,
+            rotary: self.model.rotary_of(&s.q),
+            q: s.q,
+            singular: s.singular,
         })
     }
 

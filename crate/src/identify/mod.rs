@@ -532,7 +532,7 @@ pub fn amount(q: Quantity, v: f64) -> String {
             return "0".to_string();
         }
         let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 8) as usize;
-        format!("{x:.digits$}")
+        format!("{x:.digits$}").replace('-', "−")
     };
     if q.is_angle() {
         let d = v.to_degrees();
