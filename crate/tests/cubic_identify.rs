@@ -322,6 +322,7 @@ fn the_designed_test_recovers_every_error_it_can_see_from_its_own_export() {
         let mut own = own;
         own.csv = filled(&input, &csv, &truth, 0.0002, &mut rng);
         own.decision.noise = Some(0.0002);
+        own.decision.tolerance = 0.0;
         let r = identify_zones(&input, &own).unwrap();
         for d in &r.judgement.decisions {
             if let (Some(v), Some([lo, hi])) = (d.value, d.interval) {

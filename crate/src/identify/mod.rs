@@ -92,11 +92,12 @@ crate::inputs! {
             kind: crate::schema::positive(Quantity::SmallLength, 1.0),
             group: "Decision",
         },
-        /// Tolerance of an error's effect, mm.
-        pub tolerance: Option<f64> = "tolerance" optional {
+        /// Tolerance of an error's effect, mm (0: none).
+        pub tolerance: f64 = "tolerance" optional {
             label: "Tolerance: smallest effect worth correcting",
-            help: "An error that is present but moves the part by less than this (at its worst measured point) is reported as below the tolerance.",
+            help: "An error that is present but moves the part by less than this (at its worst measured point) is reported as below the tolerance; 0: every error found is reported as present.",
             kind: crate::schema::number(Quantity::SmallLength, 0.0, 10.0),
+            default: crate::schema::DefaultValue::Num(0.001),
             group: "Decision",
         },
     }
@@ -109,7 +110,7 @@ impl DecisionInput {
             alpha: self.alpha,
             level: DEFAULT_LEVEL,
             noise: self.noise,
-            tolerance: self.tolerance,
+            tolerance: (self.tolerance > 0.0).then_some(self.tolerance),
         }
     }
 }
