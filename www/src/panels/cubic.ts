@@ -158,6 +158,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const setAlert = (text: string | null) => {
     alert.textContent = text ?? '';
     alert.hidden = !text;
+    // Brought into view: the user is down at the file field when a file fails.
+    if (text) alert.scrollIntoView({ block: 'nearest' });
   };
   /** Drops the last identification at once: its numbers belong to another file or inputs. */
   const clearIdentification = (message: Node) => {

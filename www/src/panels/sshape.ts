@@ -151,6 +151,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const setAlert = (text: string | null) => {
     alert.textContent = text ?? '';
     alert.hidden = !text;
+    // Brought into view: the user is down at the file field when a file fails.
+    if (text) alert.scrollIntoView({ block: 'nearest' });
   };
 
   const identify = (i: NonNullable<ReturnType<typeof read>>) => {
