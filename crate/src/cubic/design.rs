@@ -27,7 +27,8 @@
 //! rows are its own; `transform` (the workpiece set at zero) is the input's.
 //!
 //! # The search
-//! Coordinate ascent from the paper's layout (or 30° towards the centre): for each zone in turn
+//! On the layout's Gram matrix `SᵀS` (the sum of each zone's share), whose eigenvalues are the
+//! squared singular values. Coordinate ascent from the paper's layout (or 30° towards the centre): for each zone in turn
 //! every candidate tool vector at its position is tried and the best kept, by (rank, then the
 //! `r`-th singular value, or the sum of the logarithms of the singular values while the rank is
 //! short), until a sweep improves nothing (at most 8 sweeps). Deterministic.
@@ -233,6 +234,25 @@ struct Candidate {
     slot: usize,
     zone: DesignedZone,
     rows: Vec<Vec<f64>>,
+    /// `RᵀR` of its rows (p × p): a layout's Gram matrix is the sum over its zones.
+    gram: DMatrix<f64>,
+}
+
+fn gram_of(rows: &[Vec<f64>], p: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(p, p, |i, j| rows.iter().map(|r| r[i] * r[j]).sum())
+}
+
+/// Singular values of a layout from its Gram matrix `G = SᵀS`: `√eig(G)`, descending.
+fn singular_values_of_gram(g: &DMatrix<f64>) -> Vec<f64> {
+    let mut sv: Vec<f64> = g
+        .clone()
+        .symmetric_eigen()
+        .eigenvalues
+        .iter()
+        .map(|e| e.max(0.0).sqrt())
+        .collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    sv
 }
 
 /// Designs the test (module docs).
@@ -330,6 +350,7 @@ pub fn design(input: &CubicInput, own: &CubicDesignInput) -> Result<Design> {
                     };
                     let rows = zone_rows(&zone, &errors, piece, own.slopes, own.noise);
                     candidates.push(Candidate {
+                        gram: gram_of(&rows, p),
                         slot,
                         zone: DesignedZone {
                             zone,
@@ -381,11 +402,12 @@ pub fn design(input: &CubicInput, own: &CubicDesignInput) -> Result<Design> {
             chosen.push(i);
         }
     }
-    let eval = |ch: &[usize]| {
-        let rows: Vec<&Vec<Vec<f64>>> = ch.iter().map(|&i| &candidates[i].rows).collect();
-        score(&singular_values(&rows, p), reachable_rank)
-    };
-    let mut current = eval(&chosen);
+    // The search works on the layout's Gram matrix (p × p), swapping one zone's share.
+    let mut gram = DMatrix::<f64>::zeros(p, p);
+    for &i in &chosen {
+        gram += &candidates[i].gram;
+    }
+    let mut current = score(&singular_values_of_gram(&gram), reachable_rank);
     for _sweep in 0..8 {
         let mut improved = false;
         for k in 0..chosen.len() {
@@ -394,14 +416,13 @@ pub fn design(input: &CubicInput, own: &CubicDesignInput) -> Result<Design> {
                 if c.slot != slot || i == chosen[k] {
                     continue;
                 }
-                let old = chosen[k];
-                chosen[k] = i;
-                let s = eval(&chosen);
+                let trial = &gram - &candidates[chosen[k]].gram + &c.gram;
+                let s = score(&singular_values_of_gram(&trial), reachable_rank);
                 if better(s, current) {
                     current = s;
                     improved = true;
-                } else {
-                    chosen[k] = old;
+                    chosen[k] = i;
+                    gram = trial;
                 }
             }
         }
@@ -456,6 +477,7 @@ fn paper_layout(
             let azimuth = if tilt == 0.0 { 0.0 } else { t[1].atan2(t[0]) };
             let rows = zone_rows(&zone, errors, piece, own.slopes, own.noise);
             Candidate {
+                gram: gram_of(&rows, errors.len()),
                 slot,
                 zone: DesignedZone {
                     zone,
