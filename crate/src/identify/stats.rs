@@ -20,12 +20,14 @@ const MAX_ITER: usize = 10_000;
 
 /// `ln Γ(x)` for `x > 0`.
 pub fn ln_gamma(x: f64) -> f64 {
-    let mut shift = 0.0;
+    // Γ(x) = Γ(x + n)/(x(x + 1)…(x + n − 1)): the product taken once through one logarithm.
+    let mut product = 1.0;
     let mut z = x;
     while z < 10.0 {
-        shift += z.ln();
+        product *= z;
         z += 1.0;
     }
+    let shift = product.ln();
     let z2 = z * z;
     let series = 1.0 / (12.0 * z) - 1.0 / (360.0 * z * z2) + 1.0 / (1260.0 * z * z2 * z2)
         - 1.0 / (1680.0 * z * z2 * z2 * z2);
