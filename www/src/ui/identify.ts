@@ -91,5 +91,7 @@ export async function clearPlot(target: HTMLElement) {
   target.parentElement?.querySelector(':scope > .plot-tools')?.remove();
   target.parentElement?.querySelector(':scope > .plot-note')?.remove();
   target.closest('.plot-wrap')?.classList.remove('stale');
-  target.setAttribute('aria-label', 'no result');
+  // Not a figure any more: no role, no label (an unlabelled div may not carry aria-label).
+  target.removeAttribute('role');
+  target.removeAttribute('aria-label');
 }
