@@ -116,6 +116,22 @@ wasm['sshape: identification of the 100-point sample (parse + SVD fit), 100 time
 );
 
 wasm['reversal: default test with and without friction (2 simulations)'] = time(3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
+// The cubic test designer and the identification of its export (same inputs as bench.rs).
+let designedCsv = '';
+wasm['cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)'] = time(3, () => fa.cubicDesign({ machine: li, secondSetup: 100 }), (d) => {
+  designedCsv = d.designed.csv;
+  return d.designed.smallest;
+});
+const filledCsv = designedCsv.replace(/,,,\n/g, ',1,0.00001,-0.00001\n');
+wasm['cubic: identification of 18 measured zones, 100 times'] = time(
+  3,
+  () => {
+    let r;
+    for (let i = 0; i < 100; i++) r = fa.cubicIdentify({ machine: li, csv: filledCsv, decision: { noise: 0.001 } });
+    return r;
+  },
+  (r) => r.rms,
+);
 
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });

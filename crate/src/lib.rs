@@ -8,6 +8,8 @@
 //!   travel, and its ISO 230-1 errors ([`machine::errors`], one table for every study).
 //! * [`chain`]: the one kinematic chain with errors that every study computes with.
 //! * [`schema`]: inputs declared once ([`inputs!`]), read and checked in one place.
+//! * [`identify`]: identification of the errors from a measured test piece (least squares,
+//!   rank, family-wise decisions, goodness of fit), for every test piece.
 //!
 //! Studies, one module each, all on the machine:
 //! * [`nonlinear`]: nonlinear error of rotary-axis interpolation (Geng, Wu & Qiu 2018).
@@ -25,6 +27,7 @@ pub mod chain;
 pub mod cubic;
 pub mod error;
 pub mod geometry;
+pub mod identify;
 pub mod machine;
 pub mod nonlinear;
 mod numeric;

@@ -24,10 +24,8 @@ const SAMPLE_PATH: &str = concat!(
     "/../public/samples/sshape-measured.csv"
 );
 
-/// Standard normal deviates (Box–Muller) from the tests' seeded generator.
 fn gauss(rng: &mut Rng) -> f64 {
-    let (u1, u2) = (rng.unit().max(1e-300), rng.unit());
-    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    rng.gauss()
 }
 
 fn csv(values: &[f64]) -> String {

@@ -115,8 +115,24 @@ function sshapeCsv(r) {
 function sshapeIdentifyCase(r) {
   const m = machine(r);
   const names = errorsOf(m.type).map((e) => e.name).filter(() => r() < 0.5);
-  return build({ tool, model, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()) }, r, { machine: m, ...(r() < 0.5 ? { parameters: names } : {}) });
+  return build({ tool, model, csv: sshapeCsv, radiusTerm: (r) => r() < 0.5, rtol: (r) => 10 ** (-1 - 5 * r()), decision }, r, { machine: m, ...(r() < 0.5 ? { parameters: names } : {}) });
 }
+/** A file of measured zones (the paper's names, heights in µm, sometimes slopes), sometimes with a line damaged or repeated. */
+function cubicCsv(r) {
+  const slopes = r() < 0.5;
+  const lines = [slopes ? 'zone,height_um,slope_x,slope_y' : 'zone,height_um'];
+  for (const z of ['I', 'II-1', 'II-2', 'II-3', 'II-4', 'III-1', 'III-2', 'III-3', 'III-4']) {
+    if (r() < 0.1) continue;
+    const h = ((r() - 0.5) * 20).toFixed(3);
+    lines.push(slopes ? `${z},${h},${((r() - 0.5) * 1e-3).toExponential(3)},${r() < 0.2 ? '' : ((r() - 0.5) * 1e-3).toExponential(3)}` : `${z},${h}`);
+  }
+  const i = 1 + Math.floor(r() * (lines.length - 1));
+  const q = r();
+  if (q < 0.1) lines.push(lines[i]);
+  else if (q < 0.2) lines[i] = lines[i].replace(/\d(,|$)/, 'x$1');
+  return lines.join('\n');
+}
+const decision = { alpha: maybe((r) => 0.001 + r() * 0.2), noise: maybe((r) => r() * 0.01), tolerance: maybe((r) => r() * 0.01) };
 /** A short random toolpath: [x, y, z, i, j, k] per point, the tool axis within 60° of +Z. */
 function toolpathPoints(r) {
   const n = small(0, 8)(r);
@@ -183,6 +199,9 @@ export const SPECS = {
   nonlinearMaxErrors: { args: [pick(TYPES), (r) => r() * 500, (r) => new Float64Array(Array.from({ length: 4 * small(0, 5)(r) }, () => angle(r)))] },
   cubicTest: { args: [cubicCase] },
   cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: maybe(small(4, 24)) }] },
+  cubicIdentify: { args: [{ ...cubicCase, csv: cubicCsv, rtol: maybe((r) => 10 ** (-1 - 5 * r())), decision }] },
+  // Small designs (a 2 × 2 face, tilts to 20°): a full one takes a tenth of a second.
+  cubicDesign: { args: [{ ...cubicCase, grid: small(2, 2), maxTilt: (r) => 10 + 10 * r(), slopes: (r) => r() < 0.5, secondSetup: maybe((r) => (r() - 0.5) * 200), noise: maybe((r) => 1e-4 + r() * 0.01) }] },
   sshapePart: { args: [{ nu: small(2, 30), nv: small(2, 6) }] },
   sshapeOvercut: { args: [{ tool, nu: small(14, 20), nv: small(2, 3) }] },
   sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },

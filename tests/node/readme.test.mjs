@@ -74,6 +74,18 @@ test('README: the S-shape on Chanal et al.\'s machine', () => {
   assert.equal(all.estimates.length, 16);
   assert.ok(all.rank < 16);
   assert.ok(all.groups.some((g) => g.members.includes('E_X0B')));
+  // The decisions (Identification API): with the sample's stated 2 µm noise and a 5 µm
+  // tolerance, present are exactly the errors its header says it was made with (Table 4's E_X0B
+  // and E_A0B, the tool 0.02 mm small), each inside its 95 % interval.
+  const g = sshapeIdentify({ machine: chanal, csv, parameters: paper, decision: { noise: 0.002, tolerance: 0.005 } });
+  assert.deepEqual(g.estimates.filter((e) => e.verdict === 'present').map((e) => e.name), ['E_X0B', 'E_A0B', 'dR']);
+  const truth = { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI, dR: -0.02 };
+  for (const [n, t] of Object.entries(truth)) {
+    const [lo, hi] = g.estimates.find((e) => e.name === n).interval;
+    assert.ok(lo <= t && t <= hi, `${n}: ${t} in [${lo}, ${hi}]`);
+  }
+  assert.equal(g.goodness.explains, true);
+  assert.match(g.summary[0], /^E_X0B = 29\.6 µm ± 0\.536 µm: the B axis line lies 29\.6 µm towards \+X/);
 });
 
 test('README: the dome sample on the twelve types', () => {

@@ -7,7 +7,10 @@
 //! zones in the order of `zones`, errors in the order of `errorNames` (the machine's errors in
 //! the order of the error table).
 
+use crate::identify::{identification, Identification};
 use crate::{api_combination, f64_array, js_error, json, output, Series};
+use fiveaxis::cubic::design::{design, CubicDesignInput};
+use fiveaxis::cubic::identify::{identify_zones, CubicIdentifyInput};
 use fiveaxis::cubic::{self, CubicInput, CubicReference, ZonePlane};
 use serde::Serialize;
 use tsify::Tsify;
@@ -262,5 +265,232 @@ pub fn cubic_height_map(
         scallop: m.scallop,
         passes: m.passes,
         evaluations: m.evaluations,
+    })
+}
+
+/// A zone of a measured or designed layout on the machine.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct CubicLayoutZone {
+    /// Its name.
+    pub name: String,
+    /// Set-up 1 or 2 (the designer's; 1 for a measured file).
+    pub setup: usize,
+    /// The face centre's distance from the table centre along u in its set-up, mm.
+    pub piece_x: f64,
+    /// Centre on the face, mm.
+    pub x: f64,
+    /// Its second coordinate, mm.
+    pub y: f64,
+    /// Tilt of the tool from the face normal, degrees.
+    pub tilt: f64,
+    /// Azimuth of the tilt in the face frame (0 towards +u), degrees.
+    pub azimuth: f64,
+    /// Tool vector in workpiece coordinates, tip → spindle.
+    pub tool_vector: [f64; 3],
+    /// K command, degrees.
+    pub k: f64,
+    /// M command, degrees.
+    pub m: f64,
+}
+
+fn layout_zone(z: &fiveaxis::cubic::identify::LayoutZone, setup: usize) -> CubicLayoutZone {
+    let t = z.spec.tool;
+    let tilt = t[2].clamp(-1.0, 1.0).acos();
+    let azimuth = if tilt < 1e-12 { 0.0 } else { t[1].atan2(t[0]) };
+    CubicLayoutZone {
+        name: z.spec.name.clone(),
+        setup,
+        piece_x: z.piece_x,
+        x: z.spec.centre.0,
+        y: z.spec.centre.1,
+        tilt: tilt.to_degrees(),
+        azimuth: azimuth.to_degrees().rem_euclid(360.0),
+        tool_vector: z.tool,
+        k: z.rotary[0].to_degrees(),
+        m: z.rotary[1].to_degrees(),
+    }
+}
+
+/// The cubic identification.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct CubicIdentifyResult {
+    /// The fit, the decisions and the words (shared with the S-shape).
+    #[serde(flatten)]
+    pub fit: Identification,
+    /// The measured zones in file order.
+    pub zones: Vec<CubicLayoutZone>,
+    /// Per row of the fit: the zone's index in `zones`.
+    pub row_zone: Vec<usize>,
+    /// Per row: "height", "slopeX" or "slopeY".
+    pub row_kind: Vec<String>,
+    /// Measured value per row: mm for a height; for a slope the height it makes over half a
+    /// zone, mm.
+    pub measured: Series,
+    /// Fitted value per row, same units.
+    pub fitted: Series,
+    /// Measured minus fitted, same units.
+    pub residuals: Series,
+    /// RMS of the residuals, mm.
+    pub rms: f64,
+}
+
+/// Identification of the machine's errors from measured zone heights (and slopes) of a cubic
+/// test piece, the paper's layout or a designed one (`csv`, see `fiveaxis::cubic::identify`).
+#[wasm_bindgen(js_name = cubicIdentify, unchecked_return_type = "CubicIdentifyResult")]
+pub fn cubic_identify(
+    #[wasm_bindgen(unchecked_param_type = "CubicInput & CubicIdentifyInput")] value: JsValue,
+) -> Result<JsValue, JsError> {
+    let (input, own): (CubicInput, CubicIdentifyInput) =
+        CubicInput::read_with(&json(&value)?).map_err(js_error)?;
+    let r = identify_zones(&input, &own).map_err(js_error)?;
+    let f = &r.judgement.fit;
+    let measured: Vec<f64> = f
+        .fitted
+        .iter()
+        .zip(&f.residuals)
+        .map(|(a, b)| a + b)
+        .collect();
+    output(&CubicIdentifyResult {
+        zones: r.zones.iter().map(|z| layout_zone(z, 1)).collect(),
+        row_zone: r.rows.iter().map(|(z, _)| *z).collect(),
+        row_kind: r
+            .rows
+            .iter()
+            .map(|(_, k)| ["height", "slopeX", "slopeY"][*k].to_string())
+            .collect(),
+        measured: f64_array(&measured),
+        fitted: f64_array(&f.fitted),
+        residuals: f64_array(&f.residuals),
+        rms: f.rms,
+        fit: identification(&r.judgement),
+    })
+}
+
+/// A layout's quality for the designer.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct CubicLayoutReport {
+    /// Its zones, the table to machine.
+    pub zones: Vec<CubicLayoutZone>,
+    /// Rank of its scaled sensitivity matrix.
+    pub rank: usize,
+    /// Condition number σ₁/σ_r (null: rank short of what the machine allows).
+    pub condition: Option<f64>,
+    /// The r-th singular value: the weakest combination of typical errors, in noise
+    /// standard deviations.
+    pub smallest: f64,
+    /// Singular values of the scaled matrix, descending.
+    pub singular_values: Vec<f64>,
+    /// Errors it identifies on their own.
+    pub identifiable: Vec<String>,
+    /// Errors it cannot separate, with what it can see of them.
+    pub groups: Vec<CubicDesignGroup>,
+    /// The zone table as CSV (empty height_um, slope_x, slope_y to fill in); `cubicIdentify`
+    /// reads it back.
+    pub csv: String,
+}
+
+/// Errors a layout cannot separate.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+pub struct CubicDesignGroup {
+    /// The errors.
+    pub members: Vec<String>,
+    /// What it can see of them (none: nothing).
+    pub combinations: Vec<String>,
+}
+
+/// The designer's result.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct CubicDesignResult {
+    /// The errors considered.
+    pub error_names: Vec<String>,
+    /// The rank every candidate zone together reaches: what any such test can determine.
+    pub reachable_rank: usize,
+    /// Candidate zones the machine reaches within its travel.
+    pub candidates: usize,
+    /// What no such test can see (all candidates together).
+    pub unseen: Vec<CubicDesignGroup>,
+    /// How the matrix is scaled, in words.
+    pub scaling: String,
+    /// The paper's layout (null when it cannot be cut: see `paperMessage`).
+    pub paper: Option<CubicLayoutReport>,
+    /// Why the paper's layout cannot be cut.
+    pub paper_message: Option<String>,
+    /// The designed layout.
+    pub designed: CubicLayoutReport,
+}
+
+fn design_groups(f: &fiveaxis::identify::Fit) -> Vec<CubicDesignGroup> {
+    f.groups
+        .iter()
+        .map(|g| CubicDesignGroup {
+            members: g.members.clone(),
+            combinations: g
+                .combinations
+                .iter()
+                .map(|c| {
+                    let (k, _) = api_combination(c.terms.iter().map(|(n, k)| (n.as_str(), *k)));
+                    let terms: Vec<(String, f64)> = c
+                        .terms
+                        .iter()
+                        .zip(k)
+                        .map(|((n, _), k)| (n.clone(), k))
+                        .collect();
+                    fiveaxis::identify::combination_text(&terms)
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+fn layout_report(r: &fiveaxis::cubic::design::LayoutReport) -> CubicLayoutReport {
+    CubicLayoutReport {
+        zones: r
+            .zones
+            .iter()
+            .map(|z| layout_zone(&z.zone, z.setup))
+            .collect(),
+        rank: r.rank,
+        condition: r.condition.is_finite().then_some(r.condition),
+        smallest: r.smallest,
+        singular_values: r.singular_values.clone(),
+        identifiable: r
+            .fit
+            .estimates
+            .iter()
+            .filter(|e| e.value.is_some())
+            .map(|e| e.name.clone())
+            .collect(),
+        groups: design_groups(&r.fit),
+        csv: r.csv.clone(),
+    }
+}
+
+/// The test designer: the zones' tool vectors (and optionally a second set-up) that make every
+/// error a face of this kind can reveal identifiable, beside the paper's layout.
+#[wasm_bindgen(js_name = cubicDesign, unchecked_return_type = "CubicDesignResult")]
+pub fn cubic_design(
+    #[wasm_bindgen(unchecked_param_type = "CubicInput & CubicDesignInput")] value: JsValue,
+) -> Result<JsValue, JsError> {
+    let (input, own): (CubicInput, CubicDesignInput) =
+        CubicInput::read_with(&json(&value)?).map_err(js_error)?;
+    let d = design(&input, &own).map_err(js_error)?;
+    output(&CubicDesignResult {
+        error_names: d.errors.iter().map(|e| e.name.to_string()).collect(),
+        reachable_rank: d.reachable_rank,
+        candidates: d.candidates,
+        unseen: design_groups(&d.all),
+        scaling: fiveaxis::cubic::design::SCALING.to_string(),
+        paper: d.paper.as_ref().ok().map(layout_report),
+        paper_message: d.paper.as_ref().err().cloned(),
+        designed: layout_report(&d.designed),
     })
 }

@@ -17,6 +17,7 @@
 //! writes. [`schema`] gives the page every input field with its label, help, unit and limits.
 
 mod cubic;
+mod identify;
 mod machine;
 mod nonlinear;
 mod reversal;
@@ -25,6 +26,7 @@ mod toolpath;
 mod volumetric;
 
 pub use cubic::*;
+pub use identify::*;
 pub use machine::*;
 pub use nonlinear::*;
 pub use reversal::*;

@@ -2,6 +2,8 @@
 //! the machine, its tool direction and its inverse kinematics within the travel.
 
 use crate::{js_error, json, output};
+use fiveaxis::cubic::design::CubicDesignInput;
+use fiveaxis::cubic::identify::CubicIdentifyInput;
 use fiveaxis::cubic::{CubicGrid, CubicInput};
 use fiveaxis::machine::errors::{ErrorDef, TABLE};
 use fiveaxis::machine::motions::MOTIONS;
@@ -77,6 +79,8 @@ pub fn schema() -> Result<JsValue, JsError> {
     );
     put("cubicTest", fields::<CubicInput>());
     put("cubicHeightMap", both::<CubicInput, CubicGrid>());
+    put("cubicIdentify", both::<CubicInput, CubicIdentifyInput>());
+    put("cubicDesign", both::<CubicInput, CubicDesignInput>());
     put("sshapePart", fields::<SShapePartInput>());
     put("sshapeOvercut", fields::<SShapeOvercutInput>());
     put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());

@@ -1,9 +1,10 @@
 //! Exports of the S-shape study (see `fiveaxis::sshape`). Lengths in mm, angles in degrees (the
 //! machine's angular errors too; a sensitivity to one is per degree), like every export.
 
-use crate::{api_combination, error_quantity, f64_array, js_error, json, output, Series};
+use crate::identify::{identification, Identification};
+use crate::{f64_array, js_error, json, output, Series};
 use fiveaxis::schema::{Inputs, Quantity};
-use fiveaxis::sshape::identify::{combination_text, parse_measurements};
+use fiveaxis::sshape::identify::parse_measurements;
 use fiveaxis::sshape::overcut::OvercutMap;
 use fiveaxis::sshape::part::{MeasurementPoint, Part, SurfaceId};
 use fiveaxis::sshape::study::{
@@ -317,68 +318,14 @@ pub fn sshape_defects(
     })
 }
 
-/// One parameter of a fit.
-#[derive(Serialize, Tsify)]
-#[tsify(missing_as_null, hashmap_as_object)]
-#[serde(rename_all = "camelCase")]
-pub struct SShapeEstimate {
-    /// ISO name, or "dR".
-    pub name: String,
-    /// "mm" or "deg".
-    pub unit: String,
-    /// Null when not identifiable on its own.
-    pub value: Option<f64>,
-    /// Its standard error, null likewise.
-    pub std_error: Option<f64>,
-    /// The minimum-norm value (a convention where not identifiable).
-    pub min_norm: f64,
-    /// Index into groups when it cannot be separated from others.
-    pub group: Option<usize>,
-}
-
-/// An identifiable combination Σ c·x (x in mm and degrees).
-#[derive(Serialize, Tsify)]
-#[tsify(missing_as_null, hashmap_as_object)]
-#[serde(rename_all = "camelCase")]
-pub struct SShapeCombination {
-    /// (name, coefficient); the first coefficient is 1.
-    pub terms: Vec<(String, f64)>,
-    /// Its value, in the first member's unit.
-    pub value: f64,
-    /// Its standard error.
-    pub std_error: f64,
-    /// Readable form.
-    pub text: String,
-}
-
-/// Parameters the part cannot separate.
-#[derive(Serialize, Tsify)]
-#[tsify(missing_as_null, hashmap_as_object)]
-#[serde(rename_all = "camelCase")]
-pub struct SShapeGroup {
-    /// The parameters.
-    pub members: Vec<String>,
-    /// Weak directions among them.
-    pub deficiency: usize,
-    /// What can be identified of them.
-    pub combinations: Vec<SShapeCombination>,
-}
-
 /// The identification.
 #[derive(Serialize, Tsify)]
 #[tsify(missing_as_null, hashmap_as_object)]
 #[serde(rename_all = "camelCase")]
 pub struct SShapeIdentifyResult {
-    /// Per parameter.
-    pub estimates: Vec<SShapeEstimate>,
-    /// Inseparable groups.
-    pub groups: Vec<SShapeGroup>,
-    /// Numerical rank.
-    pub rank: usize,
-    /// Relative singular values of the column-scaled matrix, descending.
-    pub singular_values: Vec<f64>,
-    /// The threshold used.
-    pub rtol: f64,
+    /// The fit, the decisions and the words (shared with the cubic test).
+    #[serde(flatten)]
+    pub fit: Identification,
     /// Per point, list order, mm.
     pub measured: Series,
     /// The fitted deviation per point, mm.
@@ -403,63 +350,23 @@ pub fn sshape_identify(
         SShapeCase::read_with(&json(&value)?).map_err(js_error)?;
     let measured = parse_measurements(&i.csv).map_err(js_error)?;
     let d = design(&c)?;
-    let f = d
-        .identify(&measured, i.parameters.as_deref(), i.radius_term, i.rtol)
+    let j = d
+        .judge(
+            &measured,
+            i.parameters.as_deref(),
+            i.radius_term,
+            i.rtol,
+            &i.decision.options(),
+        )
         .map_err(js_error)?;
-    let estimates = f
-        .estimates
-        .iter()
-        .map(|e| {
-            let q = error_quantity(&e.name);
-            SShapeEstimate {
-                name: e.name.clone(),
-                unit: q.api_unit().to_string(),
-                value: e.value.map(|v| q.to_api(v)),
-                std_error: e.std_error.map(|v| q.to_api(v)),
-                min_norm: q.to_api(e.min_norm),
-                group: e.group,
-            }
-        })
-        .collect();
-    let groups = f
-        .groups
-        .iter()
-        .map(|g| SShapeGroup {
-            members: g.members.clone(),
-            deficiency: g.deficiency,
-            combinations: g
-                .combinations
-                .iter()
-                .map(|c| {
-                    let (coefficients, s) =
-                        api_combination(c.terms.iter().map(|(n, k)| (n.as_str(), *k)));
-                    let terms: Vec<(String, f64)> = c
-                        .terms
-                        .iter()
-                        .zip(coefficients)
-                        .map(|((n, _), k)| (n.clone(), k))
-                        .collect();
-                    SShapeCombination {
-                        text: combination_text(&terms),
-                        terms,
-                        value: c.value * s,
-                        std_error: c.std_error * s,
-                    }
-                })
-                .collect(),
-        })
-        .collect();
+    let f = &j.fit;
     output(&SShapeIdentifyResult {
-        estimates,
-        groups,
-        rank: f.rank,
-        singular_values: f.singular_values,
-        rtol: f.rtol,
         measured: f64_array(&measured),
         fitted: f64_array(&f.fitted),
         residuals: f64_array(&f.residuals),
         rms: f.rms,
         max_abs: f.max_abs,
         sigma: f.sigma,
+        fit: identification(&j),
     })
 }

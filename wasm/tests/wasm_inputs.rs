@@ -414,7 +414,13 @@ fn the_schema_lists_every_exports_inputs() {
     assert!(s.exports["volumetricMap"]
         .iter()
         .any(|f| f.path == "region.steps"));
-    assert_eq!(s.exports.len(), 25);
+    assert!(s.exports["cubicIdentify"]
+        .iter()
+        .any(|f| f.path == "decision.noise" && f.unit == "mm"));
+    assert!(s.exports["cubicDesign"]
+        .iter()
+        .any(|f| f.path == "maxTilt" && f.unit == "deg"));
+    assert_eq!(s.exports.len(), 27);
 }
 
 fn tan_lim() -> Value {
@@ -472,4 +478,45 @@ fn volumetric_exports_refuse_unknown_inputs_and_error_motions() {
         json!("X (mm), E_XX (um)\n0, 0\n1, x\n"),
     )));
     assert!(m.starts_with("csv: line 3:"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn cubic_identify_and_design_refuse_unknown_inputs() {
+    let csv = "zone,height_um\nI,0\nII-1,-5\nII-2,-1\nII-3,-3\nII-4,-2\nIII-1,-5\nIII-2,-1\nIII-3,-2\nIII-4,-1\n";
+    let base =
+        json!({ "machine": trunnion(), "csv": csv, "parameters": ["E_Y0A", "E_Z0A", "E_B0Z"] });
+    refuses(fa::cubic_identify, base.clone());
+    let m = error_message(fa::cubic_identify(with(
+        &base,
+        "decision.nois",
+        json!(0.001),
+    )));
+    assert!(
+        m.starts_with("decision.nois: unknown input") && m.contains("Did you mean \"noise\"?"),
+        "{m}"
+    );
+    let m = error_message(fa::cubic_identify(with(
+        &base,
+        "decision.alpha",
+        json!(0.9),
+    )));
+    assert!(m.starts_with("decision.alpha: must be between"), "{m}");
+    let m = error_message(fa::cubic_identify(with(
+        &base,
+        "csv",
+        json!("zone,height_um\nII-9,1\n"),
+    )));
+    assert!(m.starts_with("csv: line 2: zone \"II-9\""), "{m}");
+    let m = error_message(fa::cubic_identify(with(
+        &base,
+        "parameters",
+        json!(["E_X0B"]),
+    )));
+    assert!(m.starts_with("parameters[0]: "), "{m}");
+    let design = json!({ "machine": trunnion(), "grid": 2, "maxTilt": 20 });
+    refuses(fa::cubic_design, design.clone());
+    let m = error_message(fa::cubic_design(with(&design, "grid", json!(9))));
+    assert!(m.starts_with("grid: "), "{m}");
+    let m = error_message(fa::cubic_design(with(&design, "maxTilt", json!("x"))));
+    assert!(m.starts_with("maxTilt: "), "{m}");
 }

@@ -215,6 +215,7 @@ fn identified_angles_come_out_in_degrees() {
         unit: String,
         value: Option<f64>,
         std_error: Option<f64>,
+        interval: Option<[f64; 2]>,
     }
     #[derive(Deserialize)]
     struct Out {
@@ -243,6 +244,15 @@ fn identified_angles_come_out_in_degrees() {
         let per = if angle { 1.0 / DEG } else { 1.0 };
         assert!((e.value.unwrap() - n.value.unwrap() * per).abs() < 1e-12 * per);
         assert!((e.std_error.unwrap() - n.std_error.unwrap() * per).abs() < 1e-12 * per);
+        // The 95 % interval in the same unit: value ± t(91 dof)·se, t = 1.9864 from a table.
+        let [lo, hi] = e.interval.unwrap();
+        let half = (hi - lo) / 2.0;
+        assert!(
+            (half / e.std_error.unwrap() - 1.9864).abs() < 1e-3,
+            "{}",
+            e.name
+        );
+        assert!(((hi + lo) / 2.0 - e.value.unwrap()).abs() < 1e-12 * per);
     }
 }
 

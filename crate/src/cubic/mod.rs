@@ -59,11 +59,13 @@
 //! errors the test cannot see at all (zero height sensitivity in every zone) and which it cannot
 //! tell apart (proportional height sensitivities).
 
+pub mod design;
+pub mod identify;
 mod map;
 mod zones;
 
 pub use map::{height_map, HeightMap, MAX_GRID_POINTS, MAX_GRID_SIDE};
-pub use zones::{ZoneDef, ZONES};
+pub use zones::{ZoneDef, ZoneSpec, ZONES};
 
 use crate::error::{Error, Result};
 use crate::machine::errors::{ErrorDef, ErrorValues};
@@ -290,10 +292,15 @@ impl CubicInput {
     /// Reads and checks the inputs of the height map: the test's and the grid's keys in one
     /// object.
     pub fn read_with_grid(value: &Value) -> Result<(Self, CubicGrid)> {
-        let (input, grid): (Self, CubicGrid) = schema::read_split(value, "")?;
+        Self::read_with(value)
+    }
+
+    /// Reads and checks the test's inputs and an export's own (`B`) from one object.
+    pub fn read_with<B: Inputs>(value: &Value) -> Result<(Self, B)> {
+        let (input, own): (Self, B) = schema::read_split(value, "")?;
         input.machine.validate("machine")?;
         input.setup.validate()?;
-        Ok((input, grid))
+        Ok((input, own))
     }
 
     /// The options of the evaluation.
@@ -363,7 +370,7 @@ impl ZonePlane {
 
 /// Planes of the nine zones (Table 1 order) measured from `reference`: ZONE I (index 0) is the
 /// reference zone. Linear in the planes, so it applies to sensitivities as well.
-fn relative(
+pub(crate) fn relative(
     planes: &[ZonePlane],
     centres: &[(f64, f64)],
     reference: CubicReference,
@@ -485,12 +492,12 @@ pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Resu
         }
     }
 
-    let zones = test
-        .zones
+    let zones = ZONES
         .iter()
+        .zip(&test.zones)
         .zip(&exact)
         .zip(&sensitivity)
-        .map(|((z, p), k)| {
+        .map(|(((def, z), p), k)| {
             let linear = k
                 .iter()
                 .zip(&errors)
@@ -498,7 +505,7 @@ pub fn analyze(machine: &Machine, piece: &CubicPiece, options: &Options) -> Resu
                     acc.plus(&k.scaled(machine.errors.get(d.name)))
                 });
             ZoneResult {
-                zone: z.def,
+                zone: *def,
                 centre: [z.centre.0, z.centre.1],
                 tool: z.dir.into(),
                 rotary: z.rotary,

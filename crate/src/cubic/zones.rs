@@ -85,10 +85,31 @@ pub const ZONES: [ZoneDef; 9] = [
     },
 ];
 
+/// A zone of any layout: its name, centre on the face and tool vector in the face frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ZoneSpec {
+    /// Its name ("II-1", "Z3").
+    pub name: String,
+    /// Centre `(x, y)` on the face (along `u`, `v`), mm.
+    pub centre: (f64, f64),
+    /// Tool vector `(i, j, k)` in the face frame `(u, v, n)`, unit, tip → spindle.
+    pub tool: [f64; 3],
+}
+
+impl ZoneSpec {
+    /// Table 1's zone on a piece with zones of `size` mm.
+    pub fn paper(def: &ZoneDef, size: f64) -> Self {
+        Self {
+            name: def.name.to_string(),
+            centre: (def.col as f64 * size, def.row as f64 * size),
+            tool: def.tool,
+        }
+    }
+}
+
 /// A zone placed on the face: its definition, centre and the pose used to cut it.
 #[derive(Debug, Clone)]
 pub(super) struct Zone {
-    pub(super) def: ZoneDef,
     /// Centre on the face `(x, y)`, mm.
     pub(super) centre: (f64, f64),
     /// Tool vector in the workpiece frame.
@@ -121,43 +142,68 @@ fn placed(machine: &Machine, piece: &CubicPiece, frame: &[Vector3<f64>; 3]) -> R
 }
 
 impl Test {
+    /// The paper's nine zones (Table 1, Fig 2).
     pub(super) fn new(machine: &Machine, piece: &CubicPiece, options: &Options) -> Result<Self> {
+        let specs: Vec<ZoneSpec> = ZONES
+            .iter()
+            .map(|d| ZoneSpec::paper(d, piece.zone_size))
+            .collect();
+        Self::with_zones(machine, piece, options, &specs)
+    }
+
+    /// Any layout of zones; the first is the reference zone of [`super::CubicReference`].
+    pub(super) fn with_zones(
+        machine: &Machine,
+        piece: &CubicPiece,
+        options: &Options,
+        specs: &[ZoneSpec],
+    ) -> Result<Self> {
         piece.validate()?;
         let frame = machine.face_frame();
-        let [u, v, n] = frame;
         let model = placed(machine, piece, &frame)?;
         let setup = if options.transform {
             Setup::AtPose(vec![0.0; model.chain.len()])
         } else {
             Setup::None
         };
-        let mut zones = Vec::with_capacity(ZONES.len());
-        for def in ZONES {
-            let [i, j, k] = def.tool;
-            let dir = u * i + v * j + n * k;
-            let centre = (
-                def.col as f64 * piece.zone_size,
-                def.row as f64 * piece.zone_size,
-            );
-            let tip = nominal_tip(&frame, centre.0, centre.1, &dir, piece.tool_radius);
-            let s = model.inverse(&tip, &dir, BRANCH, None).map_err(|e| {
-                Error::field("machine", format!("ZONE {}: {}", def.name, e.message))
-            })?;
-            zones.push(Zone {
-                def,
-                centre,
-                dir,
-                rotary: model.rotary_of(&s.q),
-                q: s.q,
-                singular: s.singular,
-            });
-        }
-        Ok(Self {
+        let mut test = Self {
             model,
             setup,
             piece: piece.clone(),
             frame,
-            zones,
+            zones: Vec::with_capacity(specs.len()),
+        };
+        for spec in specs {
+            let zone = test.place(spec)?;
+            test.zones.push(zone);
+        }
+        Ok(test)
+    }
+
+    /// A zone of `spec` on this test's machine and set-up: its pose by the inverse kinematics
+    /// within the travel (an error naming the zone when out of it).
+    pub(super) fn place(&self, spec: &ZoneSpec) -> Result<Zone> {
+        let [u, v, n] = self.frame;
+        let [i, j, k] = spec.tool;
+        let dir = u * i + v * j + n * k;
+        let centre = spec.centre;
+        let tip = nominal_tip(
+            &self.frame,
+            centre.0,
+            centre.1,
+            &dir,
+            self.piece.tool_radius,
+        );
+        let s = self
+            .model
+            .inverse(&tip, &dir, BRANCH, None)
+            .map_err(|e| Error::field("machine", format!("ZONE {}: {}", spec.name, e.message)))?;
+        Ok(Zone {
+            centre,
+            dir,
+            rotary: self.model.rotary_of(&s.q),
+            q: s.q,
+            singular: s.singular,
         })
     }
 

@@ -2,7 +2,6 @@
 //! model options), and the computations built from [`super::part`], [`super::overcut`],
 //! [`super::machine`] and [`super::identify`].
 
-use super::identify::{self, Fit, DEFAULT_RTOL};
 use super::machine::{
     defect_matrix, measurement_poses, DefectPoint, DefectReference, OnMachine, PathBranch,
     PointPose,
@@ -10,6 +9,7 @@ use super::machine::{
 use super::overcut::{eq6_max, overcut_map, Basis, OvercutMap, ToolPath};
 use super::part::{MeasurementPoint, Part, SurfaceId, N_POINTS};
 use crate::error::{Error, Result};
+use crate::identify::{self, Fit, DEFAULT_RTOL};
 use crate::machine::errors::{ErrorDef, ErrorValues};
 use crate::machine::Machine;
 use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
@@ -145,6 +145,12 @@ crate::inputs! {
             kind: schema::Kind::Number { quantity: Quantity::Number, min: 1e-12, max: 0.5, exclusive_min: false },
             default: DefaultValue::Num(DEFAULT_RTOL),
             group: "Identification",
+        },
+        /// How the values are judged.
+        pub decision: identify::DecisionInput = "decision" optional {
+            label: "Decision",
+            kind: Kind::Object(identify::DecisionInput::FIELDS),
+            default: DefaultValue::Empty,
         },
     }
 }
@@ -298,6 +304,46 @@ impl Design {
         radius_term: bool,
         rtol: f64,
     ) -> Result<Fit> {
+        let (a, names) = self.system(measured, parameters, radius_term)?;
+        identify::fit(&a, &names, measured, rtol)
+    }
+
+    /// [`Self::identify`] with the decisions of [`crate::identify::judge`]: family-wise tests,
+    /// the tolerance, intervals and the goodness of fit against the stated noise.
+    pub fn judge(
+        &self,
+        measured: &[f64],
+        parameters: Option<&[String]>,
+        radius_term: bool,
+        rtol: f64,
+        options: &crate::identify::Options,
+    ) -> Result<crate::identify::Judgement> {
+        let (a, names) = self.system(measured, parameters, radius_term)?;
+        let params: Vec<crate::identify::Param> = names
+            .iter()
+            .map(|n| {
+                if n == RADIUS_NAME {
+                    Ok(crate::identify::Param {
+                        name: n,
+                        quantity: Quantity::SmallLength,
+                        def: None,
+                        label: "the tool's radius R′ − R is",
+                    })
+                } else {
+                    crate::identify::Param::error(n)
+                }
+            })
+            .collect::<Result<_>>()?;
+        crate::identify::identify(&a, &params, measured, rtol, options)
+    }
+
+    /// The sensitivity matrix of the chosen parameters (rows: points) and their names.
+    fn system(
+        &self,
+        measured: &[f64],
+        parameters: Option<&[String]>,
+        radius_term: bool,
+    ) -> Result<(DMatrix<f64>, Vec<String>)> {
         if measured.len() != N_POINTS {
             return Err(Error::field(
                 "deviations",
@@ -340,7 +386,7 @@ impl Design {
         if radius_term {
             names.push(RADIUS_NAME.to_string());
         }
-        identify::fit(&a, &names, measured, rtol)
+        Ok((a, names))
     }
 
     /// The cosine between the sensitivity columns of two errors (−1: they act alike but for

@@ -23,6 +23,11 @@ impl Rng {
     pub fn unit(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
+    /// A standard normal deviate (Box–Muller).
+    pub fn gauss(&mut self) -> f64 {
+        let (u1, u2) = (self.unit().max(1e-300), self.unit());
+        (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    }
     /// Uniform in [a, b).
     pub fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.unit()

@@ -2,16 +2,18 @@
 // Machine section. A ball-end mill cuts a 3 × 3-zone face square to the spindle; which zones come
 // out high or low for the machine's errors, and which errors the test cannot see.
 import type { Annotations, Data, Layout, Shape } from 'plotly.js';
-import type { CubicInput, CubicMapResult, CubicResult, Machine } from '@engine';
-import { channel, SUPERSEDED } from '../engine/client';
+import type { CubicDesignResult, CubicIdentifyResult, CubicInput, CubicLayoutReport, CubicMapResult, CubicResult, Machine } from '@engine';
+import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
-import { el, numberField } from '../ui/fields';
+import { el, fields, numberField } from '../ui/fields';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, showAtField, type Panel } from './panel';
+import { clearPlot, identificationView, sourceText, type Source } from '../ui/identify';
+import { download } from '../ui/export';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -29,7 +31,7 @@ export const cubicPanel: Panel = {
   id: 'cubic',
   prefix: 'cb',
   title: 'Cubic-machining test',
-  exports: ['cubicTest', 'cubicHeightMap'],
+  exports: ['cubicTest', 'cubicHeightMap', 'cubicIdentify', 'cubicDesign'],
   mount,
 };
 
@@ -51,6 +53,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const range = numberField({ id: 'cb-range', label: 'Colour scale ± (0: automatic)', quantity: 'errLength', value: 0, min: 0, max: 50,
     hint: 'Fig 16 uses ±0.01 mm.' });
   (inputs.groups.get('Height map') ?? form).append(range.root);
+  const fileLabel = el('label', { class: 'import', for: 'cb-file' }, 'Choose a file ');
+  const file = el('input', { id: 'cb-file', type: 'file', accept: '.csv,text/csv,text/plain' });
+  fileLabel.append(file);
+  const fileRow = el('div', { class: 'file-row' });
+  fileRow.append(fileLabel);
+  inputs.groups.get('Identification')?.querySelector('legend')?.after(fileRow);
+  const csvArea = form.querySelector<HTMLTextAreaElement>('#cb-csv');
+  if (csvArea) csvArea.placeholder = 'zone,height_um,slope_x,slope_y\nI,0,,\nII-1,-5.4,0.00002,0\n…';
 
   // ---- outputs
   const summary = el('dl', { class: 'summary', id: 'cb-summary', 'aria-live': 'polite' });
@@ -65,11 +75,30 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const sensPlot = plot('cb-sens', true, true);
   const plots = el('div', { class: 'plots' });
   plots.append(zonesPlot.wrap, mapPlot.wrap, sensPlot.wrap);
-  results.append(summary, plots);
+  // A failed measurement file is said at the top, where it cannot be missed.
+  const alert = el('p', { class: 'alert', id: 'cb-alert', role: 'alert' });
+  alert.hidden = true;
+  const ident = el('div', { class: 'ident', id: 'cb-ident', 'aria-live': 'polite' });
+  const fitPlot = plot('cb-fit', true);
+  const identPlots = el('div', { class: 'plots' });
+  identPlots.append(fitPlot.wrap);
+  const designOut = el('div', { class: 'ident', id: 'cb-design', 'aria-live': 'polite' });
+  const svPlot = plot('cb-design-sv', true);
+  const designPlots = el('div', { class: 'plots' });
+  designPlots.append(svPlot.wrap);
+  results.append(alert, summary, plots,
+    el('h3', {}, 'Identification from measured zones'), ident, identPlots,
+    el('h3', {}, 'Test designer: a test that can tell the errors apart'), designOut, designPlots);
 
   // ---- computation
   const runTest = channel('cubicTest');
   const runMap = channel('cubicHeightMap');
+  const runIdentify = channel('cubicIdentify');
+  const runDesign = channel('cubicDesign');
+  let source: Source = { name: 'text typed or pasted in the field', at: new Date() };
+  let sourceCsv = '';
+  let lastDesign: CubicDesignResult | null = null;
+  let lastIdent: { r: CubicIdentifyResult; from: Source } | null = null;
   /** Shows an engine error at the field it names (or over the plot when it names none). */
   const engineError = engineErrors({ ...inputs.byPath, range }, machine);
 
@@ -86,16 +115,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const update = () => {
     inputs.setContext(machine.context());
+    inputs.setNames(machine.errorOptions());
     const m = machine.current();
     const own = inputs.read();
     const rng = range.read();
     if (!m || !own || rng === null) {
-      for (const p of [zonesPlot, mapPlot, sensPlot]) stale(p.p, true);
-      for (const run of [runTest, runMap]) run.cancel(); // a late result would look current
+      for (const p of [zonesPlot, mapPlot, sensPlot, fitPlot, svPlot]) stale(p.p, true);
+      stale(ident, true);
+      stale(designOut, true);
+      for (const run of [runTest, runMap, runIdentify, runDesign]) run.cancel(); // a late result would look current
       return;
     }
     fixedRange = rng ? rng : null;
-    const { nx, ny, ...test } = own as Record<string, unknown>;
+    const { nx, ny, csv, parameters, rtol, decision, grid, maxTilt, slopes, secondSetup, noise, ...test } = own as Record<string, unknown>;
     const input = { ...test, machine: m as Machine } as CubicInput;
     runTest(input).then((r) => {
       if (r === SUPERSEDED) return;
@@ -111,6 +143,135 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       lastMap = map;
       showMap(map);
     }, (e) => engineError(e, mapPlot.p));
+    identify({ ...input, csv: csv as string, parameters, rtol, decision } as never);
+    runDesign({ ...input, parameters, grid, maxTilt, slopes, secondSetup, noise } as never).then((d) => {
+      if (d === SUPERSEDED) return;
+      lastDesign = d;
+      showDesign(d);
+    }, (e) => {
+      engineError(e, svPlot.p);
+      stale(designOut, true);
+    });
+  };
+
+  // ---- identification
+  const setAlert = (text: string | null) => {
+    alert.textContent = text ?? '';
+    alert.hidden = !text;
+    // Brought into view: the user is down at the file field when a file fails.
+    if (text) alert.scrollIntoView({ block: 'nearest' });
+  };
+  /** Drops the last identification at once: its numbers belong to another file or inputs. */
+  const clearIdentification = (message: Node) => {
+    lastIdent = null;
+    ident.replaceChildren(message);
+    stale(ident, false);
+    void clearPlot(fitPlot.p);
+  };
+  const identify = (input: CubicInput & { csv: string }) => {
+    if (!input.csv || input.csv.trim() === '') {
+      inputs.byPath.csv?.setError(null);
+      setAlert(null);
+      runIdentify.cancel();
+      clearIdentification(el('p', { class: 'field-hint' }, 'Paste or choose a file of measured zone heights (and slopes) to identify the machine’s errors: the paper’s zones by name, or the rows of a designed test as exported below with their heights filled in.'));
+      return;
+    }
+    if (input.csv !== sourceCsv) {
+      source = { name: 'text typed or pasted in the field', at: new Date() };
+      sourceCsv = input.csv;
+    }
+    const from = source;
+    runIdentify(input as never).then((r) => {
+      if (r === SUPERSEDED) return;
+      inputs.byPath.csv?.setError(null);
+      setAlert(null);
+      lastIdent = { r, from };
+      showIdentification(r, from);
+    }, (e) => {
+      const err = EngineError.of(e);
+      setAlert(`No identification from ${from.name}: ${err.text} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn', id: 'cb-ident-failed' }, `No identification: ${from.name} could not be used (${err.text}).`));
+      showAtField(e, inputs.byPath, machine);
+    });
+  };
+
+  const showIdentification = (r: CubicIdentifyResult, from: Source) => {
+    ident.replaceChildren(...identificationView('cb', r, sourceText(from, r.zones.length, 'zones')));
+    stale(ident, false);
+    const labels = r.rowZone.map((z, i) => `${r.zones[z].name} ${r.rowKind[i] === 'height' ? 'height' : r.rowKind[i] === 'slopeX' ? `tilt along ${machine.context().u}` : `tilt along ${machine.context().v}`}`);
+    const x = labels.map((_, i) => i + 1);
+    draw(fitPlot.p, `Measured and fitted per zone<br>a tilt as the height it makes over half a zone<br>${from.name}; residual RMS ${show('errLength', r.rms)}`, [
+      { x, y: Array.from(r.measured, D), type: 'bar', name: 'measured', marker: { color: '#9fb7d0' }, hovertext: labels, hovertemplate: `%{hovertext}<br>measured %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
+      { x, y: Array.from(r.fitted, D), type: 'scatter', mode: 'markers', name: 'identified errors', marker: { color: '#d62728', size: 8, symbol: 'diamond' }, text: labels, hovertemplate: `%{text}<br>model %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
+    ], {
+      xaxis: axis('measured value (zone, then its tilts)', { tickvals: x, ticktext: r.rowZone.map((z, i) => (r.rowKind[i] === 'height' ? r.zones[z].name : '')), tickangle: -60 }),
+      yaxis: axis(titled('height', 'errLength')),
+      legend: { orientation: 'h', x: 0, y: -0.45, xanchor: 'left', yanchor: 'top' },
+      margin: { b: 110 },
+    } as Partial<Layout>, 'cubic-identification');
+  };
+
+  // ---- designer
+  const showDesign = (d: CubicDesignResult) => {
+    const ctx = machine.context();
+    note(svPlot.p, null);
+    const paper = d.paper;
+    const dz = d.designed;
+    const cond = (r: CubicLayoutReport) => (r.condition === null ? 'infinite (rank short)' : fmt.num(r.condition, 3));
+    const seen = (r: CubicLayoutReport) => r.identifiable.join(', ') || 'none';
+    const apart = (r: CubicLayoutReport) => r.groups.map((g) => g.combinations.length ? `only ${g.combinations.join(', ')}` : `not ${g.members.join(', ')}`).join('; ') || '—';
+    const noPaper = `cannot be cut: ${d.paperMessage ?? ''}`;
+    const rowsData: [string, string, string][] = [
+      ['Rank (independent combinations the test determines)', paper ? `${paper.rank} of ${d.reachableRank} possible` : noPaper, `${dz.rank} of ${d.reachableRank} possible`],
+      ['Condition number σ₁/σᵣ', paper ? cond(paper) : '—', cond(dz)],
+      ['Weakest combination of typical errors, in noise standard deviations', paper ? fmt.num(paper.smallest, 3) : '—', fmt.num(dz.smallest, 3)],
+      ['Errors it identifies on their own', paper ? seen(paper) : '—', seen(dz)],
+      ['Combinations only, or nothing', paper ? apart(paper) : '—', apart(dz)],
+      ['Zones', paper ? `${paper.zones.length}` : '—', `${dz.zones.length}${dz.zones.some((z) => z.setup === 2) ? ' (two set-ups)' : ''}`],
+    ];
+    const t = el('table', { class: 'ident-table', id: 'cb-design-compare' });
+    const h = el('tr');
+    for (const c of ['', 'paper’s layout (Table 1)', 'designed test']) h.append(el('th', { scope: 'col' }, c));
+    t.append(el('thead'), el('tbody'));
+    t.tHead!.append(h);
+    for (const [k, a, b] of rowsData) {
+      const tr = el('tr');
+      tr.append(el('th', { scope: 'row' }, k), el('td', {}, a), el('td', {}, b));
+      t.tBodies[0].append(tr);
+    }
+    const unseen = el('p', { id: 'cb-design-unseen' }, `What no test of this kind can see on this machine (all ${d.candidates} reachable zones together, rank ${d.reachableRank} of ${d.errorNames.length}): ` +
+      (d.unseen.map((g) => (g.combinations.length ? `${g.members.join(' and ')} only as ${g.combinations.join(', ')}` : g.members.join(', '))).join('; ') || 'nothing') +
+      '. An offset along an axis’s own line moves no point; an error the set-up at zero absorbs changes nothing; a table axis’s offset across its line moves the piece within the face.');
+    const zt = el('table', { class: 'ident-table', id: 'cb-design-zones' });
+    const zh = el('tr');
+    for (const c of ['zone', 'set-up', `face centre off the table, along ${ctx.u} (mm)`, `centre ${ctx.u}, ${ctx.v} (mm)`, 'tilt (°)', 'azimuth (°)', 'tool vector (i, j, k)', `${ctx.k}, ${ctx.m} (°)`]) zh.append(el('th', { scope: 'col' }, c));
+    zt.append(el('thead'), el('tbody'));
+    zt.tHead!.append(zh);
+    for (const z of dz.zones) {
+      const tr = el('tr');
+      tr.append(el('th', { scope: 'row' }, z.name), el('td', {}, String(z.setup)), el('td', {}, fmt.num(z.pieceX, 4)), el('td', {}, `${fmt.num(z.x, 4)}, ${fmt.num(z.y, 4)}`),
+        el('td', {}, fmt.num(z.tilt, 4)), el('td', {}, fmt.num(z.azimuth, 4)), el('td', {}, fmt.vector(z.toolVector, 4)), el('td', {}, `${fmt.num(z.k, 5)}, ${fmt.num(z.m, 5)}`));
+      zt.tBodies[0].append(tr);
+    }
+    const scroll = el('div', { class: 'table-scroll' });
+    scroll.append(zt);
+    const exportButton = el('button', { type: 'button', id: 'cb-design-export' }, 'Download the zone table (CSV)');
+    exportButton.addEventListener('click', () => download('cubic-designed-test.csv', dz.csv, 'text/csv'));
+    const compareScroll = el('div', { class: 'table-scroll' });
+    compareScroll.append(t);
+    designOut.replaceChildren(compareScroll, unseen, el('p', { class: 'field-hint' }, `Scaling: ${d.scaling}`), el('h4', {}, 'The designed test: zones to machine'), scroll, exportButton);
+    stale(designOut, false);
+    const idx = Array.from({ length: d.reachableRank }, (_, i) => i + 1);
+    const data: Data[] = [
+      { x: idx, y: dz.singularValues.slice(0, d.reachableRank), type: 'bar', name: 'designed test', marker: { color: '#2ca02c' }, hovertemplate: 'σ%{x} = %{y:.3g}<extra>designed</extra>' } as Data,
+    ];
+    if (paper) data.unshift({ x: idx, y: paper.singularValues.slice(0, d.reachableRank).map((v) => Math.max(v, 1e-3)), type: 'bar', name: 'paper’s layout', marker: { color: '#9fb7d0' }, hovertemplate: 'σ%{x} = %{y:.3g}<extra>paper</extra>' } as Data);
+    draw(svPlot.p, `Singular values of the scaled sensitivities<br>(noise std. dev. per typical error; 10⁻³ = zero)<br>the smallest decides what the test tells apart`, data, {
+      barmode: 'group',
+      xaxis: axis('singular value number', { tickvals: idx }),
+      yaxis: axis('σ (noise std. dev.)', { type: 'log' }),
+      legend: { orientation: 'h', x: 0, y: -0.3, xanchor: 'left', yanchor: 'top' },
+    } as Partial<Layout>, 'cubic-design-singular-values');
   };
 
   const frameText = (r: CubicResult) =>
@@ -222,11 +383,30 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     }, 'cubic-height-map');
   };
 
-  form.addEventListener('input', update);
+  file.addEventListener('change', async () => {
+    const f = file.files?.[0];
+    if (!f) return;
+    file.value = '';
+    if (f.size > 1_000_000) {
+      setAlert(`${f.name} is larger than 1 MB: not a file of measured zones. The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${f.name} is not a file of measured zones.`));
+      return;
+    }
+    const text = await f.text();
+    source = { name: f.name, at: new Date() };
+    sourceCsv = text;
+    clearIdentification(el('p', { class: 'field-hint' }, `Identifying ${f.name}…`));
+    fields.get('cb-csv')?.setText(text);
+  });
+  form.addEventListener('input', (e) => {
+    if ((e.target as HTMLElement).id !== 'cb-file') update();
+  });
   machine.onChange(update);
   onUnitsChange(() => {
     if (lastTest) showTest(lastTest.r, lastTest.input);
     if (lastMap) showMap(lastMap);
+    if (lastIdent) showIdentification(lastIdent.r, lastIdent.from);
+    if (lastDesign) showDesign(lastDesign);
   });
   update();
 }

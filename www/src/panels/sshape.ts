@@ -4,7 +4,7 @@
 // (eq 14, Fig 19) and their identification from measured deviations (Table 4, Fig 21).
 import type { Data, Layout } from 'plotly.js';
 import type { Machine, SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutResult, SShapeOvercutSurface, SShapePartResult } from '@engine';
-import { call, channel, SUPERSEDED } from '../engine/client';
+import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
 import { loadSchema, renderFields } from '../ui/form';
@@ -12,7 +12,8 @@ import { axis, draw, note, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { engineErrors, panelShell, type Panel } from './panel';
+import { engineErrors, panelShell, showAtField, type Panel } from './panel';
+import { clearPlot, identificationView, sourceText as sourceText_, type Source } from '../ui/identify';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -54,6 +55,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   // ---- outputs
   const summary = el('dl', { class: 'summary', id: 'ss-summary', 'aria-live': 'polite' });
+  // A failed measurement file is said here, at the top, where it cannot be missed.
+  const alert = el('p', { class: 'alert', id: 'ss-alert', role: 'alert' });
+  alert.hidden = true;
   const plot = (id: string, wide = false, tall = false) => {
     const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
     const p = el('div', { class: 'plot', id });
@@ -72,7 +76,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   plots.append(part3d.wrap, mapA.wrap, mapB.wrap, defects.wrap);
   const identPlots = el('div', { class: 'plots' });
   identPlots.append(fitPlot.wrap, residualPlot.wrap);
-  results.append(summary, plots, el('h3', {}, 'Identification from measured deviations'), ident, identPlots);
+  results.append(alert, summary, plots, el('h3', {}, 'Identification from measured deviations'), ident, identPlots);
 
   // ---- state shared between the outputs
   const part = (await call('sshapePart', { nu: 131, nv: 7 })) as SShapePartResult;
@@ -84,6 +88,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     summaryItems.set(id, [label, value]);
     summary.replaceChildren();
     for (const [key, [k, v]] of summaryItems) summary.append(el('dt', {}, k), el('dd', { id: key }, v));
+  };
+
+  /** Where the text in the measurement field came from. */
+  let source: Source = { name: 'pasted text', at: new Date() };
+  let sourceText = '';
+  const setSource = (name: string, text: string) => {
+    source = { name, at: new Date() };
+    sourceText = text;
   };
 
   const runOvercut = channel('sshapeOvercut');
@@ -100,8 +112,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) return null;
-    const { tool, model, dR, nu, nv, csv, parameters, radiusTerm, rtol } = own as Record<string, unknown>;
-    return { machine: m as Machine, tool, model, dR, nu, nv, csv: csv as string, parameters, radiusTerm, rtol };
+    const { tool, model, dR, nu, nv, csv, parameters, radiusTerm, rtol, decision } = own as Record<string, unknown>;
+    return { machine: m as Machine, tool, model, dR, nu, nv, csv: csv as string, parameters, radiusTerm, rtol, decision };
   };
 
   const update = () => {
@@ -129,26 +141,43 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     identify(i);
   };
 
+  /** Drops the last identification at once: its numbers belong to another file or inputs. */
+  const clearIdentification = (message: Node) => {
+    ident.replaceChildren(message);
+    stale(ident, false);
+    void clearPlot(fitPlot.p);
+    void clearPlot(residualPlot.p);
+  };
+  const setAlert = (text: string | null) => {
+    alert.textContent = text ?? '';
+    alert.hidden = !text;
+    // Brought into view: the user is down at the file field when a file fails.
+    if (text) alert.scrollIntoView({ block: 'nearest' });
+  };
+
   const identify = (i: NonNullable<ReturnType<typeof read>>) => {
-    // Whatever comes next (a hint, a table or a message) belongs to these inputs.
-    const put = (...content: Node[]) => {
-      ident.replaceChildren(...content);
-      stale(ident, false);
-    };
     const text = i.csv;
     if (text.trim() === '') {
       inputs.byPath.csv?.setError(null);
-      put(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated on Chanal et al.’s machine with Table 4’s errors) to identify the errors.'));
+      setAlert(null);
+      runIdentify.cancel();
+      clearIdentification(el('p', { class: 'field-hint' }, 'Paste a measurement file, choose one, or load the sample file (a part simulated on Chanal et al.’s machine with Table 4’s errors) to identify the errors.'));
       return;
     }
-    runIdentify({ machine: i.machine, tool: i.tool, model: i.model, csv: text, parameters: i.parameters, radiusTerm: i.radiusTerm, rtol: i.rtol } as never).then((f) => {
+    if (text !== sourceText) setSource('text typed or pasted in the field', text);
+    const from = source;
+    runIdentify({ machine: i.machine, tool: i.tool, model: i.model, csv: text, parameters: i.parameters, radiusTerm: i.radiusTerm, rtol: i.rtol, decision: i.decision } as never).then((f) => {
       if (f === SUPERSEDED) return;
       inputs.byPath.csv?.setError(null);
-      showIdentification(f);
+      setAlert(null);
+      showIdentification(f, from);
     }, (e) => {
-      // A failed identification clears the previous one: its numbers belong to other inputs.
-      put(el('p', { class: 'warn' }, 'No identification: see the message at the field or above the plot.'));
-      engineError(e, fitPlot.p);
+      // A failed identification clears the previous one at once: its numbers belong to another
+      // file; the reason is said at the top of the panel and at the field.
+      const err = EngineError.of(e);
+      setAlert(`No identification from ${from.name}: ${err.text} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn', id: 'ss-ident-failed' }, `No identification: ${from.name} could not be used (${err.text}).`));
+      showAtField(e, inputs.byPath, machine);
     });
   };
 
@@ -244,42 +273,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     setSummary('ss-range', 'Defect of the entered errors', `${show('errLength', Math.min(...d.total))} to ${show('errLength', Math.max(...d.total))}`);
   };
 
-  const showIdentification = (f: SShapeIdentifyResult) => {
+  const showIdentification = (f: SShapeIdentifyResult, from: Source) => {
     note(fitPlot.p, null);
-    const quantity = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
-    const table = el('table', { class: 'ident-table', id: 'ss-ident-table' });
-    const head = el('tr');
-    for (const h of ['parameter', 'identified value', 'standard error', '']) head.append(el('th', { scope: 'col' }, h));
-    table.append(el('thead'), el('tbody'));
-    table.tHead!.append(head);
-    for (const e of f.estimates) {
-      const tr = el('tr');
-      const q = quantity(e.unit);
-      const note = e.value === null
-        ? `not separable (group ${(e.group ?? 0) + 1}); minimum-norm split ${show(q, e.minNorm)}`
-        : e.stdError !== null && Math.abs(e.value) < 2 * e.stdError ? 'not significant (below 2 standard errors)' : '';
-      tr.append(el('th', { scope: 'row' }, e.name === 'dR' ? 'tool radius R′ − R' : e.name), el('td', {}, e.value === null ? '—' : show(q, e.value)), el('td', {}, e.stdError === null ? '—' : `± ${show(q, e.stdError, 2)}`), el('td', {}, note));
-      tr.dataset.name = e.name;
-      table.tBodies[0].append(tr);
-    }
-    const groupList = el('ul', { id: 'ss-groups' });
-    f.groups.forEach((g, i) => {
-      for (const c of g.combinations) {
-        const lead = f.estimates.find((e) => e.name === c.terms[0][0]);
-        const q = quantity(lead?.unit ?? 'mm');
-        groupList.append(el('li', {}, `Group ${i + 1} (${g.members.join(', ')}): only ${c.text} = ${show(q, c.value)} ± ${show(q, c.stdError, 2)} is identifiable`));
-      }
-    });
-    const svs = f.singularValues.map((s) => fmt.num(s, 2)).join(', ');
-    ident.replaceChildren(
-      el('p', {}, `Rank ${f.rank} of ${f.estimates.length} (relative singular values ${svs}; threshold ${fmt.num(f.rtol)}). Residuals: RMS ${show('errLength', f.rms)}, largest ${show('errLength', f.maxAbs)}.`),
-      table,
-    );
+    ident.replaceChildren(...identificationView('ss', f, sourceText_(from, f.measured.length, 'points'), (n) => (n === 'dR' ? 'tool radius R′ − R' : n)));
     stale(ident, false);
-    if (f.groups.length) ident.append(groupList);
     const x = Array.from({ length: 100 }, (_, i) => i + 1);
     const xaxis = pointAxis('');
-    draw(fitPlot.p, 'Measured and fitted deviation (Fig 21a)', [
+    draw(fitPlot.p, `Measured and fitted deviation (Fig 21a)<br>${from.name}`, [
       { x, y: Array.from(f.measured, D), type: 'scatter', mode: 'markers', name: 'measured', marker: { size: 5, color: '#1f77b4' }, text: labels, hovertemplate: `%{text}<br>measured %{y:.4g} ${lu()}<extra></extra>` },
       { x, y: Array.from(f.fitted, D), type: 'scatter', mode: 'lines', name: 'identified model', line: { color: '#d62728' }, text: labels, hovertemplate: `%{text}<br>model %{y:.4g} ${lu()}<extra></extra>` },
     ], { xaxis, yaxis: axis(titled('deviation', 'errLength')) }, 'sshape-fit');
@@ -293,8 +293,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     try {
       const res = await fetch(SAMPLE);
       if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
-      fields.get('ss-csv')?.setText(await res.text());
-      fileMsg.textContent = 'Loaded the sample file (simulated: Table 4’s E_X0B and E_A0B, a tool 0.02 mm small, 2 µm noise).';
+      const text = await res.text();
+      setSource('the sample file sshape-measured.csv', text);
+      fields.get('ss-csv')?.setText(text);
+      fileMsg.textContent = 'Read the sample file (simulated: Table 4’s E_X0B and E_A0B, a tool 0.02 mm small, 2 µm noise).';
     } catch (e) {
       fileMsg.textContent = `Could not load the sample file: ${String(e)}`;
     }
@@ -304,10 +306,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!f) return;
     if (f.size > 1_000_000) {
       fileMsg.textContent = `${f.name} is larger than 1 MB: not a measurement file of 100 points.`;
+      setAlert(`${f.name} is larger than 1 MB: not a measurement file of 100 points. The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${f.name} is not a measurement file.`));
       return;
     }
-    fields.get('ss-csv')?.setText(await f.text());
-    fileMsg.textContent = `Loaded ${f.name}.`;
+    const text = await f.text();
+    setSource(f.name, text);
+    // The last identification goes at once: it belongs to the previous file.
+    clearIdentification(el('p', { class: 'field-hint' }, `Identifying ${f.name}…`));
+    fields.get('ss-csv')?.setText(text);
+    fileMsg.textContent = `Read ${f.name} (${text.split(/\r?\n/).length} lines); the result below says whether it could be used.`;
     file.value = '';
   });
 
