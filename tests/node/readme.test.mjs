@@ -137,6 +137,8 @@ test('README: the volumetric map of an X table with positioning, pitch and squar
   assert.equal(v.budget[0].name, 'E_C0Y');
   assert.ok(Math.abs(v.budget[0].share - 0.61) < 0.005);
   assert.match(v.summary, /^The tool tip is off by up to 6\.2 µm \(at X 300, Y -200, Z 0 mm\)/);
+});
+
 test('README: the reversal dent doubles with r, X and Y keep their direction', () => {
   const a = reversalSimulate({ test: { offset: 25 } });
   const b = reversalSimulate({ test: { offset: 50 } });
