@@ -188,3 +188,19 @@ fn machines_without_a_c_table_are_refused() {
     let e = ReversalCase::read(&json!({"c": {"frction": 3}})).unwrap_err();
     assert!(e.to_string().starts_with("c.frction"), "{e}");
 }
+
+#[test]
+fn a_test_that_would_take_minutes_to_simulate_is_refused_with_the_feed_named() {
+    // 2 mm/min round the default 50 mm circle: about 9400 s of motion, 94 million steps of
+    // 0.1 ms (minutes of work for the page's worker).
+    let case = fiveaxis::reversal::ReversalCase::read(
+        &serde_json::json!({ "test": { "feed": 2 }, "step": 0.1 }),
+    )
+    .unwrap();
+    let e = fiveaxis::reversal::simulate(&case).unwrap_err();
+    assert_eq!(e.field, "test.feed");
+    assert!(e.message.contains("more than 2000000"), "{e}");
+    // The default test is well inside.
+    let case = fiveaxis::reversal::ReversalCase::read(&serde_json::json!({})).unwrap();
+    assert!(fiveaxis::reversal::simulate(&case).is_ok());
+}

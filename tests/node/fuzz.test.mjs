@@ -201,7 +201,7 @@ export const SPECS = {
   cubicHeightMap: { args: [{ ...cubicCase, nx: small(4, 24), ny: maybe(small(4, 24)) }] },
   cubicIdentify: { args: [{ ...cubicCase, csv: cubicCsv, rtol: maybe((r) => 10 ** (-1 - 5 * r())), decision }] },
   // Small designs (a 2 × 2 face, tilts to 20°): a full one takes a tenth of a second.
-  cubicDesign: { args: [{ ...cubicCase, grid: small(2, 2), maxTilt: (r) => 10 + 10 * r(), slopes: (r) => r() < 0.5, secondSetup: maybe((r) => (r() - 0.5) * 200), noise: maybe((r) => 1e-4 + r() * 0.01) }] },
+  cubicDesign: { args: [{ ...cubicCase, grid: small(2, 2), maxTilt: (r) => 10 + 10 * r(), slopes: (r) => r() < 0.5, secondSetup: maybe((r) => (r() - 0.5) * 200), noise: maybe((r) => 1e-4 + r() * 0.01) }] , weight: 0.1 },
   sshapePart: { args: [{ nu: small(2, 30), nv: small(2, 6) }] },
   sshapeOvercut: { args: [{ tool, nu: small(14, 20), nv: small(2, 3) }] },
   sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },
@@ -224,9 +224,9 @@ export const SPECS = {
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
-  reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] },
-  reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] },
-  reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] },
+  reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
+  reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
+  reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] , weight: 0.1 },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];
@@ -299,6 +299,15 @@ function allFinite(v, path = 'result') {
 test(`fuzz: ${CASES} cases over the exported API (seed ${SEED})`, () => {
   const r = rng(SEED);
   const names = Object.keys(SPECS);
+  // Exports that simulate or search for tens to hundreds of milliseconds at their defaults (a
+  // mutation that drops a key brings the default back) get a tenth of the cases.
+  const weight = (name) => SPECS[name].weight ?? 1;
+  const totalWeight = names.reduce((s, n) => s + weight(n), 0);
+  const pickName = () => {
+    let x = r() * totalWeight;
+    for (const n of names) if ((x -= weight(n)) < 0) return n;
+    return names[names.length - 1];
+  };
   for (const name of Object.keys(fa)) {
     if (typeof fa[name] === 'function' && !['default', 'initSync', 'start'].includes(name)) {
       assert.ok(SPECS[name], `export ${name} has no fuzz spec: add one`);
@@ -310,7 +319,7 @@ test(`fuzz: ${CASES} cases over the exported API (seed ${SEED})`, () => {
   // at their default grid, take a fifth of a second).
   const tried = new Set();
   for (let i = 0; i < CASES; i++) {
-    const name = names[Math.floor(r() * names.length)];
+    const name = pickName();
     let args = build(SPECS[name].args, r);
     const mutations = r() < 0.2 ? 0 : 1 + Math.floor(r() * 3);
     for (let m = 0; m < mutations; m++) args = mutate(args, r);

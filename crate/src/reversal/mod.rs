@@ -467,9 +467,26 @@ pub struct Trace {
 /// Settling time simulated after the command has stopped, s.
 const SETTLE: f64 = 0.1;
 
-/// Simulates `case` with integration step `h` (s).
+/// Most integration steps of one simulation (about 0.7 s of wasm): a slower feed or a longer
+/// circle would keep the page's worker busy for minutes.
+pub const MAX_STEPS: usize = 2_000_000;
+
+/// Simulates `case` with integration step `h` (s). More than [`MAX_STEPS`] steps is refused.
 pub fn simulate_with_step(case: &ReversalCase, motion: &Motion, h: f64) -> Result<Trace> {
-    let steps = ((motion.duration + SETTLE) / h).ceil() as usize;
+    let exact = (motion.duration + SETTLE) / h;
+    // Also refuses a NaN count.
+    if exact.is_nan() || exact > MAX_STEPS as f64 {
+        return Err(Error::field(
+            "test.feed",
+            format!(
+                "the test lasts {:.0} s: {:.0} integration steps of {} ms, more than {MAX_STEPS}; raise the feed, shorten the circle or lengthen the step",
+                motion.duration + SETTLE,
+                exact,
+                h * 1e3
+            ),
+        ));
+    }
+    let steps = exact.ceil() as usize;
     run(case, motion, h, steps.div_ceil(case.samples.max(1)).max(1))
 }
 
