@@ -376,6 +376,18 @@ pub fn alias_of(symbol: &str) -> Option<(&'static ErrorDef, &'static Alias)> {
     })
 }
 
+/// The message for a paper's symbol entered where an ISO name belongs: the ISO name and sign.
+pub(super) fn symbol_entered(path: &str, name: &str, d: &ErrorDef, a: &Alias) -> Error {
+    let sign = if a.sign < 0.0 { "−" } else { "" };
+    Error::field(
+        path,
+        format!(
+            "{name} is the symbol {} of {}; enter it by its ISO 230-1 name: {} = {sign}{}",
+            a.symbol, a.source, d.name, a.symbol
+        ),
+    )
+}
+
 /// The message for an unknown error name: a paper's symbol gets its ISO name, a slip the
 /// closest name.
 fn unknown_name(path: &str, name: &str) -> Error {
@@ -389,14 +401,7 @@ fn unknown_name(path: &str, name: &str) -> Error {
         );
     }
     if let Some((d, a)) = alias_of(name) {
-        let sign = if a.sign < 0.0 { "−" } else { "" };
-        return Error::field(
-            path,
-            format!(
-                "{name} is the symbol {} of {}; enter it by its ISO 230-1 name: {} = {sign}{}",
-                a.symbol, a.source, d.name, a.symbol
-            ),
-        );
+        return symbol_entered(path, name, d, a);
     }
     let names: Vec<&str> = TABLE.iter().map(|d| d.name).collect();
     let hint = closest(name, &names)

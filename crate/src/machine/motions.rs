@@ -556,14 +556,7 @@ pub fn unknown(path: &str, name: &str) -> Error {
             .map(|a| (d, a))
     });
     if let Some((d, a)) = alias {
-        let sign = if a.sign < 0.0 { "−" } else { "" };
-        return Error::field(
-            path,
-            format!(
-                "{name} is the symbol {} of {}; enter it by its ISO 230-1 name: {} = {sign}{}",
-                a.symbol, a.source, d.name, a.symbol
-            ),
-        );
+        return super::errors::symbol_entered(path, name, d, a);
     }
     let names: Vec<&str> = MOTIONS.iter().map(|d| d.name).collect();
     let hint = closest(name, &names)

@@ -37,7 +37,7 @@ use crate::chain::{Chain, Setup, ToolPose};
 use crate::error::{Error, Result};
 use crate::geometry::Axis;
 use crate::machine::errors::{ErrorDef, ErrorKind};
-use crate::machine::motions::{self, ErrorMotions};
+use crate::machine::motions;
 use crate::machine::{Machine, MachineKind, Model};
 use crate::rotary::RotaryAxis;
 use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
@@ -672,14 +672,6 @@ pub fn compare(machine: &Machine, p: [f64; 3], k: f64, m: f64) -> Result<PaperCo
             .collect(),
         not_in_paper,
     })
-}
-
-/// The motions of a machine, for callers that build one in code.
-pub fn with_motions(machine: &Machine, motions: ErrorMotions) -> Machine {
-    Machine {
-        motions,
-        ..machine.clone()
-    }
 }
 
 crate::inputs! {
