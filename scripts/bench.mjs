@@ -36,7 +36,13 @@ function shortMoves(n) {
   return out;
 }
 
+/**
+ * Best of `repeat` runs after one untimed run: the steady state, as natively. (Node compiles
+ * WebAssembly first with a fast baseline compiler and optimises hot functions while they run;
+ * a short kernel timed cold measures the compiler, 2-6x slower than its steady state.)
+ */
 function time(repeat, f, check) {
+  f();
   let best = Infinity;
   let sum = 0;
   for (let i = 0; i < repeat; i++) {

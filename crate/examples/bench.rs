@@ -107,6 +107,8 @@ pub fn bench_path(n: usize) -> Vec<[f64; 6]> {
 
 /// Best of `repeat` runs, milliseconds, and the last result's checksum.
 fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
+    // One untimed run first, as the WebAssembly side does (scripts/bench.mjs).
+    f();
     let mut best = f64::INFINITY;
     let mut sum = 0.0;
     for _ in 0..repeat {
