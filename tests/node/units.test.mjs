@@ -260,6 +260,45 @@ test('toolVector and machineInverse: angles in degrees', () => {
 });
 
 // ---------------------------------------------------------------------------------------------
+// The cubic-machining test on Li et al.'s B/C table (Table 2: B = 30° on every zone but ZONE I).
+
+test('cubicTest: the B axis offset alone against its closed form; per-degree sensitivities against finite differences of the exact heights', () => {
+  const LI = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+  // With the workpiece set at B = C = 0 (the set-up transform), a B axis line t off its place
+  // moves the table at B by (I − R_Y(B))·t and not at all at B = 0. Along the tool (machine +Z,
+  // material left positive): E_X0B = x gives x·sin B, E_Z0B = z gives z·(1 − cos B); C turns
+  // about Z and keeps it. So ZONE I stays at 0 and every tilted zone moves alike.
+  for (const [name, factor] of [['E_X0B', Math.sin(rad(30))], ['E_Z0B', 1 - Math.cos(rad(30))]]) {
+    const r = fa.cubicTest({ machine: { ...LI, errors: { [name]: 0.01 } }, transform: true });
+    const j = r.errorNames.indexOf(name);
+    assert.equal(r.errorUnits[j], 'mm');
+    r.zones.forEach((z, i) => {
+      const f = z.name === 'I' ? 0 : factor;
+      close(z.height, 0.01 * f, 1e-9, `${name} ${z.name}`);
+      close(r.kHeight[i * r.errorNames.length + j], f, 1e-9, `${name} ${z.name}: per mm`);
+    });
+  }
+  // An angular error entered in degrees: the sensitivity per degree is the central difference
+  // of the exact heights over ±0.01° (its remainder is of order (0.01° in rad)² times the lever
+  // arm, far below the 1e-6 allowed; a radian/degree mix-up would be off by a factor of 57).
+  const base = fa.cubicTest({ machine: LI });
+  const angles = base.errorNames.filter((n, j) => base.errorUnits[j] === 'deg');
+  assert.ok(angles.length >= 4, `${angles}`);
+  let largest = 0;
+  for (const name of angles) {
+    const j = base.errorNames.indexOf(name);
+    const h = (e) => fa.cubicTest({ machine: { ...LI, errors: { [name]: e } } }).zones.map((z) => z.height);
+    const [up, down] = [h(0.01), h(-0.01)];
+    base.zones.forEach((z, i) => {
+      const fd = (up[i] - down[i]) / 0.02;
+      largest = Math.max(largest, Math.abs(fd));
+      close(base.kHeight[i * base.errorNames.length + j], fd, 1e-6 * Math.max(1, Math.abs(fd)), `${name} ${z.name}: per degree`);
+    });
+  }
+  assert.ok(largest > 0.01, `some zone moves by more than 0.01 mm per degree: ${largest}`);
+});
+
+// ---------------------------------------------------------------------------------------------
 // A misspelt key is refused, for every input field of every export the schema declares.
 
 const toolpathText = readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8');
