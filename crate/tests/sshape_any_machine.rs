@@ -101,7 +101,11 @@ fn eq_14_is_the_first_order_of_the_exact_chain_on_every_machine() {
             };
             let back = d.on.frame.transpose();
             for (pp, p) in d.poses.iter().zip(&predicted) {
-                let moved = back * (shift(&pp.pose.q, pp.height) - shift(&q_ref, 0.0));
+                // The point's height on the tool, from the nominal chain's tool at the pose (not
+                // the design's own `height`, so that a wrong sign there shows).
+                let t = nominal.tool_pose(&pp.pose.q, false, &Setup::None).unwrap();
+                let h = (Vector3::from(pp.point.point) - back * t.tip).dot(&(back * t.axis));
+                let moved = back * (shift(&pp.pose.q, h) - shift(&q_ref, 0.0));
                 let exact = moved.dot(&Vector3::from(pp.point.normal));
                 // Second order: L·ε² with L below 1 m and ε = 2e-6: 4 nm.
                 close(

@@ -286,7 +286,14 @@ fn probing_the_table_at_four_c_positions_gives_eqs_14_prime_and_15() {
     );
 }
 
-fn pair_cosines(reference: DefectReference, point: DefectPoint, branch: PathBranch) -> (f64, f64) {
+/// The cosines between the eq 14 columns of E_A0Z and E_A0C, and of E_B0Z and E_B0C; and,
+/// from the closed forms below instead of the sums of the columns, the same cosines written
+/// as `(|s|² − |a|² − |b|²)/(2|a||b|)` with `s = a + b`.
+fn pair_cosines(
+    reference: DefectReference,
+    point: DefectPoint,
+    branch: PathBranch,
+) -> ((f64, f64), (f64, f64)) {
     let m = chanal::on(PAPER_L0);
     let part = Part::standard().unwrap();
     let path = ToolPath::paper();
@@ -295,13 +302,29 @@ fn pair_cosines(reference: DefectReference, point: DefectPoint, branch: PathBran
     let rows = defect_matrix(&m, &poses, reference, point).unwrap();
     let c = chanal::columns(&m);
     let col = |j: usize| -> Vec<f64> { rows.iter().map(|r| r[c[j]]).collect() };
-    let cos = |a: Vec<f64>, b: Vec<f64>| {
-        let dot: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
-        let na: f64 = a.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let nb: f64 = b.iter().map(|x| x * x).sum::<f64>().sqrt();
-        dot / (na * nb)
+    let dot = |a: &[f64], b: &[f64]| -> f64 { a.iter().zip(b).map(|(x, y)| x * y).sum() };
+    let cos = |a: &[f64], b: &[f64]| dot(a, b) / (dot(a, a) * dot(b, b)).sqrt();
+    // Appendix A: J_A0Z + J_A0C = (0, 0, −Y) and J_B0Z + J_B0C = (0, 0, X) for the tip; the
+    // tool axis is turned alike by both members of a pair (a turn of the Z slide or of the
+    // table about the same machine axis, seen from the workpiece), so the contact-height terms
+    // cancel in the sums. The reference pose subtracts the same at its own X, Y: zero at the
+    // work origin (X = Y = 0), and at all axes zero too.
+    let sums = |f: &dyn Fn(&chanal::AxisPose) -> f64| -> Vec<f64> {
+        poses
+            .iter()
+            .map(|pp| f(&chanal::pose_of(&pp.pose)) * pp.point.normal[2])
+            .collect()
     };
-    (cos(col(1), col(3)), cos(col(2), col(4)))
+    let s_a = sums(&|p| -p.y);
+    let s_b = sums(&|p| p.x);
+    let from_sum = |s: &[f64], a: &[f64], b: &[f64]| {
+        (dot(s, s) - dot(a, a) - dot(b, b)) / (2.0 * (dot(a, a) * dot(b, b)).sqrt())
+    };
+    let (a0z, a0c, b0z, b0c) = (col(1), col(3), col(2), col(4));
+    (
+        (cos(&a0z, &a0c), cos(&b0z, &b0c)),
+        (from_sum(&s_a, &a0z, &a0c), from_sum(&s_b, &b0z, &b0c)),
+    )
 }
 
 #[test]
@@ -321,12 +344,18 @@ fn e_a0z_and_e_a0c_act_alike_but_for_sign_only_with_eq_14s_reference_at_axes_zer
     // two columns: then the shared term dominates and the paper's claim holds to within 0.1 %.
     for branch in [PathBranch::Paper, PathBranch::Continuous] {
         for point in [DefectPoint::Tip, DefectPoint::Contact] {
-            let (a, b) = pair_cosines(DefectReference::AxesZero, point, branch);
+            let ((a, b), want) = pair_cosines(DefectReference::AxesZero, point, branch);
             assert!(a < -0.999 && b < -0.999, "axes zero: {a} {b}");
+            close(a, want.0, 1e-9, "axes zero, E_A0Z/E_A0C from the sum");
+            close(b, want.1, 1e-9, "axes zero, E_B0Z/E_B0C from the sum");
             // With the reference at the workpiece origin (the tool tip there), E_A0Z's lever arm
-            // is only the tip height, and the pairs are far from opposite.
-            let (a, b) = pair_cosines(DefectReference::WorkOrigin, point, branch);
-            assert!(a > -0.75 && b > -0.98, "work origin: {a} {b}");
+            // is only the tip height, and the pairs are no longer opposite: the cosines are
+            // what the closed-form sums −Y·n_z and X·n_z leave (no threshold tuned to the
+            // code's output), and not −1: an exactly opposite pair would need s = 0.
+            let ((a, b), want) = pair_cosines(DefectReference::WorkOrigin, point, branch);
+            close(a, want.0, 1e-9, "work origin, E_A0Z/E_A0C from the sum");
+            close(b, want.1, 1e-9, "work origin, E_B0Z/E_B0C from the sum");
+            assert!(a > -1.0 + 1e-6 && b > -1.0 + 1e-6, "work origin: {a} {b}");
         }
     }
 }

@@ -13,6 +13,16 @@ const ISO = T5_ISO;
 const TABLE_2 = { I: [0, 0], 'II-1': [0, 30], 'II-2': [90, 30], 'II-3': [180, 30], 'II-4': [270, 30], 'III-1': [45, 30], 'III-2': [135, 30], 'III-3': [225, 30], 'III-4': [315, 30] };
 const rad = (d) => (d * Math.PI) / 180;
 const PLOTS = ['cb-zones', 'cb-map', 'cb-sens'];
+/**
+ * Li et al.'s Fig 2, rows top to bottom as printed (columns left to right): which zone is
+ * where, [col, row] with −1 left/bottom. Table 1 agrees: the tool leans towards the centre,
+ * so (i, j) of each zone points opposite its place.
+ */
+const FIG_2 = [['III-4', 'II-4', 'III-3'], ['II-1', 'I', 'II-3'], ['III-1', 'II-2', 'III-2']];
+const PLACE = Object.fromEntries(FIG_2.flatMap((names, r) => names.map((n, c) => [n, [c - 1, 1 - r]])));
+/** The zone labels of a plot: name and where it is written, as signs of x and y. */
+const labelsAt = (page, id) =>
+  page.$eval(`#${id}`, (gd) => gd.layout.annotations.map((a) => ({ name: a.text.replace(/<[^>]+>/g, ' ').trim().split(/[ :]/)[0], x: a.x, y: a.y })));
 
 /** The 3 × 3 heat map's values (rows bottom to top), the texts on the zones and the hover texts. */
 const zonesShown = (page) =>
@@ -79,6 +89,13 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     // The height map's zone averages are on it too, and the summary names the extremes.
     const mapTexts = await page.$eval('#cb-map', (gd) => gd.layout.annotations.map((a) => a.text));
     assert.equal(mapTexts.length, 9);
+    // Each zone's label on its own cell, on both maps: Fig 2's layout (not the page's output).
+    for (const id of ['cb-zones', 'cb-map']) {
+      const labels = await labelsAt(page, id);
+      assert.deepEqual(labels.map((l) => l.name).sort(), Object.keys(PLACE).sort(), id);
+      for (const l of labels) assert.deepEqual([Math.sign(l.x) || 0, Math.sign(l.y) || 0], PLACE[l.name], `${id}: ${l.name} at (${l.x}, ${l.y})`);
+    }
+    for (const zone of r.zones) assert.deepEqual([zone.col, zone.row], PLACE[zone.name], `engine: ${zone.name}`);
     const hs = r.zones.map((z) => z.height);
     const extremes = `${r.zones[hs.indexOf(Math.max(...hs))].name} / ${r.zones[hs.indexOf(Math.min(...hs))].name}`;
     assert.equal(await page.textContent('#cb-high'), extremes);
