@@ -1,6 +1,7 @@
 // Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
 import type { Config, Data, Layout } from 'plotly.js';
 import { download, graphCsv } from './export';
+import { drawStarted } from '../engine/idle';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
@@ -26,6 +27,15 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
 
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
+  const end = drawStarted();
+  try {
+    await drawNow(el, title, data, layout, filename);
+  } finally {
+    end();
+  }
+}
+
+async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
   const P = await loadPlotly();
   const config: Partial<Config> = {
     responsive: true,
