@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -57,16 +57,11 @@ async function setField(page, id, value) {
 }
 const fieldValue = (page, id) =>
   page.$eval(`#${id}`, (e) => (e.type === 'checkbox' ? (e.checked ? '1' : '0') : e.value));
-/** Waits until the plots show data computed from the current inputs (no further redraws). */
+/** Waits until the plots show data computed from the current inputs: drawn, and the page idle
+ *  (no engine call in flight, no edit waiting, no plot being drawn). */
 async function settle(page, plots) {
   for (const id of plots) await waitPlotted(page, id);
-  let last = '';
-  for (;;) {
-    const now = JSON.stringify(await Promise.all(plots.map((id) => page.$eval(`#${id}`, (e) => e.dataset.plotted))));
-    if (now === last) return;
-    last = now;
-    await page.waitForTimeout(400);
-  }
+  await waitIdle(page);
 }
 /** Every trace's x, y and z of each plot (z a grid or, in 3D, a list). */
 const allData = (page, plots) =>
