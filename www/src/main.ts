@@ -16,6 +16,7 @@ import { DEFAULT_UNITS } from './ui/units';
 import { debounced, track } from './engine/idle';
 import { excerpt } from './ui/format';
 import { printReport, setupPrint } from './ui/print';
+import { reportMenu } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
 const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
@@ -253,7 +254,7 @@ function toolbar() {
   }, 'Restore the default inputs of this panel');
   const print = button('print', 'Print report', () => void printReport(activeSection), 'Inputs, key numbers and plots of this panel, for print or PDF');
 
-  bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), print, linkOut);
+  bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), reportMenu(), print, linkOut);
 }
 
 function casesMenu(): HTMLElement {
@@ -354,8 +355,9 @@ async function start() {
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
   document.getElementById('banner-action')?.addEventListener('click', () => void shown?.action?.run());
-  // Any edit anywhere in a panel or the machine is saved (URL and local storage).
+  // Any edit anywhere in a panel, the machine or the report's header is saved (URL and local storage).
   document.getElementById('panels')!.addEventListener('input', scheduleSave);
+  document.getElementById('report-menu')?.addEventListener('input', scheduleSave);
   machineRoot.addEventListener('input', scheduleSave);
 
   await openLink(location.hash, state.loadLocal(), true);
