@@ -38,6 +38,18 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// A text the user gave, quoted for a message: at most 40 characters (a longer one is cut with
+/// an ellipsis), so that a pasted file is not repeated whole in the message.
+pub fn quote(text: &str) -> String {
+    const MAX: usize = 40;
+    if text.chars().count() > MAX {
+        let head: String = text.chars().take(MAX - 1).collect();
+        format!("{head:?}…")
+    } else {
+        format!("{text:?}")
+    }
+}
+
 /// The engine's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 

@@ -24,6 +24,7 @@
 pub mod schema;
 
 pub mod chain;
+pub mod csv;
 pub mod cubic;
 pub mod error;
 pub mod geometry;

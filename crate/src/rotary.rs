@@ -32,7 +32,7 @@
 //! that convention `V` above holds with the commanded angles for all three machine types, so the
 //! nonlinear error depends only on the type, not the machine type (paper, end of Section 2).
 
-use crate::error::{Error, Result};
+use crate::error::{quote, Error, Result};
 use crate::geometry::{cross_axis, rotate, rotate_sc, wrap_pi, Axis};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
@@ -200,8 +200,9 @@ impl RotaryType {
             Error::field(
                 "type",
                 format!(
-                    "unknown rotary-axis type {name:?}; expected one of ABX ACX BCY BAY CAZ CBZ \
-                     (Group I) or ABZ ACY BCX BAZ CAY CBX (Group II)"
+                    "unknown rotary-axis type {}; expected one of ABX ACX BCY BAY CAZ CBZ \
+                     (Group I) or ABZ ACY BCX BAZ CAY CBX (Group II)",
+                    quote(name)
                 ),
             )
         };

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { ARTIFACTS, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
 const TABS = ['nonlinear', 'cubic', 'sshape'];
@@ -35,7 +35,7 @@ test('accessibility: no serious or critical axe violations on any panel; unique 
       for (const tab of TABS) {
         await page.click(`#tab-${tab}`);
         await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
-        await page.waitForTimeout(500);
+        await waitIdle(page);
         // axe is injected as a script element: the page's CSP allows scripts from its own origin
         // only, so this goes through Playwright's privileged evaluation instead.
         await page.evaluate(axeSource);

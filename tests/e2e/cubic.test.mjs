@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { fa, preset, T5, T5_ISO } from '../papers.mjs';
-import { ARTIFACTS, optionValue, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, optionValue, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const LI = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
 const ISO = T5_ISO;
@@ -32,21 +32,17 @@ const zonesShown = (page) =>
     hover: gd.data[0].text.flat(),
   }));
 
-/** Waits until every plot has been drawn more often than in `before`, then for quiet. */
+/** Waits until every plot has been drawn more often than in `before`, then until the page is idle. */
 async function redrawn(page, before) {
   for (const id of PLOTS) await waitPlotted(page, id, before[id]);
-  await page.waitForTimeout(300);
+  await waitIdle(page);
 }
 const counts = async (page) => Object.fromEntries(await Promise.all(PLOTS.map(async (id) => [id, await waitPlotted(page, id)])));
-/** The draw counts once no plot has been redrawn for a while. */
+/** The draw counts once the page is idle (no engine call in flight, no edit waiting, no plot
+ *  being drawn). */
 async function settled(page) {
-  let last = '';
-  for (;;) {
-    const now = await counts(page);
-    if (JSON.stringify(now) === last) return now;
-    last = JSON.stringify(now);
-    await page.waitForTimeout(500);
-  }
+  await waitIdle(page);
+  return counts(page);
 }
 const allStale = (page, on, ids = PLOTS) =>
   page.waitForFunction(([ids, on]) => ids.every((id) => document.getElementById(id)?.closest('.plot-wrap')?.classList.contains('stale') === on), [ids, on]);
@@ -131,7 +127,7 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     await page.fill('#m-errors-E_A0B', '9');
     await page.waitForFunction(() => /between/.test(document.querySelector('#m-errors-E_A0B')?.closest('.field')?.textContent ?? ''));
     await page.fill('#m-errors-E_Z0B', '14.2');
-    await page.waitForTimeout(300);
+    await waitIdle(page);
     await allStale(page, true);
     assert.deepEqual(await counts(page), before);
     assert.deepEqual(await zonesShown(page), last);
@@ -144,7 +140,7 @@ test('cubic panel: the Table 5 preset gives the engine\'s zone heights on the 3 
     before = await settled(page);
     await page.fill('#cb-setup-pick', '7');
     await page.waitForFunction(() => /diameter/.test(document.querySelector('#cb-setup-pick')?.closest('.field')?.textContent ?? ''));
-    await page.waitForTimeout(300);
+    await waitIdle(page);
     assert.deepEqual(await counts(page), before);
     assert.deepEqual(await zonesShown(page), last);
     await allStale(page, true, ['cb-zones', 'cb-map']);

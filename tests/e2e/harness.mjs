@@ -108,3 +108,14 @@ export async function optionValue(page, menu, start) {
   );
   return handle.jsonValue();
 }
+
+/**
+ * Waits until the page is idle: no engine call in flight (the engine's worker and the toolpath
+ * workers), no edit waiting for its debounce, no plot being drawn, no file being fetched
+ * (`www/src/engine/idle.ts`). Returns the counters then (`calls`, `done`, `draws`): a test that
+ * asserts "nothing was redrawn" compares them, and the plots' draw counts, after this.
+ */
+export async function waitIdle(page, timeout = 60_000) {
+  await page.waitForFunction(() => window.__fiveaxis?.idle(), null, { timeout });
+  return page.evaluate(() => ({ calls: window.__fiveaxis.calls, done: window.__fiveaxis.done, draws: window.__fiveaxis.draws }));
+}

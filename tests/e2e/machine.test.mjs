@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, startBrowser, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, guardedPage, startBrowser, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const schema = fa.schema();
@@ -119,14 +119,10 @@ test('every field of the schema is on the page with its label, unit and limits',
 /** The y (or z) data of every trace of a plot. */
 const plotData = (page, pid) => page.$eval(`#${pid}`, (gd) => gd.data.map((t) => Array.from(t.z ? t.z.flat() : t.y ?? [])));
 
+/** Waits until the page is idle (nothing computed, waiting or drawn any more); `ids` must exist. */
 async function settle(page, ids) {
-  let last = '';
-  for (;;) {
-    const now = JSON.stringify(await Promise.all(ids.map((i) => page.$eval(`#${i}`, (e) => e.dataset.plotted ?? '0'))));
-    if (now === last) return;
-    last = now;
-    await page.waitForTimeout(500);
-  }
+  for (const i of ids) await page.waitForSelector(`#${i}`, { state: 'attached' });
+  await waitIdle(page);
 }
 
 test('changing the machine once changes every panel; a share link carries the machine', async () => {

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, traceY, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, traceY, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -93,7 +93,7 @@ test('nonlinear panel: machine and move changes replot, eq 26 at the pole, bad i
     await page.waitForFunction(() => /Enter a value/.test(document.querySelector('#nl-nx')?.closest('.field')?.textContent ?? ''));
     await page.fill('#nl-start-k', '99999');
     await page.waitForFunction(() => /between/.test(document.querySelector('#nl-start-k')?.closest('.field')?.textContent ?? ''));
-    await page.waitForTimeout(300);
+    await waitIdle(page);
     assert.deepEqual(await traceY(page, 'nl-curve'), before);
     assert.equal(await waitPlotted(page, 'nl-curve'), plotsBefore);
     // Fixing the fields clears the messages and replots. L empty again: from the machine.

@@ -5,7 +5,7 @@
 // file.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ARTIFACTS, withPage } from './harness.mjs';
+import { ARTIFACTS, waitIdle, withPage } from './harness.mjs';
 
 /** Widths of the drawn plots (their SVG) in the open panel, CSS pixels. */
 const plotWidths = (page) =>
@@ -23,16 +23,10 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
-      // Wait until the panel has drawn its plots and stopped redrawing (some plots, such as an
+      // Wait until the panel has drawn its plots and the page is idle (some plots, such as an
       // identification's, stay empty until the user gives data).
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
-      let last = '';
-      for (;;) {
-        const now = await page.$$eval(`#panel-${tab} .plot`, (gs) => gs.map((g) => g.dataset.plotted ?? '0').join());
-        if (now === last) break;
-        last = now;
-        await page.waitForTimeout(700);
-      }
+      await waitIdle(page);
       const screen = await plotWidths(page);
       assert.ok(screen.some((w) => w > 700), `${tab}: some plot is wider than a page on screen (${screen})`);
 

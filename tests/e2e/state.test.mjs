@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -57,16 +57,11 @@ async function setField(page, id, value) {
 }
 const fieldValue = (page, id) =>
   page.$eval(`#${id}`, (e) => (e.type === 'checkbox' ? (e.checked ? '1' : '0') : e.value));
-/** Waits until the plots show data computed from the current inputs (no further redraws). */
+/** Waits until the plots show data computed from the current inputs: drawn, and the page idle
+ *  (no engine call in flight, no edit waiting, no plot being drawn). */
 async function settle(page, plots) {
   for (const id of plots) await waitPlotted(page, id);
-  let last = '';
-  for (;;) {
-    const now = JSON.stringify(await Promise.all(plots.map((id) => page.$eval(`#${id}`, (e) => e.dataset.plotted))));
-    if (now === last) return;
-    last = now;
-    await page.waitForTimeout(400);
-  }
+  await waitIdle(page);
 }
 /** Every trace's x, y and z of each plot (z a grid or, in 3D, a list). */
 const allData = (page, plots) =>
@@ -172,42 +167,114 @@ test('share link, reload, reset, units: the machine and every panel', async () =
   }
 });
 
-test('a link from another version opens with a message and the defaults; unknown settings are named', async () => {
-  await withPage({}, async ({ page, url }) => {
+/** The user's own work, as the inputs kept in this browser show it. */
+async function ownWork(page) {
+  const tab = await page.$eval('[role=tab][aria-selected=true]', (t) => t.dataset.panel);
+  return {
+    // A field of the open panel (the others are mounted when first opened).
+    panelField: await page.inputValue(tab === 'cubic' ? '#cb-setup-workpieceX' : '#nl-length'),
+    tableHeight: await page.inputValue('#m-geometry-tableHeight'),
+    errorX0B: await page.inputValue('#m-errors-E_X0B'),
+    units: [await page.inputValue('#units-length'), await page.inputValue('#units-angle')],
+    tab,
+  };
+}
+const savedCases = (page) => page.evaluate(() => JSON.parse(localStorage.getItem('fiveaxis:cases:v2') ?? '{}'));
+
+test('an unreadable link says so and changes nothing; a link opens beside the user\'s own inputs, one click from them', async () => {
+  await withPage({ viewport: { width: 1300, height: 900 } }, async ({ page, url }) => {
     await page.goto(url);
     await page.waitForSelector('#panel-nonlinear[data-ready=true]');
-    // Inputs kept in this browser, which a link from another version must not bring back.
+    // The user's own work: inputs in a panel and in the machine, the units, another panel open.
+    await page.selectOption('#units-length', 'um');
+    await page.selectOption('#units-angle', 'arcsec');
     await page.fill('#nl-length', '33');
     await page.fill('#m-geometry-tableHeight', '150');
-    await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash));
-    // A link of the first format (before the Machine section) and one from a future version.
-    for (const [v, link] of [['1', '#v=1&p=cubic&cb-dxBY=14.6&cb-transform=0'], ['99', '#v=99&p=nonlinear&nl-length=5&m-geometry-tableHeight=120']]) {
-      await page.goto(`${url}${link}`);
-      await page.reload();
-      await page.waitForSelector('#banner:not([hidden])');
-      assert.match(await page.textContent('#banner'), new RegExp(`different version of the calculator \\(format ${v}\\).*defaults`));
-      await page.waitForSelector('#panel-nonlinear[data-ready=true]');
-      await waitPlotted(page, 'nl-curve');
-      assert.equal(await page.inputValue('#nl-length'), '');
-      assert.equal(await page.inputValue('#m-geometry-tableHeight'), '100');
-      assert.equal(await page.inputValue('#m-errors-E_X0B'), '0');
-      // The address no longer holds the link's state (the page's own, of format 2, replaces it).
-      const hash = new URL(page.url()).hash;
-      assert.ok(!hash.includes(`v=${v}&`) && !/cb-dxBY|tableHeight|nl-length/.test(hash), `the link's state is dropped: ${hash}`);
+    await page.fill('#m-errors-E_X0B', '12');
+    await page.click('#tab-cubic');
+    await page.waitForSelector('#panel-cubic[data-ready=true]');
+    await page.fill('#cb-setup-workpieceX', '12');
+    await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash) && /p=cubic/.test(location.hash) && /workpieceX=12/.test(location.hash));
+    const mine = { panelField: '12', tableHeight: '150', errorX0B: '12', units: ['um', 'arcsec'], tab: 'cubic' };
+    assert.deepEqual(await ownWork(page), mine);
+
+    // Links the page cannot read: not a state at all, the first format (before the Machine
+    // section), a future format, compressed data that is not, a panel that does not exist.
+    const unreadable = [
+      ['#garbage', /holds no inputs of this calculator/],
+      ['#v=1&p=nonsense', /different version of the calculator \(format 1\)/],
+      ['#v=1&p=cubic&cb-dxBY=14.6&cb-transform=0', /different version of the calculator \(format 1\)/],
+      ['#v=99&p=nonlinear&nl-length=5&m-geometry-tableHeight=120', /different version of the calculator \(format 99\)/],
+      ['#v=2&z=not-deflate-data', /damaged/],
+      ['#v=2&p=nonsense&nl-length=5', /names a panel this version does not have \(“nonsense”\)/],
+    ];
+    for (const [link, why] of unreadable) {
+      // Pasted into this tab's address bar (only the fragment changes), then opened afresh.
+      for (const how of ['in this tab', 'opened afresh']) {
+        await page.evaluate(() => delete document.body.dataset.link);
+        if (how === 'opened afresh') await page.goto('about:blank');
+        await page.goto(`${url}${link}`);
+        await page.waitForSelector('body[data-link=refused]');
+        await page.waitForSelector('#banner:not([hidden])');
+        const text = await page.textContent('#banner .banner-text');
+        assert.match(text, /^This link could not be read: it /, `${link} ${how}: ${text}`);
+        assert.match(text, why, `${link} ${how}: ${text}`);
+        assert.match(text, /Nothing was changed/, `${link} ${how}`);
+        await page.waitForSelector('#panel-cubic[data-ready=true]');
+        assert.deepEqual(await ownWork(page), mine, `${link} ${how}: the user's inputs, units and panel`);
+        assert.deepEqual(await savedCases(page), {}, `${link} ${how}: no case made`);
+        // The address holds the user's own state again, not the link's.
+        await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash));
+      }
     }
-    await page.goto(`${url}#v=2&z=not-deflate-data`);
+    await page.screenshot({ path: `${ARTIFACTS}link-refused.png` });
+
+    // A readable link: it opens, and the user's own inputs are first kept as a case.
+    await page.evaluate(() => delete document.body.dataset.link);
+    await page.goto('about:blank');
+    await page.goto(`${url}#v=2&p=nonlinear&nl-length=5&m-geometry-tableHeight=120`);
+    await page.waitForSelector('body[data-link=opened]');
+    await page.waitForSelector('#panel-nonlinear[data-ready=true]');
+    assert.deepEqual(await ownWork(page), { panelField: '5', tableHeight: '120', errorX0B: '0', units: ['um', 'deg'], tab: 'nonlinear' });
+    const text = await page.textContent('#banner .banner-text');
+    const m = /^Opened a shared link\. Your own inputs are kept as case “(My inputs before opening a link, [^”]+)”\.$/.exec(text);
+    assert.ok(m, text);
+    const cases = await savedCases(page);
+    assert.deepEqual(Object.keys(cases), [m[1]]);
+    assert.equal(cases[m[1]].p, 'cubic');
+    assert.deepEqual(cases[m[1]].u, { length: 'um', angle: 'arcsec' });
+    assert.equal(cases[m[1]].f['nl-length'], '33');
+    assert.equal(cases[m[1]].f['cb-setup-workpieceX'], '12');
+    assert.equal(cases[m[1]].f['m-geometry-tableHeight'], '150');
+    assert.equal(cases[m[1]].f['m-errors-E_X0B'], '12');
+    assert.equal(await page.textContent('#banner-action'), 'Back to my inputs');
+    await page.screenshot({ path: `${ARTIFACTS}link-opened.png` });
+    // One click brings the user's inputs back; the case stays under Saved cases.
+    await page.click('#banner-action');
+    await page.waitForFunction(() => document.getElementById('m-geometry-tableHeight')?.value === '150');
+    await page.waitForSelector('#panel-cubic[data-ready=true]');
+    assert.deepEqual(await ownWork(page), mine);
+    assert.match(await page.textContent('#banner .banner-text'), /Your own inputs are back/);
+    await page.click('.cases summary');
+    assert.ok((await page.$$eval('#case-list .case-name', (ns) => ns.map((n) => n.textContent))).includes(m[1]));
+    // Reloading the page's own address is not opening a link: no message, no new case.
+    await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash));
     await page.reload();
-    await page.waitForSelector('#banner:not([hidden])');
-    assert.match(await page.textContent('#banner'), /damaged/);
+    await page.waitForSelector('#panel-cubic[data-ready=true]');
+    assert.deepEqual(await ownWork(page), mine);
+    assert.equal(await page.$eval('#banner', (b) => b.hidden), true);
+    assert.equal(Object.keys(await savedCases(page)).length, 1);
+
     // Settings this version does not know, of a panel and of the machine, are named; the rest
     // is applied.
+    await page.goto('about:blank');
     await page.goto(`${url}#v=2&p=nonlinear&nl-length=7&nl-removed-field=3&m-geometry-tableHeight=150&m-removed-field=1`);
-    await page.reload();
     await page.waitForSelector('#banner:not([hidden])');
     await page.waitForSelector('#panel-nonlinear[data-ready=true]');
-    const text = await page.textContent('#banner');
-    assert.match(text, /nl-removed-field/);
-    assert.match(text, /m-removed-field/);
+    const ignoredText = await page.textContent('#banner');
+    assert.match(ignoredText, /nl-removed-field/);
+    assert.match(ignoredText, /m-removed-field/);
+    assert.match(ignoredText, /Your own inputs are kept as case/);
     assert.equal(await page.inputValue('#nl-length'), '7');
     assert.equal(await page.inputValue('#m-geometry-tableHeight'), '150');
   });

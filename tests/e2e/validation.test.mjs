@@ -9,7 +9,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { withPage } from './harness.mjs';
+import { waitIdle, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -31,14 +31,11 @@ const OPTIONAL = (() => {
 /** How often each plot (of a panel, or all on the page) has been drawn. */
 const drawCounts = (page, scope = 'body') => page.$$eval(`${scope} .plot`, (gs) => gs.map((g) => `${g.id}:${g.dataset.plotted ?? '0'}`).join());
 
+/** The draw counts once the page is idle (no engine call in flight, no edit waiting, no plot
+ *  being drawn). */
 async function settle(page, scope) {
-  let last = '';
-  for (;;) {
-    const now = await drawCounts(page, scope);
-    if (now === last) return now;
-    last = now;
-    await page.waitForTimeout(600);
-  }
+  await waitIdle(page);
+  return drawCounts(page, scope);
 }
 
 const message = (page, id) => page.$eval(`#${id}`, (e) => e.closest('.field')?.querySelector('.field-msg')?.textContent ?? '');
@@ -121,10 +118,11 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     }
     // The machine: every panel's plots (and the drawing) stay as they were, greyed.
     let before = await settle(page);
+    let { calls } = await waitIdle(page);
     const machineIds = await numericFields(page, '#machine');
     const originals = await Promise.all(machineIds.map((id) => page.inputValue(`#${id}`)));
     for (const id of machineIds) await page.fill(`#${id}`, 'x');
-    await page.waitForTimeout(800);
+    assert.equal((await waitIdle(page)).calls, calls, 'no engine call for a bad machine');
     assert.equal(await drawCounts(page), before, 'no plot was redrawn from a bad machine');
     const drawn = await page.$$eval('.panel .plot', (gs) => gs.filter((g) => g.classList.contains('js-plotly-plot')).map((g) => [g.id, !!g.closest('.plot-wrap')?.classList.contains('stale')]));
     for (const [id, greyed] of drawn) assert.ok(greyed, `${id} greyed while the machine is invalid`);
@@ -135,8 +133,11 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
       await page.click(`#tab-${tab}`);
       before = await settle(page, `#panel-${tab}`);
       const ids = await numericFields(page, `#panel-${tab} form.inputs`);
-      for (const id of ids) await page.fill(`#${id}`, 'x');
-      await page.waitForTimeout(800);
+      // The first is refused at the field: no engine call from then on.
+      await page.fill(`#${ids[0]}`, 'x');
+      ({ calls } = await waitIdle(page));
+      for (const id of ids.slice(1)) await page.fill(`#${id}`, 'x');
+      assert.equal((await waitIdle(page)).calls, calls, `${tab}: no engine call from bad input`);
       assert.equal(await drawCounts(page, `#panel-${tab}`), before, `${tab}: no plot was redrawn from bad input`);
     }
   });

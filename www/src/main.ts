@@ -12,7 +12,11 @@ import { el } from './ui/fields';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
+import { DEFAULT_UNITS } from './ui/units';
+import { debounced, track } from './engine/idle';
+import { excerpt } from './ui/format';
 import { printReport, setupPrint } from './ui/print';
+import { reportMenu } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
 const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
@@ -22,36 +26,137 @@ const mounted = new Map<string, HTMLElement>();
 let active = panels[0].id;
 let restoring = false;
 
-function banner(text: string | null) {
+interface BannerAction {
+  label: string;
+  run: () => void | Promise<void>;
+}
+/** The message at the top of the page (and its one button), or none. */
+let shown: { text: string; action?: BannerAction } | null = null;
+function banner(text: string | null, action?: BannerAction) {
+  shown = text ? { text, action } : null;
   const b = document.getElementById('banner');
   if (!b) return;
   b.hidden = !text;
   b.querySelector('.banner-text')!.textContent = text ?? '';
+  const button = document.getElementById('banner-action');
+  if (button) {
+    button.hidden = !action;
+    button.textContent = action?.label ?? '';
+  }
 }
 
 /** Settings of the state last restored that this version does not know: the machine's and each
- *  panel's (applied when it mounts), named together. */
+ *  panel's (applied when it mounts), named together, after the message about the link. */
 const ignored: string[] = [];
+let linkMessage: { text: string; action?: BannerAction } | null = null;
 function ignoredSettings(ids: string[]) {
   if (!ids.length) return;
   ignored.push(...ids);
-  banner(`This link has settings this version does not know; they were ignored: ${ignored.join(', ')}.`);
+  const lead = linkMessage ? `${linkMessage.text} ` : '';
+  banner(`${lead}This link has settings this version does not know; they were ignored: ${ignored.map((i) => excerpt(i)).join(', ')}.`, linkMessage?.action);
 }
 
 // ---- saving the state (URL fragment and local storage), a moment after the last change
-let saveTimer: number | undefined;
+const saveLater = debounced(() => void track(saveNow()), 250);
 function scheduleSave() {
   if (restoring) return;
-  clearTimeout(saveTimer);
-  saveTimer = window.setTimeout(saveNow, 250);
+  saveLater();
 }
+/** The fragment the page itself last wrote: a change to another one is a link opened. */
+let written = '';
 async function saveNow() {
-  clearTimeout(saveTimer);
+  saveLater.cancel();
   const s = state.capture(active);
   state.saveLocal(s);
   const fragment = await state.encode(s);
-  history.replaceState(null, '', `#${fragment}`);
+  written = `#${fragment}`;
+  history.replaceState(null, '', written);
   document.body.dataset.saved = String(Number(document.body.dataset.saved ?? 0) + 1);
+}
+
+// ---- opening a link: never over the user's own inputs
+/** Whether two states hold the same inputs and units (the open panel aside). */
+function sameInputs(a: state.PageState, b: state.PageState): boolean {
+  const key = (s: state.PageState) => JSON.stringify([s.u.length, s.u.angle, Object.entries(s.f).sort(([x], [y]) => x.localeCompare(y))]);
+  return key(a) === key(b);
+}
+/** Whether a state holds anything the user entered (inputs or units other than the defaults). */
+function hasWork(s: state.PageState): boolean {
+  return Object.keys(s.f).length > 0 || s.u.length !== DEFAULT_UNITS.length || s.u.angle !== DEFAULT_UNITS.angle;
+}
+
+/**
+ * Opens the link `fragment` over the user's state `own` (the inputs kept in this browser, or
+ * those on the page). A link that cannot be read changes nothing and says so. A readable one
+ * whose inputs differ from the user's first keeps the user's as a saved case, named in the
+ * message at the top, whose button brings them back.
+ */
+async function openLink(fragment: string, own: state.PageState | null, atStart: boolean) {
+  let linked: state.PageState | null;
+  try {
+    linked = await state.decode(fragment);
+    if (linked && !panels.some((p) => p.id === linked?.p)) {
+      throw new state.StateError(`names a panel this version does not have (“${excerpt(linked.p)}”)`);
+    }
+  } catch (e) {
+    const why = e instanceof state.StateError ? e.message : 'cannot be read';
+    if (atStart) {
+      if (own) await restore(own);
+      else await show(panels[0].id);
+    }
+    await saveNow();
+    linkMessage = null;
+    banner(`This link could not be read: it ${why}. Nothing was changed: your inputs, units and open panel are as they were.`);
+    document.body.dataset.link = 'refused';
+    return;
+  }
+  if (!linked) {
+    if (own) await restore(own);
+    else await show(panels[0].id);
+    return;
+  }
+  // Reloading the page's own address: not a link opened.
+  if (own && sameInputs(own, linked) && own.p === linked.p) {
+    await restore(own);
+    return;
+  }
+  let kept: string | null = null;
+  if (own && hasWork(own) && !sameInputs(own, linked)) {
+    const all = state.loadCases();
+    const base = `My inputs before opening a link, ${new Date().toLocaleString()}`;
+    kept = base;
+    for (let i = 2; kept in all; i++) kept = `${base} (${i})`;
+    all[kept] = own;
+    try {
+      state.storeCases(all);
+    } catch {
+      // Storage refused: the link is not opened, the user's inputs stay on the page.
+      if (atStart) await restore(own);
+      await saveNow();
+      banner('This link was not opened: this browser refused to keep your own inputs as a case (storage full or disabled), and opening it would replace them.');
+      document.body.dataset.link = 'refused';
+      return;
+    }
+  }
+  const name = kept;
+  linkMessage = name
+    ? {
+        text: `Opened a shared link. Your own inputs are kept as case “${name}”.`,
+        action: {
+          label: 'Back to my inputs',
+          run: async () => {
+            const c = state.loadCases()[name];
+            if (!c) return banner(`The case “${name}” is no longer saved in this browser.`);
+            linkMessage = null;
+            await restore(c);
+            banner(`Your own inputs are back (also kept as case “${name}” under Saved cases).`);
+          },
+        },
+      }
+    : { text: 'Opened a shared link.' };
+  banner(linkMessage.text, linkMessage.action);
+  await restore(linked);
+  document.body.dataset.link = 'opened';
 }
 
 // ---- panels
@@ -149,7 +254,7 @@ function toolbar() {
   }, 'Restore the default inputs of this panel');
   const print = button('print', 'Print report', () => void printReport(activeSection), 'Inputs, key numbers and plots of this panel, for print or PDF');
 
-  bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), print, linkOut);
+  bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), reportMenu(), print, linkOut);
 }
 
 function casesMenu(): HTMLElement {
@@ -249,23 +354,18 @@ async function start() {
   setupPrint(activeSection);
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
-  // Any edit anywhere in a panel or the machine is saved (URL and local storage).
+  document.getElementById('banner-action')?.addEventListener('click', () => void shown?.action?.run());
+  // Any edit anywhere in a panel, the machine or the report's header is saved (URL and local storage).
   document.getElementById('panels')!.addEventListener('input', scheduleSave);
+  document.getElementById('report-menu')?.addEventListener('input', scheduleSave);
   machineRoot.addEventListener('input', scheduleSave);
 
-  let initial: state.PageState | null = null;
-  try {
-    initial = await state.decode(location.hash);
-  } catch (e) {
-    banner(`This link was ${e instanceof Error ? e.message : String(e)}, so the calculator opened with its defaults.`);
-    history.replaceState(null, '', location.pathname + location.search);
-    state.clearLocal();
-    await show(panels[0].id);
-    return;
-  }
-  initial ??= state.loadLocal();
-  if (initial) await restore(initial);
-  else await show(panels[0].id);
+  await openLink(location.hash, state.loadLocal(), true);
+  // A link pasted into the address bar of this tab changes only the fragment.
+  window.addEventListener('hashchange', () => {
+    if (location.hash === written) return;
+    void track(openLink(location.hash, state.capture(active), false));
+  });
 }
 
 // The same engine on the main thread, for the browser console: `fiveaxis.nonlinearMove({...})`.

@@ -28,7 +28,7 @@
 
 use super::zones::{Test, ZoneSpec};
 use super::{relative, CubicPiece, Options, ZonePlane, ZONES};
-use crate::error::{check_range, Error, Result};
+use crate::error::{check_range, quote, Error, Result};
 use crate::identify::csv::{line_error, Table};
 use crate::identify::{DecisionInput, Judgement, Param, DEFAULT_RTOL};
 use crate::machine::errors::ErrorDef;
@@ -168,8 +168,9 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
             return Err(line_error(
                 h,
                 format!(
-                    "unknown column {n:?}; expected zone, height_mm (or height_um), optional \
-                     slope_x, slope_y, and for a designed layout x_mm, y_mm, tilt_deg, azimuth_deg"
+                    "unknown column {}; expected zone, height_mm (or height_um), optional \
+                     slope_x, slope_y, and for a designed layout x_mm, y_mm, tilt_deg, azimuth_deg",
+                    quote(n)
                 ),
             ));
         }
@@ -211,7 +212,7 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
         let name = cells[zone_col].trim();
         let piece_x = match piece_col {
             Some(c) if !cells[c].is_empty() => {
-                let v = Table::number(line, cells[c], "piece_x_mm")?;
+                let v = table.number(line, cells[c], "piece_x_mm")?;
                 check_range("piece_x_mm", v, -2000.0, 2000.0, "mm")
                     .map_err(|e| line_error(line, e.message))?
             }
@@ -219,7 +220,7 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
         };
         let spec = if given == 4 {
             let num = |k: usize, what: &str| {
-                geometry[k].map_or(Ok(0.0), |c| Table::number(line, cells[c], what))
+                geometry[k].map_or(Ok(0.0), |c| table.number(line, cells[c], what))
             };
             let (x, y) = (num(0, "x_mm")?, num(1, "y_mm")?);
             let (tilt, az) = (num(2, "tilt_deg")?, num(3, "azimuth_deg")?);
@@ -247,8 +248,9 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
                     line_error(
                         line,
                         format!(
-                            "zone {name:?} is not one of Table 1's (I, II-1 … III-4); for \
-                             another layout give x_mm, y_mm, tilt_deg, azimuth_deg"
+                            "zone {} is not one of Table 1's (I, II-1 … III-4); for \
+                             another layout give x_mm, y_mm, tilt_deg, azimuth_deg",
+                            quote(name)
                         ),
                     )
                 })?;
@@ -272,13 +274,13 @@ pub fn parse_measurements(text: &str, piece: &CubicPiece) -> Result<Vec<Measured
                 format!("zone {}: no height: fill in the measured height", spec.name),
             ));
         }
-        let height = Table::number(line, cells[height_col], "height")? * height_scale;
+        let height = table.number(line, cells[height_col], "height")? * height_scale;
         check_range("height", height, -10.0, 10.0, "mm")
             .map_err(|e| line_error(line, format!("height {}", e.message)))?;
         let read_slope = |c: Option<(usize, f64)>, what: &str| -> Result<Option<f64>> {
             match c {
                 Some((c, s)) if !cells[c].is_empty() => {
-                    let v = Table::number(line, cells[c], what)? * s;
+                    let v = table.number(line, cells[c], what)? * s;
                     check_range(what, v, -1.0, 1.0, "mm/mm")
                         .map_err(|e| line_error(line, format!("{what} {}", e.message)))?;
                     Ok(Some(v))

@@ -1,8 +1,11 @@
 //! The measurement files' common reading: comment lines (`#`) and blank lines skipped, a header
-//! naming the columns (units in the names: `height_mm`, `height_um`), comma, semicolon or tab,
-//! every problem reported as `csv: line 12: …` with the file's own line number.
+//! naming the columns (units in the names: `height_mm`, `height_um`), comma, semicolon or tab
+//! (the header's decides; with `;` or tab a decimal comma is accepted: `0,0208`), every problem
+//! reported as `csv: line 12: …` with the file's own line number. The lines, cells and numbers
+//! come from the engine's one tokenizer, [`crate::csv`].
 
-use crate::error::{Error, Result};
+use crate::csv;
+use crate::error::{quote, Error, Result};
 
 /// The error of a line: `csv: line {line}: {msg}`.
 pub fn line_error(line: usize, msg: impl std::fmt::Display) -> Error {
@@ -24,29 +27,25 @@ pub struct Table<'a> {
 impl<'a> Table<'a> {
     /// Reads `text`; `expected` is the header to suggest in messages (`curve,point,deviation_mm`).
     pub fn read(text: &'a str, expected: &str) -> Result<Self> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| (i + 1, l.trim()))
-            .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+        let mut lines = csv::lines(text);
         let (header_line, header) = lines.next().ok_or_else(|| {
             Error::field(
                 "csv",
                 format!("the file is empty: expected a header line {expected} and the rows"),
             )
         })?;
-        let sep = [',', ';', '\t']
+        let sep = csv::separator(header).ok_or_else(|| {
+            line_error(
+                header_line,
+                format!(
+                    "the header {} has no separator; expected {expected}",
+                    quote(header)
+                ),
+            )
+        })?;
+        let names: Vec<String> = csv::cells(header, sep)
             .into_iter()
-            .find(|c| header.contains(*c))
-            .ok_or_else(|| {
-                line_error(
-                    header_line,
-                    format!("the header {header:?} has no separator; expected {expected}"),
-                )
-            })?;
-        let names: Vec<String> = header
-            .split(sep)
-            .map(|s| s.trim().trim_matches('"').to_ascii_lowercase())
+            .map(str::to_ascii_lowercase)
             .collect();
         Ok(Self {
             header_line,
@@ -62,10 +61,7 @@ impl<'a> Table<'a> {
         self.lines
             .iter()
             .map(|&(line, row)| {
-                let cells: Vec<&str> = row
-                    .split(self.sep)
-                    .map(|c| c.trim().trim_matches('"'))
-                    .collect();
+                let cells = csv::cells(row, self.sep);
                 if cells.len() == self.names.len() {
                     Ok((line, cells))
                 } else {
@@ -105,11 +101,10 @@ impl<'a> Table<'a> {
         }
     }
 
-    /// A finite number from a cell, or an error naming the line and `what`.
-    pub fn number(line: usize, cell: &str, what: &str) -> Result<f64> {
-        cell.parse()
-            .ok()
-            .filter(|v: &f64| v.is_finite())
-            .ok_or_else(|| line_error(line, format!("{what} {cell:?} is not a number")))
+    /// A finite number from a cell (a decimal comma when the separator is `;` or tab), or an
+    /// error naming the line and `what`.
+    pub fn number(&self, line: usize, cell: &str, what: &str) -> Result<f64> {
+        csv::number(cell, self.sep)
+            .ok_or_else(|| line_error(line, format!("{what} {} is not a number", quote(cell))))
     }
 }

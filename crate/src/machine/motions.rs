@@ -743,29 +743,20 @@ pub struct CsvTable {
 /// Reads a table for error motion `name` from CSV as measuring software exports it: a header
 /// line naming the two columns with their units in brackets (`X (mm), E_XX (µm)`; lengths mm,
 /// µm, nm, m, in; angles deg, rad, mrad, µrad, arcsec, µm/m), then one `position, value` per
-/// line. Separators: comma, semicolon or tab; with `;` or tab a decimal comma is accepted.
-/// Lines starting with `#` and empty lines are skipped. Errors name the line (`line 7: …`).
+/// line. Separators: comma, semicolon or tab, per line; with `;` or tab a decimal comma is
+/// accepted (`0;0,0208`), with `,` a comma only separates. Lines starting with `#` and empty
+/// lines are skipped. The engine's one tokenizer, [`crate::csv`]. Errors name the line
+/// (`line 7: …`) and quote at most 40 characters of the text.
 pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
     let def = find(name).ok_or_else(|| unknown("name", name))?;
     let angle_pos = is_rotary(def.axis);
     let angle_val = def.component >= 3;
     let mut header: Option<(f64, f64, [String; 2])> = None;
     let (mut pos, mut val) = (Vec::new(), Vec::new());
-    for (i, raw) in text.lines().enumerate() {
-        let line_no = i + 1;
+    for (line_no, line) in crate::csv::lines(text) {
         let at = |msg: String| Error::field("csv", format!("line {line_no}: {msg}"));
-        let line = raw.trim().trim_start_matches('\u{feff}');
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let sep = if line.contains('\t') {
-            '\t'
-        } else if line.contains(';') {
-            ';'
-        } else {
-            ','
-        };
-        let cells: Vec<&str> = line.split(sep).map(str::trim).collect();
+        let sep = crate::csv::separator(line).unwrap_or(',');
+        let cells = crate::csv::cells(line, sep);
         if cells.len() != 2 {
             return Err(at(format!(
                 "expected two columns (position, value), found {}",
@@ -791,17 +782,17 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
             }
             let fp = unit_factor(up, angle_pos).ok_or_else(|| {
                 at(format!(
-                    "the first line names the columns with their units, e.g. \"{} ({})\"; \"{}\" is not a unit of {}",
+                    "the first line names the columns with their units, e.g. \"{} ({})\"; {} is not a unit of {}",
                     def.axis,
                     if angle_pos { "deg" } else { "mm" },
-                    cells[0],
+                    crate::error::quote(cells[0]),
                     if angle_pos { "angle" } else { "length" }
                 ))
             })?;
             let fv = unit_factor(uv, angle_val).ok_or_else(|| {
                 at(format!(
-                    "the second column's unit: \"{}\" is not a unit of {} (e.g. \"{} ({})\")",
-                    cells[1],
+                    "the second column's unit: {} is not a unit of {} (e.g. \"{} ({})\")",
+                    crate::error::quote(cells[1]),
                     if angle_val { "angle" } else { "length" },
                     name,
                     if angle_val { "arcsec" } else { "µm" }
@@ -811,15 +802,12 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
             continue;
         };
         let num = |cell: &str, what: &str| -> Result<f64> {
-            let s = if sep == ',' {
-                cell.to_string()
-            } else {
-                cell.replace(',', ".")
-            };
-            s.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| at(format!("the {what} \"{cell}\" is not a number")))
+            crate::csv::number(cell, sep).ok_or_else(|| {
+                at(format!(
+                    "the {what} {} is not a number",
+                    crate::error::quote(cell)
+                ))
+            })
         };
         let p = num(cells[0], "position")? * fp;
         let v = num(cells[1], "value")? * fv;

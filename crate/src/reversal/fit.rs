@@ -2,7 +2,9 @@
 //! fitted by least squares to a ball-bar trace (or a roundness profile of the cut cylinder).
 //!
 //! # The file
-//! CSV (comma, semicolon or tab; lines starting with `#` are comments): a header with
+//! CSV (comma, semicolon or tab, as the header has it; with `;` or tab a decimal comma is
+//! accepted, `181,4;-0,0072`; lines starting with `#` are comments; the engine's one tokenizer,
+//! [`crate::csv`]): a header with
 //! `angle_deg` and `deviation_mm` (or `deviation_um`), then one row per point: the trace angle in
 //! degrees in this study's convention (0° at the start, the reversal of C at 180°, counter-clockwise
 //! in table coordinates) and the radial deviation (+ outwards). Angles must increase.
@@ -19,7 +21,8 @@
 //! determine, or no convergence.
 
 use super::{simulate_with_step, ReversalCase};
-use crate::error::{Error, Result};
+use crate::csv;
+use crate::error::{quote, Error, Result};
 use crate::numeric::{levenberg_marquardt, LsqFailure};
 
 /// A measured trace: angles (rad) and deviations (mm), with the file line of each point.
@@ -36,29 +39,25 @@ pub struct Measured {
 /// Reads a measured trace (module docs). Errors name the field `csv` and the line.
 pub fn parse_trace(text: &str) -> Result<Measured> {
     let at = |line: usize, msg: String| Error::field("csv", format!("line {line}: {msg}"));
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut rows = csv::lines(text);
     let Some((hl, header)) = rows.next() else {
         return Err(Error::field(
             "csv",
             "the file is empty: expected a header angle_deg,deviation_mm and one row per point",
         ));
     };
-    let sep = [',', ';', '\t']
+    let sep = csv::separator(header).ok_or_else(|| {
+        at(
+            hl,
+            format!(
+                "the header {} should be angle_deg,deviation_mm",
+                quote(header)
+            ),
+        )
+    })?;
+    let cols: Vec<String> = csv::cells(header, sep)
         .into_iter()
-        .find(|c| header.contains(*c))
-        .ok_or_else(|| {
-            at(
-                hl,
-                format!("the header {header:?} should be angle_deg,deviation_mm"),
-            )
-        })?;
-    let cols: Vec<String> = header
-        .split(sep)
-        .map(|s| s.trim().trim_matches('"').to_ascii_lowercase())
+        .map(str::to_ascii_lowercase)
         .collect();
     let col = |names: &[&str]| cols.iter().position(|c| names.contains(&c.as_str()));
     let a_col = col(&["angle_deg", "angle"])
@@ -85,7 +84,7 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
         lines: Vec::new(),
     };
     for (line, row) in rows {
-        let cells: Vec<&str> = row.split(sep).map(|c| c.trim().trim_matches('"')).collect();
+        let cells = csv::cells(row, sep);
         if cells.len() != cols.len() {
             return Err(at(
                 line,
@@ -97,11 +96,8 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
             ));
         }
         let num = |i: usize, what: &str| -> Result<f64> {
-            cells[i]
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| at(line, format!("{what} {:?} is not a number", cells[i])))
+            csv::number(cells[i], sep)
+                .ok_or_else(|| at(line, format!("{what} {} is not a number", quote(cells[i]))))
         };
         let a = num(a_col, "angle")?;
         let d = num(d_col, "deviation")? * scale;

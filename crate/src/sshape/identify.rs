@@ -26,7 +26,7 @@
 
 pub use crate::identify::{combination_text, fit, Combination, Estimate, Fit, Group, DEFAULT_RTOL};
 
-use crate::error::{check_range, Error, Result};
+use crate::error::{check_range, quote, Error, Result};
 use crate::identify::csv::{line_error, Table};
 
 use super::part::{index_of, parse_curve, Curve, N_POINTS, POINTS_PER_CURVE};
@@ -57,13 +57,16 @@ pub fn parse_measurements(text: &str) -> Result<Vec<f64>> {
         let number: usize = cells[col_point].parse().map_err(|_| {
             err(
                 line,
-                format!("point {:?} is not a whole number 1..50", cells[col_point]),
+                format!(
+                    "point {} is not a whole number 1..50",
+                    quote(cells[col_point])
+                ),
             )
         })?;
         if !(1..=2 * POINTS_PER_CURVE).contains(&number) {
             return Err(err(line, format!("point {number} is outside 1..50")));
         }
-        let value = Table::number(line, cells[col_dev], "deviation")? * scale;
+        let value = table.number(line, cells[col_dev], "deviation")? * scale;
         check_range("deviation", value, -10.0, 10.0, "mm")
             .map_err(|e| err(line, format!("deviation {}", e.message)))?;
         let k = index_of(curve, number);

@@ -34,7 +34,7 @@
 //! then BOTTOM 1..50.
 
 use super::bspline::{BSpline, CurvePoint};
-use crate::error::{Error, Result};
+use crate::error::{quote, Error, Result};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use std::sync::OnceLock;
@@ -522,7 +522,10 @@ pub fn parse_curve(text: &str) -> Result<Curve> {
         "bottom" | "b" | "z11" | "11" => Ok(Curve::Bottom),
         other => Err(Error::field(
             "curve",
-            format!("unknown measurement curve {other:?}; expected top (z = 25 mm) or bottom (z = 11 mm)"),
+            format!(
+                "unknown measurement curve {}; expected top (z = 25 mm) or bottom (z = 11 mm)",
+                quote(other)
+            ),
         )),
     }
 }

@@ -199,7 +199,12 @@ impl FromStr for Format {
         Format::ALL
             .into_iter()
             .find(|f| f.name().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| Error::field("format", format!("expected csv, apt or nc, got {s:?}")))
+            .ok_or_else(|| {
+                Error::field(
+                    "format",
+                    format!("expected csv, apt or nc, got {}", shown(s)),
+                )
+            })
     }
 }
 
@@ -452,14 +457,9 @@ impl Loc<'_> {
     }
 }
 
-/// A token as shown in a message: quoted, at most 40 characters.
+/// A token as shown in a message: quoted, at most 40 characters ([`crate::error::quote`]).
 fn shown(tok: &str) -> String {
-    if tok.chars().count() > 40 {
-        let head: String = tok.chars().take(40).collect();
-        format!("{head:?}…")
-    } else {
-        format!("{tok:?}")
-    }
+    crate::error::quote(tok)
 }
 
 /// Reads a number of the module's grammar (`exponent`: an `e±n` may follow); `None` if `tok`

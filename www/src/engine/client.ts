@@ -1,5 +1,6 @@
 // Calls into the engine's Web Worker, typed against the .d.ts that wasm-bindgen generates.
 import type * as Engine from '@engine';
+import { callStarted } from './idle';
 
 type Api = typeof Engine;
 /** Names of the engine's exported functions (not the loader). */
@@ -35,7 +36,7 @@ export class EngineError extends Error {
 
 let worker: Worker | null = null;
 let nextId = 1;
-const pending = new Map<number, { resolve: (v: unknown) => void; reject: (e: Error) => void }>();
+const pending = new Map<number, { resolve: (v: unknown) => void; reject: (e: Error) => void; end: () => void }>();
 
 function getWorker(): Worker {
   if (worker) return worker;
@@ -47,10 +48,14 @@ function getWorker(): Worker {
     pending.delete(id);
     if (ok) p.resolve(result);
     else p.reject(new EngineError(error ?? 'unknown engine error'));
+    p.end();
   };
   worker.onerror = (event) => {
     const err = new EngineError(`engine worker failed: ${event.message}`);
-    for (const p of pending.values()) p.reject(err);
+    for (const p of pending.values()) {
+      p.reject(err);
+      p.end();
+    }
     pending.clear();
   };
   return worker;
@@ -60,7 +65,7 @@ function getWorker(): Worker {
 export function call<F extends FnName>(fn: F, ...args: Args<F>): Promise<Result<F>> {
   const id = nextId++;
   return new Promise((resolve, reject) => {
-    pending.set(id, { resolve: resolve as (v: unknown) => void, reject });
+    pending.set(id, { resolve: resolve as (v: unknown) => void, reject, end: callStarted() });
     getWorker().postMessage({ id, fn, args });
   });
 }

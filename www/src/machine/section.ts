@@ -4,6 +4,7 @@
 // panels read the machine from here and recompute when it changes.
 import type { ErrorDef, ErrorFunction, Machine, SchematicResult } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
+import { debounced, track } from '../engine/idle';
 import { el, fields, numberField, type NumberField } from '../ui/fields';
 import { displayQuantity, fieldId, fill, loadSchema, renderFields, type Context, type RenderedForm } from '../ui/form';
 import { note, stale } from '../ui/plot';
@@ -66,10 +67,10 @@ function aliasText(def: ErrorDef): string {
 
 let presetCache: Promise<MachinePreset[]> | null = null;
 function loadMachinePresets(): Promise<MachinePreset[]> {
-  presetCache ??= fetch('presets/machines.json').then(async (res) => {
+  presetCache ??= track(fetch('presets/machines.json').then(async (res) => {
     if (!res.ok) throw new Error(`presets/machines.json: ${res.status} ${res.statusText}`);
     return ((await res.json()) as { presets: MachinePreset[] }).presets;
-  });
+  }));
   return presetCache;
 }
 
@@ -360,15 +361,14 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   });
 
   // Any edit: mark what the machine fed as stale until the new machine is computed.
-  let timer: number | undefined;
+  const later = debounced(() => void update(), 60);
   const onInput = () => {
     if (!current()) {
       stale(plot, true);
       // No machine now: the panels grey the plots it fed (they read current() as null).
       for (const l of listeners) l();
     }
-    clearTimeout(timer);
-    timer = window.setTimeout(() => void update(), 60);
+    later();
   };
   form.addEventListener('input', onInput);
   poseBox.addEventListener('input', onInput);

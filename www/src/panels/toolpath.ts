@@ -4,6 +4,7 @@
 import type { Data } from 'plotly.js';
 import type { Machine, ParsedToolpath, ToolpathAnalysis, ToolpathRefined, ToolpathSummary } from '@engine';
 import { call, channel, SUPERSEDED } from '../engine/client';
+import { debounced } from '../engine/idle';
 import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
 import { download } from '../ui/export';
@@ -135,7 +136,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       const e = showAtField(err, inputs.byPath, machine);
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
       // What is still being computed for the last file must not make it look current again.
-      clearTimeout(rankTimer);
+      rankLater.cancel();
       ranks++;
       details++;
       greyAll();
@@ -166,13 +167,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   /** The ranking of the twelve types (a moment after the last edit: each one copies the path to
    *  every worker). */
-  let rankTimer: number | undefined;
+  let rankJob: () => void = () => {};
+  const rankLater = debounced(() => rankJob(), 150);
   const rerank = () => {
     const mine = ++ranks;
-    clearTimeout(rankTimer);
+    rankLater.cancel();
     const c = current();
     if (!c) return;
-    rankTimer = window.setTimeout(() => {
+    rankJob = () => {
       const { m, base, t, loaded: l } = c;
       rankTypes(base, l.parsed.points).then((rows) => {
         if (mine === ranks) ranking(rows, String(m.type ?? ''), t, base.tolerance, l.name, l.parsed.lines);
@@ -181,7 +183,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
         engineError(e, along.p);
         tableWrap.classList.add('stale');
       });
-    }, 150);
+    };
+    rankLater();
   };
 
   /** The detail of the configuration shown: δ along the path and the 3D path. */

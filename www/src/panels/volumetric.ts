@@ -4,6 +4,7 @@
 import type { Annotations, Data } from 'plotly.js';
 import type { ErrorDef, Machine, VolumetricInput, VolumetricMapResult, VolumetricPaperResult } from '@engine';
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
+import { debounced } from '../engine/idle';
 import type { MachineSection, MotionFunction } from '../machine/section';
 import { download } from '../ui/export';
 import { el, selectField, type NumberField } from '../ui/fields';
@@ -487,15 +488,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   });
   // The titles are broken to the plots' width: drawn again when the width changes.
   let width = root.clientWidth;
-  let resizeTimer: number | undefined;
-  window.addEventListener('resize', () => {
-    clearTimeout(resizeTimer);
-    resizeTimer = window.setTimeout(() => {
-      if (root.hidden || root.clientWidth === width) return;
-      width = root.clientWidth;
-      if (last) showMap(last.r);
-    }, 200);
-  });
+  const redrawLater = debounced(() => {
+    if (root.hidden || root.clientWidth === width) return;
+    width = root.clientWidth;
+    if (last) showMap(last.r);
+  }, 200);
+  window.addEventListener('resize', redrawLater);
   update();
 }
 

@@ -3,6 +3,7 @@
 // and the benchmark (scripts/bench.mjs).
 import type { ParsedToolpath, ToolpathCase, ToolpathReadInput, ToolpathSummary } from '@engine';
 import { EngineError } from '../engine/client';
+import { callStarted } from '../engine/idle';
 
 /** The twelve types, Group I then Group II (the engine's order). */
 export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
@@ -15,6 +16,8 @@ interface Job {
   resolve: (v: unknown) => void;
   reject: (e: Error) => void;
   progress?: (fraction: number) => void;
+  /** Ends the job's count of calls in flight (engine/idle.ts). */
+  end: () => void;
 }
 
 const workers: (Worker | undefined)[] = [];
@@ -33,6 +36,7 @@ function worker(i: number): Worker {
     jobs.delete(id);
     if (ok) job.resolve(result);
     else job.reject(new EngineError(error ?? 'unknown toolpath error'));
+    job.end();
   };
   // A worker that fails (out of memory, say) fails its own jobs and is replaced by the next call.
   w.onerror = (event) => {
@@ -41,6 +45,7 @@ function worker(i: number): Worker {
       if (job.worker !== i) continue;
       jobs.delete(id);
       job.reject(new EngineError(`toolpath worker failed: ${event.message || 'it stopped'}`));
+      job.end();
     }
     w.terminate();
     workers[i] = undefined;
@@ -52,7 +57,7 @@ function worker(i: number): Worker {
 function run<T>(i: number, message: Record<string, unknown>, progress?: (f: number) => void): Promise<T> {
   const id = nextId++;
   return new Promise<T>((resolve, reject) => {
-    jobs.set(id, { worker: i, resolve: resolve as (v: unknown) => void, reject, progress });
+    jobs.set(id, { worker: i, resolve: resolve as (v: unknown) => void, reject, progress, end: callStarted() });
     worker(i).postMessage({ id, ...message });
   });
 }

@@ -5,6 +5,7 @@
 // value in the state is its text as shown, together with the unit preferences; presets give
 // values in base units (mm, degrees) and are converted to what is shown.
 import { fromDisplay, numberText, onUnitsChange, toDisplay, unitDef, type Quantity } from './units';
+import { excerpt } from './format';
 
 /** What the page state needs to know of a field. */
 export interface FieldHandle {
@@ -137,7 +138,7 @@ export function numberField(o: NumberFieldOptions): NumberField {
     if (text.trim() === '' && o.optional) return setError(null), undefined;
     if (text.trim() === '') return setError('Enter a value.'), null;
     const shown = parseNumber(text);
-    if (shown === null) return setError(`"${text.trim()}" is not a number.`), null;
+    if (shown === null) return setError(`"${excerpt(text)}" is not a number.`), null;
     if (o.integer && !Number.isInteger(shown)) return setError('Enter a whole number.'), null;
     const v = fromDisplay(q, shown);
     if (o.positive && v <= 0) return setError('Must be greater than 0.'), null;
@@ -235,7 +236,7 @@ export function listField(id: string, labelText: string, value: number[], min: n
     const out: number[] = [];
     for (const p of parts) {
       const v = parseNumber(p);
-      if (v === null) return setError(`"${p}" is not a number.`), null;
+      if (v === null) return setError(`"${excerpt(p)}" is not a number.`), null;
       if (v < min || v > max || (nonzero && v === 0)) return setError(`Each value must be${nonzero ? ' non-zero,' : ''} between ${min} and ${max}.`), null;
       out.push(v);
     }

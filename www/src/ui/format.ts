@@ -26,3 +26,11 @@ export function vector(v: ArrayLike<number>, digits = 4): string {
 export function degrees(v: number, digits = 5): string {
   return `${num(v, digits)}°`;
 }
+
+/** At most `max` characters of a text the user gave, for a message: a 10,000-character paste
+ *  is quoted by its start and an ellipsis, not repeated whole. */
+export function excerpt(text: string, max = 40): string {
+  const t = text.replace(/\s+/g, ' ').trim();
+  const chars = [...t];
+  return chars.length <= max ? t : `${chars.slice(0, max - 1).join('')}…`;
+}

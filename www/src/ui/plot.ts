@@ -1,6 +1,7 @@
 // Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
 import type { Config, Data, Layout } from 'plotly.js';
 import { download, graphCsv } from './export';
+import { drawStarted } from '../engine/idle';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
@@ -26,6 +27,15 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
 
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
+  const end = drawStarted();
+  try {
+    await drawNow(el, title, data, layout, filename);
+  } finally {
+    end();
+  }
+}
+
+async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
   const P = await loadPlotly();
   const config: Partial<Config> = {
     responsive: true,
@@ -50,13 +60,34 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
 }
 
+/** What a greyed result says while a field is invalid. */
+export const STALE_FIELD = 'Showing the last valid result; fix the field marked in red.';
+
 /**
  * Greys what no longer shows what the inputs ask for: a plot (its wrapper), or any other output
- * element, and with it the panel's summary of key numbers. `on = false` clears the element only:
- * the summary is cleared by a successful drawing (`draw`).
+ * element, and with it the panel's summary of key numbers; a line above it says that it shows
+ * the last valid result (`why`, by default: fix the field marked in red), when it shows one.
+ * `on = false` clears the element only: the summary is cleared by a successful drawing (`draw`).
  */
-export function stale(target: HTMLElement, on: boolean) {
-  (target.closest('.plot-wrap') ?? target).classList.toggle('stale', on);
+export function stale(target: HTMLElement, on: boolean, why = STALE_FIELD) {
+  const box = target.closest<HTMLElement>('.plot-wrap') ?? target;
+  box.classList.toggle('stale', on);
+  // The label sits in the plot's frame (not greyed with the plot), or just before the element.
+  const isPlot = box !== target;
+  let label = isPlot ? box.querySelector<HTMLElement>(':scope > .stale-label') : box.previousElementSibling?.classList.contains('stale-label') ? (box.previousElementSibling as HTMLElement) : null;
+  const showsSomething = isPlot ? Number(target.dataset.plotted ?? 0) > 0 : (target.textContent ?? '').trim() !== '';
+  if (!on || !showsSomething) {
+    label?.remove();
+  } else {
+    if (!label) {
+      label = document.createElement('p');
+      label.className = 'stale-label';
+      label.setAttribute('role', 'status');
+      if (isPlot) box.prepend(label);
+      else box.before(label);
+    }
+    label.textContent = why;
+  }
   if (on) target.closest('.results')?.querySelector(':scope > dl.summary')?.classList.add('stale');
 }
 

@@ -7,6 +7,7 @@ import type { MachineSection } from '../machine/section';
 import { el, fields } from './fields';
 import { fieldId } from './form';
 import { resetPanel } from './state';
+import { track } from '../engine/idle';
 
 export interface Preset {
   name: string;
@@ -20,7 +21,11 @@ export interface Preset {
   input?: Record<string, unknown>;
 }
 
-export async function loadPresets(panel: string): Promise<Preset[]> {
+export function loadPresets(panel: string): Promise<Preset[]> {
+  return track(fetchPresets(panel));
+}
+
+async function fetchPresets(panel: string): Promise<Preset[]> {
   const res = await fetch(`presets/${panel}.json`);
   if (!res.ok) throw new Error(`presets/${panel}.json: ${res.status} ${res.statusText}`);
   const data = (await res.json()) as { presets?: Preset[] };

@@ -1,7 +1,10 @@
-// The printable report of a panel (the browser's print, or "Save as PDF"): a compact table of the
-// panel's inputs in place of the form, the key numbers, and every plot redrawn at the width of
-// the printed page (Plotly sizes plots for the screen, so they would be cut off on paper).
+// The printable report of a panel (the browser's print, or "Save as PDF"): the report's header
+// (company, customer, machine, serial number, operator, date, the panel's tolerance and verdict;
+// see report.ts), a compact table of the panel's inputs in place of the form, the key numbers,
+// every plot redrawn at the width of the printed page (Plotly sizes plots for the screen, so
+// they would be cut off on paper), and a line to sign.
 import { el, fields } from './fields';
+import { reportHeader, signatureBlock } from './report';
 import type { Layout } from 'plotly.js';
 import { loadPlotly } from './plot';
 
@@ -44,7 +47,11 @@ function inputRows(section: HTMLElement, prefix: string): [string, string][] {
 async function enter(section: HTMLElement, prefix: string) {
   if (printing) return;
   printing = true;
-  section.querySelector(':scope > .print-inputs')?.remove();
+  for (const old of section.querySelectorAll(':scope > :is(.print-inputs, .report-header, .report-signature)')) old.remove();
+  // The report's header first, above the panel's heading.
+  const header = reportHeader(section, prefix, section.querySelector('h2')?.textContent ?? '');
+  header.setAttribute('aria-hidden', 'true');
+  section.prepend(header);
   const box = el('section', { class: 'print-inputs', 'aria-hidden': 'true' });
   const dl = el('dl');
   for (const [k, v] of inputRows(section, prefix)) dl.append(el('dt', {}, k), el('dd', {}, v));
@@ -55,6 +62,9 @@ async function enter(section: HTMLElement, prefix: string) {
   const summary = document.getElementById('machine-summary')?.textContent ?? 'Machine';
   box.append(el('h3', {}, summary), mdl, el('h3', {}, 'Inputs'), dl, el('p', {}, `Printed ${new Date().toLocaleString()} from ${location.href.split('#')[0]}`));
   section.querySelector('.panel-grid')?.before(box);
+  const sign = signatureBlock();
+  sign.setAttribute('aria-hidden', 'true');
+  section.append(sign);
   const P = await loadPlotly();
   const graphs = [...section.querySelectorAll<Graph>('.js-plotly-plot')];
   await Promise.all(graphs.map((g) => P.relayout(g, { width: PRINT_WIDTH, height: PRINT_HEIGHT })));
@@ -63,7 +73,7 @@ async function enter(section: HTMLElement, prefix: string) {
 async function leave(section: HTMLElement) {
   if (!printing) return;
   printing = false;
-  section.querySelector(':scope > .print-inputs')?.remove();
+  for (const old of section.querySelectorAll(':scope > :is(.print-inputs, .report-header, .report-signature)')) old.remove();
   const P = await loadPlotly();
   const graphs = [...section.querySelectorAll<Graph>('.js-plotly-plot')];
   // Back to the size of the container (null removes the fixed size).

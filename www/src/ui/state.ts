@@ -4,6 +4,7 @@
 //
 // A state holds only what differs from the defaults: field id → text as shown.
 import { fields } from './fields';
+import { excerpt } from './format';
 import { DEFAULT_UNITS, setUnits, units, type UnitPrefs, ANGLE_UNITS, LENGTH_UNITS } from './units';
 
 export const STATE_VERSION = 2;
@@ -101,7 +102,7 @@ export class StateError extends Error {}
 function checkState(s: unknown): PageState {
   const o = s as Partial<PageState> | null;
   if (!o || typeof o !== 'object' || o.v !== STATE_VERSION || typeof o.p !== 'string') {
-    throw new StateError(`made by a different version of the calculator (format ${String(o?.v)})`);
+    throw new StateError(`was made by a different version of the calculator (format ${excerpt(String(o?.v), 12)})`);
   }
   const u = (o.u ?? DEFAULT_UNITS) as UnitPrefs;
   const f: Record<string, string> = {};
@@ -119,12 +120,17 @@ function checkState(s: unknown): PageState {
   };
 }
 
-/** Reads a URL fragment: null when it holds no state, a StateError when it cannot be read. */
+/**
+ * Reads a URL fragment: null when there is none, a StateError (its message says why, after
+ * "it": "was made by a different version …") when it cannot be read.
+ */
 export async function decode(fragment: string): Promise<PageState | null> {
-  const q = new URLSearchParams(fragment.replace(/^#/, ''));
-  if (!q.has('v')) return null;
+  const text = fragment.replace(/^#/, '');
+  if (text.trim() === '') return null;
+  const q = new URLSearchParams(text);
+  if (!q.has('v')) throw new StateError(`holds no inputs of this calculator (“#${excerpt(text)}”)`);
   if (q.get('v') !== String(STATE_VERSION)) {
-    throw new StateError(`made by a different version of the calculator (format ${q.get('v')})`);
+    throw new StateError(`was made by a different version of the calculator (format ${excerpt(q.get('v') ?? '', 12)})`);
   }
   const z = q.get('z');
   if (z !== null) {
@@ -133,7 +139,7 @@ export async function decode(fragment: string): Promise<PageState | null> {
       return checkState(JSON.parse(new TextDecoder().decode(bytes)));
     } catch (e) {
       if (e instanceof StateError) throw e;
-      throw new StateError('damaged (it could not be unpacked)');
+      throw new StateError('is damaged: its compressed inputs could not be unpacked');
     }
   }
   const [length, angle] = (q.get('u') ?? `${DEFAULT_UNITS.length},${DEFAULT_UNITS.angle}`).split(',');

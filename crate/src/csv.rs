@@ -1,0 +1,74 @@
+//! The one CSV tokenizer every reader of measured data shares: the S-shape's measured
+//! deviations ([`crate::sshape::identify`]), the cubic test's zone table
+//! ([`crate::cubic::identify`]), the reversal trace ([`crate::reversal::fit`]) and the tables of
+//! error motions ([`crate::machine::motions::read_table_csv`]).
+//!
+//! * Lines: numbered from 1 as in the file; blank lines and lines starting with `#` are skipped;
+//!   a byte-order mark at the start is dropped.
+//! * Separator: a tab if the line has one, else `;` if it has one, else `,`.
+//! * **Decimal comma**: when the separator is `;` or a tab, a `,` inside a number is its decimal
+//!   comma, as European measuring software writes it: `1,5;2,5` is 1.5 and 2.5. With `,` as the
+//!   separator a comma only separates: `1,5,2,5` is four cells.
+//! * Cells are trimmed and their surrounding double quotes removed.
+//!
+//! Messages quote what the user gave through [`crate::error::quote`] (at most 40 characters).
+
+/// The lines that hold data or a header: `(line number, text trimmed)`, without blank lines,
+/// `#` comments and a leading byte-order mark.
+pub fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + '_ {
+    text.lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim().trim_start_matches('\u{feff}').trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+}
+
+/// The separator of a line: a tab, else `;`, else `,`; `None` when the line has none.
+pub fn separator(line: &str) -> Option<char> {
+    ['\t', ';', ','].into_iter().find(|c| line.contains(*c))
+}
+
+/// The cells of `line` split at `sep`, trimmed, surrounding double quotes removed.
+pub fn cells(line: &str, sep: char) -> Vec<&str> {
+    line.split(sep)
+        .map(|c| c.trim().trim_matches('"').trim())
+        .collect()
+}
+
+/// A finite number from a cell of a line separated by `sep`: `0.0208`, `-2e-3`, and with `;` or
+/// a tab as the separator also `0,0208` (a decimal comma). `None` when it is not one.
+pub fn number(cell: &str, sep: char) -> Option<f64> {
+    let cell = cell.trim();
+    let decimal_comma = sep != ',' && cell.matches(',').count() == 1 && !cell.contains('.');
+    let parsed = if decimal_comma {
+        cell.replace(',', ".").parse::<f64>()
+    } else {
+        cell.parse::<f64>()
+    };
+    parsed.ok().filter(|v| v.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimal_comma_only_where_the_separator_is_not_a_comma() {
+        assert_eq!(separator("1,5;2,5"), Some(';'));
+        assert_eq!(cells("1,5;2,5", ';'), vec!["1,5", "2,5"]);
+        assert_eq!(number("1,5", ';'), Some(1.5));
+        assert_eq!(number("-0,0208", '\t'), Some(-0.0208));
+        assert_eq!(separator("1,5,2,5"), Some(','));
+        assert_eq!(cells("1,5,2,5", ','), vec!["1", "5", "2", "5"]);
+        assert_eq!(number("1,5", ','), None);
+        // A thousands separator with a decimal point is not a number here.
+        assert_eq!(number("1,000.5", ';'), None);
+        assert_eq!(number("1,2,3", ';'), None);
+        assert_eq!(number("inf", ';'), None);
+    }
+
+    #[test]
+    fn lines_skip_comments_blanks_and_the_byte_order_mark() {
+        let got: Vec<_> = lines("\u{feff}a;b\n\n# note\n 1;2 \n").collect();
+        assert_eq!(got, vec![(1, "a;b"), (4, "1;2")]);
+    }
+}
