@@ -98,6 +98,33 @@ fn csv_reads_every_separator_number_form_comment_and_header() {
     }
 }
 
+/// A decimal comma, as European CAM and measuring software writes it: with `;` or tabs as the
+/// separator a comma inside a number is its decimal point; with commas as separators a comma
+/// only separates (the values are written by hand).
+#[test]
+fn csv_reads_a_decimal_comma_with_semicolons_or_tabs() {
+    let text = "x;y;z;i;j;k\n\
+                1,5;-2,25;0,125;0;0;1\n\
+                1,5\t2\t3\t0\t0,6\t0,8\n\
+                1,5,2,3,0,0,1";
+    let p = parse(text, Format::Csv, None);
+    // The comma line has seven fields: refused, naming the count.
+    let e = p.unwrap_err();
+    assert!(e.message.contains("got 7"), "{}", e.message);
+    let p = parse(&text[..text.rfind('\n').unwrap()], Format::Csv, None).unwrap();
+    assert_eq!(p.len(), 2);
+    assert_eq!(p[0].tip, Vector3::new(1.5, -2.25, 0.125));
+    assert_eq!(p[1].tip, Vector3::new(1.5, 2.0, 3.0));
+    close_vec(&p[1].axis, &Vector3::new(0.0, 0.6, 0.8), 1e-15, "axis");
+    // Two commas in one field are no number.
+    let e = parse("1,5,0;2;3;0;0;1", Format::Csv, None).unwrap_err();
+    assert!(
+        e.message.contains("expected a number for x"),
+        "{}",
+        e.message
+    );
+}
+
 #[test]
 fn csv_header_only_on_the_first_line_and_numbers_without_header() {
     let p = parse("0 0 0 1 0 0\n", Format::Csv, None).unwrap();

@@ -9,8 +9,10 @@
 //! and normalised on reading. NC blocks also keep their commanded rotary angles.
 //!
 //! # CSV
-//! One point a line, `x,y,z,i,j,k`. Fields are separated by commas or semicolons (then spaces
-//! around them are ignored), or, in a line with neither, by spaces and tabs. One trailing
+//! One point a line, `x,y,z,i,j,k`. Fields are separated by semicolons, else by commas (then
+//! spaces around them are ignored), else by spaces and tabs. In a line separated by semicolons
+//! or holding a tab, a comma is a **decimal comma** (`1,5;2;3;0;0;1`, `1,5<tab>2<tab>…`), as
+//! European measuring software writes it, the same rule as [`crate::csv`]. One trailing
 //! separator is allowed (`1,2,3,0,0,1,`). Blank lines and lines starting with `#` are skipped;
 //! the first other line is a header, and skipped, when none of its fields is a number.
 //!
@@ -573,33 +575,83 @@ fn unit_axis(loc: &Loc, f: &Fields) -> Result<Vector3<f64>> {
 // ---------------------------------------------------------------------------------------------
 // CSV
 
+/// How a CSV line is separated (module docs).
+#[derive(Clone, Copy, PartialEq)]
+enum CsvSep {
+    /// `;`; a comma is a decimal comma.
+    Semicolon,
+    /// `,` (and `;` is absent).
+    Comma,
+    /// Spaces and tabs; with a tab in the line a comma is a decimal comma.
+    Blank { decimal_comma: bool },
+}
+
+impl CsvSep {
+    fn of(line: &str) -> CsvSep {
+        if line.contains(';') {
+            CsvSep::Semicolon
+        } else if line.contains('\t') {
+            CsvSep::Blank {
+                decimal_comma: true,
+            }
+        } else if line.contains(',') {
+            CsvSep::Comma
+        } else {
+            CsvSep::Blank {
+                decimal_comma: false,
+            }
+        }
+    }
+
+    fn splits(self, c: char) -> bool {
+        match self {
+            CsvSep::Semicolon => c == ';',
+            CsvSep::Comma => c == ',',
+            CsvSep::Blank { .. } => c.is_whitespace(),
+        }
+    }
+
+    /// The number in a field: with a decimal comma `1,5` is 1.5.
+    fn number(self, tok: &str) -> Option<f64> {
+        let decimal_comma = matches!(
+            self,
+            CsvSep::Semicolon
+                | CsvSep::Blank {
+                    decimal_comma: true
+                }
+        );
+        if decimal_comma && tok.contains(',') {
+            // One comma at most: `1,5` is a number, `1,5,2` is not.
+            if tok.matches(',').count() > 1 || tok.contains('.') {
+                return None;
+            }
+            number(&tok.replace(',', "."), true)
+        } else {
+            number(tok, true)
+        }
+    }
+}
+
 /// The fields of a CSV line: byte offset and trimmed text of each (module docs).
 fn csv_fields(line: &str) -> impl Iterator<Item = (usize, &str)> + '_ {
-    let delimited = line.contains([',', ';']);
+    let sep = CsvSep::of(line);
+    let delimited = !matches!(sep, CsvSep::Blank { .. });
     let mut body = line.trim_end();
     if delimited {
-        body = body
-            .strip_suffix(|c: char| c == ',' || c == ';')
-            .unwrap_or(body);
+        body = body.strip_suffix(|c: char| sep.splits(c)).unwrap_or(body);
     }
     let base = body.as_ptr() as usize;
-    body.split(move |c: char| {
-        if delimited {
-            c == ',' || c == ';'
-        } else {
-            c.is_whitespace()
-        }
-    })
-    .filter(move |p| delimited || !p.is_empty())
-    .map(move |p| {
-        let t = p.trim();
-        let off = if t.is_empty() {
-            p.as_ptr() as usize - base
-        } else {
-            t.as_ptr() as usize - base
-        };
-        (off, t)
-    })
+    body.split(move |c: char| sep.splits(c))
+        .filter(move |p| delimited || !p.is_empty())
+        .map(move |p| {
+            let t = p.trim();
+            let off = if t.is_empty() {
+                p.as_ptr() as usize - base
+            } else {
+                t.as_ptr() as usize - base
+            };
+            (off, t)
+        })
 }
 
 fn csv_line(line: &str, no: u32, started: &mut bool, out: &mut Vec<Point>) -> Result<()> {
@@ -607,9 +659,10 @@ fn csv_line(line: &str, no: u32, started: &mut bool, out: &mut Vec<Point>) -> Re
     if t.is_empty() || t.starts_with('#') {
         return Ok(());
     }
+    let sep = CsvSep::of(line);
     if !*started {
         *started = true;
-        if !csv_fields(line).any(|(_, tok)| number(tok, true).is_some()) {
+        if !csv_fields(line).any(|(_, tok)| sep.number(tok).is_some()) {
             return Ok(()); // the header
         }
     }
@@ -629,7 +682,7 @@ fn csv_line(line: &str, no: u32, started: &mut bool, out: &mut Vec<Point>) -> Re
             let count = csv_fields(line).count();
             return Err(loc.err(off, format!("expected 6 numbers x,y,z,i,j,k, got {count}")));
         }
-        f.vals[n] = number(tok, true).ok_or_else(|| {
+        f.vals[n] = sep.number(tok).ok_or_else(|| {
             loc.err(
                 off,
                 format!("expected a number for {}, got {}", NAMES[n], shown(tok)),
@@ -641,7 +694,7 @@ fn csv_line(line: &str, no: u32, started: &mut bool, out: &mut Vec<Point>) -> Re
     }
     if n < 6 {
         let mut end = line.trim_end();
-        end = end.strip_suffix([',', ';']).unwrap_or(end);
+        end = end.strip_suffix(|c: char| sep.splits(c)).unwrap_or(end);
         return Err(loc.err(
             end.len(),
             format!("expected 6 numbers x,y,z,i,j,k, got {n}"),
