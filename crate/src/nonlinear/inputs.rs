@@ -81,6 +81,14 @@ crate::inputs! {
             label: "Points of the δ(u) curve", kind: Kind::Count { min: 2, max: 100_000 },
             default: DefaultValue::Num(201.0), shown: false,
         },
+        /// The largest acceptable δ, mm: with it, the move's split into steps that keep within it.
+        pub tolerance: Option<f64> = "tolerance" optional {
+            label: "Tolerance on the tool point",
+            help: "The largest deviation of the tool point from the plane of its start and end directions you accept; the verdict says whether this move keeps within it, and how finely to split it if not. 10 µm for finishing is typical.",
+            kind: schema::positive(Quantity::SmallLength, 10.0),
+            default: DefaultValue::Num(0.01),
+            group: "Move",
+        },
     }
 }
 

@@ -80,6 +80,8 @@ export interface RenderedForm {
   setContext(ctx: Context): void;
   /** The fields of kind errorNames get these names to choose from. */
   setNames(options: { name: string; label: string }[]): void;
+  /** The rendered field of an input path (its root, its control, its reader), if rendered. */
+  field(path: string): { root: HTMLElement; input: HTMLInputElement; read(): unknown } | undefined;
 }
 
 /** Sets `value` at a dotted path of `obj`. */
@@ -200,6 +202,11 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
     },
     setNames(options) {
       for (const r of rendered) r.setOptions?.(options);
+    },
+    field(path) {
+      const r = rendered.find((x) => x.info.path === path);
+      const input = r?.root.querySelector<HTMLInputElement>('input');
+      return r && input ? { root: r.root, input, read: () => r.read() } : undefined;
     },
   };
 }
