@@ -27,7 +27,7 @@ function measured() {
 async function openCubic(page, url) {
   await page.goto(`${url}#v=2&p=cubic`);
   await page.waitForSelector('#panel-cubic[data-ready=true]');
-  await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Table 5: '));
+  await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Paper example: B/C tilting table with the errors its ball bar found'));
   await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-14.6');
 }
 

@@ -188,6 +188,8 @@ export function rankParts(parts: [string, number][], amount: (v: number) => stri
   return parts
     .filter(([, v]) => v !== 0)
     .map(([name, v]) => ({ name, label: words?.get(name)?.label, title: words?.get(name)?.title, share: Math.abs(v) / total, amount: amount(v) }))
+    // A part below a millionth of the whole is rounding, not a contributor.
+    .filter((c) => c.share > 1e-6)
     .sort((a, b) => b.share - a.share);
 }
 
