@@ -14,7 +14,7 @@ import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../u
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText, type Source } from '../ui/identify';
 import { download } from '../ui/export';
-import { errorWords, rankParts, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, rankParts, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -110,6 +110,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const engineError = engineErrors({ ...inputs.byPath, range }, machine);
 
   let lastTest: { r: CubicResult; input: CubicInput } | null = null;
+  /** Whether `lastTest` answers the inputs as they are (a verdict may be drawn from it). */
+  let fresh = false;
   let lastMap: CubicMapResult | null = null;
   let fixedRange: number | null = null; // mm, or null for automatic
 
@@ -127,6 +129,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const own = inputs.read();
     const rng = range.read();
     if (!m || !own || rng === null) {
+      fresh = false;
       verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       for (const p of [zonesPlot, mapPlot, sensPlot, fitPlot, svPlot]) stale(p.p, true);
       stale(ident, true);
@@ -138,14 +141,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const { nx, ny, csv, parameters, rtol, decision, grid, maxTilt, slopes, secondSetup, noise, ...test } = own as Record<string, unknown>;
     const input = { ...test, machine: m as Machine } as CubicInput;
     verdict.pending();
+    fresh = false; // the verdict waits for the zones of these inputs
     runTest(input).then((r) => {
       if (r === SUPERSEDED) return;
       lastTest = { r, input };
+      fresh = true;
       showTest(r, input);
       judgeTest();
       if (lastMap) showMap(lastMap);
     }, (e) => {
-      lastTest = null;
+      fresh = false;
       verdict.none('No verdict: the engine could not compute the zones (see the message at the field or over the plot).');
       engineError(e, zonesPlot.p);
       stale(sensPlot.p, true); // fed by the same computation
@@ -296,7 +301,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const judgeTest = () => {
     const tol = verdict.tolerance();
     if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
-    if (!lastTest) return;
+    if (!lastTest || !fresh) return;
     const { r } = lastTest;
     const n = r.errorNames.length;
     const zones = judged(r);
@@ -316,7 +321,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ranked = rankParts(parts, (v) => show('errLength', v), words);
     const top = ranked[0];
     const side = worst.height < 0 ? 'low' : 'high';
-    const because = top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name}, the ${top.label ?? top.name}` : '';
+    const because = top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name}, the ${lowerFirst(top.label ?? top.name)}` : '';
     verdict.show({
       status, worst: Math.abs(worst.height), tolerance: tol,
       sentence: `Worst zone ${worst.name} is ${show('errLength', Math.abs(worst.height))} ${side}, ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance${because}.`,

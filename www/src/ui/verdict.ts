@@ -203,3 +203,8 @@ export function errorWords(schema: Schema): Map<string, { label: string; title: 
   }
   return out;
 }
+
+/** "Squareness of Y to X" → "squareness of Y to X" (after "the"); "X yaw" stays. */
+export function lowerFirst(text: string): string {
+  return /^[A-Z][a-z]/.test(text) ? text[0].toLowerCase() + text.slice(1) : text;
+}
