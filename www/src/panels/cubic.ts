@@ -462,6 +462,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   machine.onChange(update);
   onUnitsChange(() => {
     if (lastTest) showTest(lastTest.r, lastTest.input);
+    judgeTest();
     if (lastMap) showMap(lastMap);
     if (lastIdent) showIdentification(lastIdent.r, lastIdent.from);
     if (lastDesign) showDesign(lastDesign);

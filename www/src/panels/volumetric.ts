@@ -528,6 +528,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   onUnitsChange(() => {
     for (const row of motionRows.values()) showFunction(row);
     if (last) showMap(last.r);
+    judgeMap();
   });
   // The titles are broken to the plots' width: drawn again when the width changes.
   let width = root.clientWidth;
