@@ -157,9 +157,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       let lo = Infinity;
       let hi = -Infinity;
       for (const x of u) if (x !== null) (lo = Math.min(lo, x)), (hi = Math.max(hi, x));
-      draw(mapU.p, fill(`Where the maximum lies, u* (Figs 3, 8)<br>from {M} = ${fmt.num(start.m)}°: u* from ${fmt.num(lo)} to ${fmt.num(hi)}`, ctx), [{
+      draw(mapU.p, fill(`Where along the move the error is largest (0 start, 1 end; the paper’s u*, Figs 3, 8)<br>from {M} = ${fmt.num(start.m)}°: from ${fmt.num(lo)} to ${fmt.num(hi)}`, ctx), [{
         type: 'heatmap', x: Array.from(g.dK), y: Array.from(g.dM), z: rows(u, g.nx, g.ny), colorscale: 'RdBu', zmid: 0.5,
-        colorbar: { title: { text: 'u*' } }, hovertemplate: fill('Δ{K} %{x}°<br>Δ{M} %{y}°<br>u* %{z:.4f}<extra></extra>', ctx),
+        colorbar: { title: { text: 'where (0–1)' } }, hovertemplate: fill('Δ{K} %{x}°<br>Δ{M} %{y}°<br>largest at %{z:.4f} of the move<extra></extra>', ctx),
       } as Data], { xaxis: axis(fill('Δ{K} (°)', ctx)), yaxis: axis(fill('Δ{M} (°)', ctx)) }, 'nonlinear-fig3-8');
     }, (e) => engineError(e, mapU.p));
 
@@ -172,9 +172,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       draw(compare.p, `The same tool path (start and end tool vectors of this move) on all 12 types; this machine: ${t}${note}`, [{
         type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => (r.max === null ? null : D(r.max))), marker: { color: colors },
         customdata: rowsOut.map((r) => [r.uAtMax === null ? '' : fmt.num(r.uAtMax), r.group, pose(r.start), pose(r.end)]),
-        hovertemplate: '%{x} (Group %{customdata[1]})<br>δ %{y:.4g} at u = %{customdata[0]}<br>axes (%{customdata[2]}) → (%{customdata[3]})<extra></extra>',
+        hovertemplate: '%{x} (the paper’s Group %{customdata[1]})<br>δ %{y:.4g}, largest at %{customdata[0]} of the move<br>axes (%{customdata[2]}) → (%{customdata[3]})<extra></extra>',
         name: 'exact δ',
-      } as Data], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
+      } as Data], { xaxis: axis('rotary-axis type (left: tool along K at zero; right: tool across K; the paper’s Groups I, II)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
     }, (e) => engineError(e, compare.p));
 
     updateIk(m as Machine, own.vector as number[], start);
@@ -228,7 +228,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['nl-v1', 'End tool vector V1', fmt.vector(r.endVector)],
     ];
     summary.replaceChildren();
-    for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
+    for (const [id, k, v] of items) summary.append(el('dt', TIPS[id] ? { title: TIPS[id] } : {}, k), el('dd', { id }, v));
     paperSummary.replaceChildren();
     for (const [id, k, v] of paperItems) paperSummary.append(el('dt', {}, k), el('dd', { id }, v));
     verdict.details('From the paper: approximations, symbols and vectors (Geng, Wu & Qiu 2018)',
@@ -282,6 +282,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   onUnitsChange(update);
   update();
 }
+
+/** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
+const TIPS: Record<string, string> = {
+  'nl-max': 'δ: the nonlinear error, the largest distance of the tool point from the plane of its start and end directions during the move (Geng et al. eqs 19–21). u: how far along the move, 0 at the start, 1 at the end (eq 10).',
+  'nl-used-length': 'L: the distance of the tool point from the axis it swings about (tool length, or the pivot distance).',
+  'nl-split': 'The move programmed as this many equal blocks of both axes, each interpolated by the control on its own.',
+};
 
 /** "of at most 1.6° on C and 0.79° on B" for steps of both axes, else of the one that moves. */
 function stepWords(stepK: number, stepM: number, ctx: { k: string; m: string }, n: number): string {

@@ -168,6 +168,8 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
     }
     const r = render(info, fieldId(prefix, info.path), ctx);
     r.root.dataset.path = info.path;
+    // The label's tooltip: the plain meaning (the engine's help), which also names the paper's symbol.
+    if (info.help) r.label.title = fill(info.help, ctx);
     set.append(r.root);
     rendered.push(r);
   }
@@ -194,6 +196,7 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
         if (r.label.textContent !== text) r.label.textContent = text;
         const hint = r.root.querySelector(':scope > .field-hint');
         if (hint && r.info.help) hint.textContent = fill(r.info.help, next);
+        if (r.info.help) r.label.title = fill(r.info.help, next);
         r.root.hidden = r.info.kinds.length > 0 && !r.info.kinds.includes(next.kind);
       }
       for (const set of groups.values()) {
