@@ -119,7 +119,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ff = String(i.rest.feedForward ?? 'none');
     const c = (i.rest.c ?? {}) as Record<string, number>;
     return `${machine.context()?.k ?? 'C'} table on ${String(i.machine.type ?? 'CBZ')}: R ${fmt.num(t.radius ?? 50)} mm, r ${fmt.num(t.offset ?? 25)} mm, F ${fmt.num(t.feed ?? 1000)} mm/min, ` +
-      `f_c ${fmt.num(c.friction ?? 10)} N·m, a ${fmt.num(c.frictionSlope ?? 500)} 1/rad, feed-forward ${ff}`;
+      `friction ${fmt.num(c.friction ?? 10)} N·m (slope ${fmt.num(c.frictionSlope ?? 500)} 1/rad), feed-forward ${ff}`;
   };
 
   /** Whether `last` answers the inputs as they are (a verdict may be drawn from it). */
@@ -228,6 +228,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       { type: 'scatterpolar', r: rp(dev), theta, mode: 'lines', name: 'with friction (eq 2)', customdata: dev.map(D), line: { color: '#d62728', width: 1.5 }, hovertemplate: hover('with friction') } as Data,
     ], {
       polar: {
+        // Room between the circle and the title for the angle label at 90° (it sat under the title).
+        domain: { x: [0, 1], y: [0, 0.92] },
         radialaxis: { range: [0, base + 3], dtick: 1, showticklabels: false, ticks: '', gridcolor: '#e6e8eb' },
         angularaxis: { direction: 'counterclockwise', rotation: 0, dtick: 30, ticksuffix: '°' },
       },
