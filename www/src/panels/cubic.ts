@@ -217,7 +217,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     stale(ident, false);
     const labels = r.rowZone.map((z, i) => `${r.zones[z].name} ${r.rowKind[i] === 'height' ? 'height' : r.rowKind[i] === 'slopeX' ? `tilt along ${machine.context().u}` : `tilt along ${machine.context().v}`}`);
     const x = labels.map((_, i) => i + 1);
-    draw(fitPlot.p, `Measured and fitted per zone<br>a tilt as the height it makes over half a zone<br>${from.name}; residual RMS ${show('errLength', r.rms)}`, [
+    draw(fitPlot.p, `Measured and fitted per zone<br>a tilt as the height it makes over half a zone<br>${from.name}<br>residual RMS ${show('errLength', r.rms)}`, [
       { x, y: Array.from(r.measured, D), type: 'bar', name: 'measured', marker: { color: '#9fb7d0' }, hovertext: labels, hovertemplate: `%{hovertext}<br>measured %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
       { x, y: Array.from(r.fitted, D), type: 'scatter', mode: 'markers', name: 'identified errors', marker: { color: '#d62728', size: 8, symbol: 'diamond' }, text: labels, hovertemplate: `%{text}<br>model %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
     ], {
@@ -356,7 +356,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['cb-frame', 'Frame', frameText(r)],
     ];
     summary.replaceChildren();
-    for (const [id, k, val] of items) summary.append(el('dt', {}, k), el('dd', { id }, val));
+    const tips: Record<string, string> = {
+      'cb-linear': 'The first-order estimate adds each error times its sensitivity k = E/ε (the height change per unit of error, Li et al. eq 15); the exact heights come from the machine’s chain without approximation.',
+      'cb-high': 'ZONE I, cut with the tool along the spindle where the workpiece was set, is the reference and is left out.',
+      'cb-frame': 'Set with every axis at zero: the workpiece coordinate system is probed with the axes at zero (Li et al.’s M_WC, eqs 10–12).',
+      'cb-rank': 'How many independent combinations of the errors the nine zone heights determine.',
+    };
+    for (const [id, k, val] of items) summary.append(el('dt', tips[id] ? { title: tips[id] } : {}, k), el('dd', { id }, val));
 
     // 3 × 3 map: rows bottom (−v) to top, columns left (−u) to right, like Fig 2.
     const R = D(colourRange());

@@ -105,9 +105,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let refined: { type: string; r: ToolpathRefined; from: Loaded } | null = null;
 
   const fileText = (text: string) => (fileMsg.textContent = text);
+  /** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
+  const tips: Record<string, string> = {
+    'Largest δ': 'δ: the nonlinear error of a segment, the largest distance of the tool tip from the motion programmed between two points of the path, when the control interpolates the rotary axes\' angles in a straight line (Geng, Wu & Qiu 2018, eqs 19–21).',
+    L: 'L: the distance of the tool tip from the axis it swings about (tool length, or the pivot distance).',
+    Flips: 'A flip: the rotary axes swing round (the other of the two solutions) between two points, the tool stopping meanwhile.',
+  };
   const setSummary = (rows: [string, string][]) => {
     summary.replaceChildren();
-    for (const [k, v] of rows) summary.append(el('dt', {}, k), el('dd', {}, v));
+    for (const [k, v] of rows) summary.append(el('dt', tips[k] ? { title: tips[k] } : {}, k), el('dd', {}, v));
   };
 
   /** Reads a file in a worker; on a bad line the message names it and the last analysis stays

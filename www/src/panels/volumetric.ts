@@ -248,7 +248,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['vm-linear', 'Exact vs first order', `the first-order (linear) deviation differs from the exact one by at most ${show('errLength', r.firstOrderGap)}, where the first-order |Δ| reaches ${show('errLength', r.firstOrderMax)} (${r.budgetSide[0]} × ${r.budgetSide[1]} points)`],
     ];
     summary.replaceChildren();
-    for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
+    const tips: Record<string, string> = {
+      'vm-worst': '|Δ|: the distance of the tool tip from where the control believes it is (the volumetric error; Tan & Lim’s ΔX, ΔY, ΔZ combined).',
+      'vm-worst-dev': 'Δx, Δy, Δz: the tool tip’s deviation along X, Y and Z (workpiece coordinates); the tilt: the angle between the actual and the commanded tool axis.',
+      'vm-linear': 'First order: the sum of each error’s own effect, as the paper’s small-angle formulas give it; exact: the chain of the machine’s axes computed without approximation.',
+    };
+    for (const [id, k, v] of items) summary.append(el('dt', tips[id] ? { title: tips[id] } : {}, k), el('dd', { id }, v));
     exportButton.removeAttribute('disabled');
 
     // |Δ| with the in-plane deviation as arrows, scaled so that the longest is 7 % of the plane.
