@@ -24,10 +24,13 @@ function inputRows(section: HTMLElement, prefix: string): [string, string][] {
     if (!(f.id.startsWith(`${prefix}-`) || motion) || !section.contains(f.control) || f.control.closest('[hidden]')) continue;
     // Of the machine's errors and error motions only those entered.
     if ((f.id.startsWith('m-errors-') || motion) && Number(f.text()) === 0) continue;
-    const label = section.querySelector(`label[for="${f.id}"]`)?.textContent?.trim() ?? f.id;
+    // A choice of names (checkboxes) is labelled by its legend.
+    const names = f.control.closest('fieldset.names');
+    const label = section.querySelector(`label[for="${f.id}"]`)?.textContent?.trim() ?? names?.querySelector('legend')?.textContent?.trim() ?? f.id;
     const c = f.control;
     let value: string;
-    if (c instanceof HTMLSelectElement) value = c.selectedOptions[0]?.textContent ?? c.value;
+    if (names) value = f.text() === '' ? 'all' : f.text().split(',').join(', ');
+    else if (c instanceof HTMLSelectElement) value = c.selectedOptions[0]?.textContent ?? c.value;
     else if (c instanceof HTMLInputElement && c.type === 'checkbox') value = c.checked ? 'yes' : 'no';
     else if (c instanceof HTMLTextAreaElement) {
       const lines = c.value.split('\n').filter((l) => l.trim() !== '').length;
@@ -44,7 +47,7 @@ function inputRows(section: HTMLElement, prefix: string): [string, string][] {
 async function enter(section: HTMLElement, prefix: string) {
   if (printing) return;
   printing = true;
-  section.querySelector(':scope > .print-inputs')?.remove();
+  section.querySelector('.print-inputs')?.remove();
   const box = el('section', { class: 'print-inputs', 'aria-hidden': 'true' });
   const dl = el('dl');
   for (const [k, v] of inputRows(section, prefix)) dl.append(el('dt', {}, k), el('dd', {}, v));
@@ -54,7 +57,10 @@ async function enter(section: HTMLElement, prefix: string) {
   if (machineRoot) for (const [k, v] of inputRows(machineRoot, 'm')) mdl.append(el('dt', {}, k), el('dd', {}, v));
   const summary = document.getElementById('machine-summary')?.textContent ?? 'Machine';
   box.append(el('h3', {}, summary), mdl, el('h3', {}, 'Inputs'), dl, el('p', {}, `Printed ${new Date().toLocaleString()} from ${location.href.split('#')[0]}`));
-  section.querySelector('.panel-grid')?.before(box);
+  // The report opens with the verdict, then says what it was computed for.
+  const verdict = section.querySelector('.results > .verdict');
+  if (verdict) verdict.after(box);
+  else section.querySelector('.panel-grid')?.before(box);
   const P = await loadPlotly();
   const graphs = [...section.querySelectorAll<Graph>('.js-plotly-plot')];
   await Promise.all(graphs.map((g) => P.relayout(g, { width: PRINT_WIDTH, height: PRINT_HEIGHT })));
@@ -63,7 +69,7 @@ async function enter(section: HTMLElement, prefix: string) {
 async function leave(section: HTMLElement) {
   if (!printing) return;
   printing = false;
-  section.querySelector(':scope > .print-inputs')?.remove();
+  section.querySelector('.print-inputs')?.remove();
   const P = await loadPlotly();
   const graphs = [...section.querySelectorAll<Graph>('.js-plotly-plot')];
   // Back to the size of the container (null removes the fixed size).
