@@ -6,6 +6,7 @@
 // headline.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import { fa, preset, T5_ISO } from '../papers.mjs';
 import { ARTIFACTS, optionValue, withPage } from './harness.mjs';
 
@@ -219,4 +220,15 @@ test('verdict: cubic, S-shape, volumetric, reversal with presets that pass and f
     assert.deepEqual(statuses, ['pass', 'fail'], 'the dent grows with the circle’s offset from C: 10 µm passes r = 25 mm, not r = 50 mm');
     await invalidTolerance(page, 'reversal');
   });
+});
+
+test('presets are named in plain words, the paper’s reference in parentheses', () => {
+  for (const panel of ['nonlinear', 'cubic', 'sshape', 'volumetric', 'reversal']) {
+    const { presets } = JSON.parse(readFileSync(new URL(`../../public/presets/${panel}.json`, import.meta.url), 'utf8'));
+    for (const { name } of presets) {
+      let outside = name;
+      for (let prev = ''; prev !== outside;) (prev = outside), (outside = outside.replace(/\([^()]*\)/g, ''));
+      assert.doesNotMatch(outside, /\b(Fig|Figs|Table|Section|eq)\b|Δθ|θ[km]|δ[xyz][BC]|[αβγ][BC][YB]|Group|u\*|Σ|M_WC|KMH/, `${panel}: "${name}"`);
+    }
+  }
 });
