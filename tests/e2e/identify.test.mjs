@@ -27,7 +27,7 @@ function measured() {
 async function openCubic(page, url) {
   await page.goto(`${url}#v=2&p=cubic`);
   await page.waitForSelector('#panel-cubic[data-ready=true]');
-  await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Table 5: '));
+  await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Paper example: B/C tilting table with the errors its ball bar found'));
   await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-14.6');
 }
 
@@ -68,8 +68,9 @@ test('cubic panel: identification from measured zones, a failed file, the design
     assert.match(await page.textContent('#cb-alert'), /No identification from cubic-bad\.csv: line 3: height "0\.0x" is not a number/);
     assert.equal(await page.$$eval('#cb-ident-table', (t) => t.length), 0);
     assert.equal(await page.evaluate(() => document.getElementById('cb-fit')?.data?.length ?? 0), 0);
-    // The alert is the first thing in the results column.
-    assert.equal(await page.$eval('#panel-cubic .results', (r) => r.firstElementChild?.id), 'cb-alert');
+    // The alert is at the top of the results column, right under the verdict.
+    assert.equal(await page.$eval('#panel-cubic .results', (r) => r.firstElementChild?.nextElementSibling?.id), 'cb-alert');
+    assert.ok(await page.$eval('#panel-cubic .results', (r) => r.firstElementChild?.classList.contains('verdict')), 'the verdict above it');
     await page.screenshot({ path: `${ARTIFACTS}identify-cubic-failed-1366.png`, fullPage: false });
 
     // The designed test exported: the download is the engine's zone table, which the engine
@@ -124,7 +125,8 @@ test('S-shape panel: a failed upload removes the last identification at once and
     assert.equal(await page.$$eval('#ss-ident-table', (t) => t.length), 0);
     assert.equal(await page.evaluate(() => document.getElementById('ss-residuals')?.data?.length ?? 0), 0);
     assert.equal(await page.evaluate(() => document.getElementById('ss-fit')?.data?.length ?? 0), 0);
-    assert.equal(await page.$eval('#panel-sshape .results', (r) => r.firstElementChild?.id), 'ss-alert');
+    assert.equal(await page.$eval('#panel-sshape .results', (r) => r.firstElementChild?.nextElementSibling?.id), 'ss-alert');
+    assert.ok(await page.$eval('#panel-sshape .results', (r) => r.firstElementChild?.classList.contains('verdict')), 'the verdict above it');
     await page.screenshot({ path: `${ARTIFACTS}identify-sshape-failed-1366.png`, fullPage: false });
   });
 });

@@ -43,7 +43,8 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
       const errorRows = machineRows.filter(([label]) => /^E_/.test(label));
       assert.deepEqual(errorRows.map(([label, value]) => [label.split(':')[0], value]), [['E_X0B', '20 µm']], `${tab}: the errors entered`);
       assert.ok(machineRows.length >= 8, `${tab}: ${machineRows.length} machine rows`);
-      const controls = await page.$$eval(`#panel-${tab} form.inputs :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
+      // The panel's inputs: its form and the tolerance at the top of its results (the verdict).
+      const controls = await page.$$eval(`#panel-${tab} :is(form.inputs, .verdict) :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
       assert.ok(rows.length >= 3 && rows.length <= controls, `${tab}: ${rows.length} input rows printed for ${controls} controls`);
       assert.equal(await page.$eval(`#panel-${tab} form.inputs`, (f) => getComputedStyle(f).display), 'none');
       assert.equal(await page.$eval('#machine', (m) => getComputedStyle(m).display), 'none', 'the Machine section itself is not printed');

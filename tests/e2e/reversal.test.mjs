@@ -31,7 +31,7 @@ test('Rotary-axis reversal panel: trace, dent, directions, fit of the sample tra
     for (const id of ['rv-polar', 'rv-radial', 'rv-time', 'rv-linear']) await waitPlotted(page, id);
 
     // Table 1, F = 1000 mm/min, r = 25 mm on the B/C tilting table: the dent is the engine's.
-    await choose(page, 'Table 1: F = 1000 mm/min, r = 25 mm');
+    await choose(page, 'Paper example: feed 1000 mm/min, circle 25 mm off the C axis');
     assert.equal(await page.inputValue('#rv-test-feed'), '1000');
     assert.equal(await page.inputValue('#m-type'), 'CBZ');
     await page.waitForFunction(() => /deep at/.test(document.getElementById('rv-sum-dent')?.textContent ?? ''));
@@ -63,7 +63,7 @@ test('Rotary-axis reversal panel: trace, dent, directions, fit of the sample tra
     await page.screenshot({ path: `${ARTIFACTS}reversal-1366.png`, fullPage: false });
 
     // r = 50 mm: the dent doubles (Fig 13), and one axis stops without reversing (Section 5.2).
-    await choose(page, 'Table 1: F = 1000 mm/min, r = 50 mm');
+    await choose(page, 'Paper example: feed 1000 mm/min, circle 50 mm off the C axis');
     await page.waitForFunction(() => /r 50 mm/.test(document.getElementById('rv-sum-came')?.textContent ?? ''));
     const shown50 = number(await page.textContent('#rv-sum-dent'));
     assert.ok(Math.abs(shown50 / shown25 - 2) < 0.1, `${shown50} / ${shown25}`);
@@ -81,7 +81,7 @@ test('Rotary-axis reversal panel: trace, dent, directions, fit of the sample tra
     await waitPlotted(page, 'rv-polar', n);
 
     // The sample trace: the fit holds the values it was simulated with (its header).
-    await choose(page, 'Table 1: F = 1000 mm/min, r = 25 mm');
+    await choose(page, 'Paper example: feed 1000 mm/min, circle 25 mm off the C axis');
     await page.click('#rv-load-sample');
     await waitPlotted(page, 'rv-residuals');
     assert.equal(await page.inputValue('#rv-csv'), SAMPLE);

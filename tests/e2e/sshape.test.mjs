@@ -34,7 +34,7 @@ test('S-shape panel: part, overcut, defects, identification of the sample file',
     // The Table 4 preset: Chanal et al.'s machine (B head, C table, L0 = 499.889 mm) with
     // E_X0B and E_A0B in the Machine section, the paper's eight errors to identify.
     let n = await waitPlotted(page, 'ss-defects');
-    const preset = await optionValue(page, 'ss-preset-menu', 'Chanal et al.\'s machine, Table 4: ');
+    const preset = await optionValue(page, 'ss-preset-menu', 'Paper example: B head / C table, B axis 29.4 µm off');
     await page.selectOption('#ss-preset-menu', preset);
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '29.4');
     await waitPlotted(page, 'ss-defects', n);

@@ -314,7 +314,7 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     await page.selectOption('#units-length', 'mm');
     await page.click('#tab-cubic');
     await waitPlotted(page, 'cb-zones');
-    await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', "Table 5: Li et al.'s machine as identified by ball bar"));
+    await page.selectOption('#cb-preset-menu', await optionValue(page, 'cb-preset-menu', 'Paper example: B/C tilting table with the errors its ball bar found (Li et al. 2021, Table 5)'));
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-0.0146');
     await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);

@@ -94,7 +94,8 @@ test('every numeric field of the machine and of every panel: bad text shows a me
       await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
       await settle(page, `#panel-${tab}`);
-      const ids = await numericFields(page, `#panel-${tab} form.inputs`);
+      // The panel's form and its tolerance at the top of the results (the verdict).
+      const ids = await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`);
       // Every panel has at least two (the toolpath panel: L and the tolerance).
       assert.ok(ids.length >= 2, `${tab}: numeric fields found`);
       for (const id of ids) {
@@ -132,7 +133,7 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       before = await settle(page, `#panel-${tab}`);
-      const ids = await numericFields(page, `#panel-${tab} form.inputs`);
+      const ids = await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`);
       // The first is refused at the field: no engine call from then on.
       await page.fill(`#${ids[0]}`, 'x');
       ({ calls } = await waitIdle(page));

@@ -64,6 +64,28 @@ pub struct NonlinearMoveResult {
     pub u: Series,
     /// δ(u), mm.
     pub delta: Series,
+    /// With a `tolerance`: the fewest equal steps of the move that keep δ within it
+    /// (`fiveaxis::nonlinear::split_within`); steps in degrees. Null without a tolerance.
+    pub split: Option<MoveSplit>,
+}
+
+/// The move split into equal steps that keep its nonlinear error within a tolerance.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct MoveSplit {
+    /// The tolerance, mm.
+    pub tolerance: f64,
+    /// Equal steps needed (1: the move is within as it is); null when more than `maxSteps`.
+    pub steps: Option<usize>,
+    /// The most steps considered.
+    pub max_steps: usize,
+    /// Step of K per block, degrees (absolute).
+    pub step_k: f64,
+    /// Step of M per block, degrees (absolute).
+    pub step_m: f64,
+    /// The largest δ of the blocks, mm.
+    pub max: f64,
 }
 
 /// One move of the machine's rotary axes from `start` to `end` (commands, degrees).
@@ -73,7 +95,22 @@ pub fn nonlinear_move(
 ) -> Result<JsValue, JsError> {
     let (c, i): (_, NonlinearMoveInput) = read(&value)?;
     let l = length(&c)?;
-    let a = nonlinear::analyze(c.move_between(&i.start, &i.end), l, i.samples).map_err(js_error)?;
+    let mv = c.move_between(&i.start, &i.end);
+    let a = nonlinear::analyze(mv, l, i.samples).map_err(js_error)?;
+    let split = match i.tolerance {
+        Some(t) => {
+            let s = nonlinear::split_within(mv, l, t).map_err(js_error)?;
+            Some(MoveSplit {
+                tolerance: s.tolerance,
+                steps: s.steps,
+                max_steps: nonlinear::MAX_SPLIT,
+                step_k: s.step_k.to_degrees(),
+                step_m: s.step_m.to_degrees(),
+                max: s.max,
+            })
+        }
+        None => None,
+    };
     output(&NonlinearMoveResult {
         rtype: c.rtype().name(),
         group: c.rtype().group(),
@@ -92,6 +129,7 @@ pub fn nonlinear_move(
         normal: a.normal,
         u: f64_array(&a.u),
         delta: f64_array(&a.delta),
+        split,
     })
 }
 

@@ -186,8 +186,8 @@ crate::inputs! {
         },
         /// With the workpiece transform `M_WC` (eqs 10–12): set up with every axis at zero.
         pub transform: bool = "transform" optional {
-            label: "Workpiece set at zero (M_WC, eqs 10–12)",
-            help: "On: the workpiece coordinate system is set with every axis at zero, as a probe would set it, so a zone cut there is exact. Off: the workpiece frame is the erroneous table frame (the conventional model).",
+            label: "Workpiece set with every axis at zero",
+            help: "On: the workpiece coordinate system is set with every axis at zero, as a probe would set it, so a zone cut there is exact. Off: the workpiece frame is the erroneous table frame (the conventional model). Li et al.'s M_WC, eqs 10–12.",
             kind: Kind::Flag,
             default: DefaultValue::Flag(true),
             group: "Model",

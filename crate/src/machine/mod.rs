@@ -255,8 +255,8 @@ crate::inputs! {
         },
         /// The rotary-axis type KMH.
         pub rotary_type: RotaryType = "type" optional {
-            label: "Rotary axes and spindle direction (type KMH)",
-            help: "K: the rotary axis nearer the workpiece, M: the one nearer the tool, H: the spindle direction with both at zero. A/C trunnion with a vertical spindle: CAZ; B/C tilting table: CBZ.",
+            label: "Rotary axes and spindle direction",
+            help: "The type code KMH of Geng et al. K: the rotary axis nearer the workpiece, M: the one nearer the tool, H: the spindle direction with both at zero. A/C trunnion with a vertical spindle: CAZ; B/C tilting table: CBZ.",
             kind: Kind::Choice(&RotaryType::CHOICES),
             default: DefaultValue::Str("CBZ"),
             group: "Machine",

@@ -81,6 +81,14 @@ crate::inputs! {
             label: "Points of the δ(u) curve", kind: Kind::Count { min: 2, max: 100_000 },
             default: DefaultValue::Num(201.0), shown: false,
         },
+        /// The largest acceptable δ, mm: with it, the move's split into steps that keep within it.
+        pub tolerance: Option<f64> = "tolerance" optional {
+            label: "Tolerance on the tool point",
+            help: "The largest nonlinear error of the move you accept; the verdict says how finely to split the move if it is above. 10 µm is typical for finishing.",
+            kind: schema::positive(Quantity::SmallLength, 10.0),
+            default: DefaultValue::Num(0.01),
+            group: "Move",
+        },
     }
 }
 
@@ -123,8 +131,8 @@ crate::inputs! {
         },
         /// Ratios Δθk/Δθm.
         pub ratios: Vec<f64> = "ratios" {
-            label: "Increment ratios Δθk/Δθm (Fig 7)",
-            help: "One curve per ratio of the two axes' increments, comma separated.",
+            label: "Ratios of the two axes' increments, {K} to {M}",
+            help: "One curve per ratio, comma separated (the paper's Δθk/Δθm, Fig 7).",
             kind: Kind::NumberList { quantity: Quantity::Number, min: -100.0, max: 100.0, min_len: 1, max_len: 8, nonzero: true },
             default: DefaultValue::Str("0.5, 2, 3, 5"),
             group: "Sweeps",

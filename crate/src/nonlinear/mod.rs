@@ -687,6 +687,94 @@ pub fn analyze(mv: Move, length: f64, samples: usize) -> Result<MoveAnalysis> {
     })
 }
 
+/// Most pieces [`split_within`] considers; a move that needs more is reported without a count.
+pub const MAX_SPLIT: usize = 10_000;
+
+/// How finely a move must be programmed for its nonlinear error to stay within a tolerance.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
+pub struct Split {
+    /// The tolerance asked for, mm.
+    pub tolerance: f64,
+    /// The number of equal steps `n` (1: the move as it is is within); `None` when even
+    /// [`MAX_SPLIT`] steps are not.
+    pub steps: Option<usize>,
+    /// `|Δθk|/n`, the step of K, radians (of `MAX_SPLIT` steps when `steps` is `None`).
+    pub step_k: f64,
+    /// `|Δθm|/n`, the step of M, radians.
+    pub step_m: f64,
+    /// The largest δ of the `n` pieces, mm (`≤ tolerance` when `steps` is given).
+    pub max: f64,
+}
+
+/// The fewest equal steps that keep a move's nonlinear error within `tolerance` (mm) at the
+/// tool point `length` (mm) from the pivot (Geng, Wu & Qiu 2018, Section 5: "the error can be
+/// reduced by interpolating more points"; eqs 19-21 for each piece).
+///
+/// The move from `(θk0, θm0)` to `(θk1, θm1)` is programmed as `n` blocks, block `i` from the
+/// pose at `u = i/n` to the pose at `u = (i+1)/n` (eq 10), each interpolated linearly by the
+/// control and so measured against the plane of its own end orientations:
+///
+/// ```text
+/// δn = max over i of L · max over u of |P_i(u) · n_i|,   n = min { n ≥ 1 : δn ≤ tolerance }
+/// ```
+///
+/// `δn` falls about as `1/n²` (a block's error is second order in its increments, eq 25), so `n`
+/// is found as in [`crate::toolpath::refine`]: doubling from 2 until within, then bisection
+/// (`O(log n)` trials of `n` peaks each); for a move of K alone all blocks are alike and `δn` is
+/// strictly decreasing, so this `n` is exactly the smallest. Steps are reported as `|Δθ|/n`,
+/// radians. Errors: a `tolerance` or `length` not positive and finite.
+pub fn split_within(mv: Move, length: f64, tolerance: f64) -> Result<Split> {
+    mv.validate()?;
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    check_positive("tolerance", tolerance, MAX_LENGTH_MM, "mm")?;
+    let worst = |n: usize| -> f64 {
+        (0..n)
+            .map(|i| {
+                let a = mv.pose_at(i as f64 / n as f64);
+                let b = mv.pose_at((i + 1) as f64 / n as f64);
+                Deviation::new(Move::new(mv.rtype, a, b)).peak().value * length
+            })
+            .fold(0.0, f64::max)
+    };
+    let (dk, dm) = mv.increments();
+    let split = |n: usize, max: f64, found: bool| Split {
+        tolerance,
+        steps: found.then_some(n),
+        step_k: dk.abs() / n as f64,
+        step_m: dm.abs() / n as f64,
+        max,
+    };
+    let first = worst(1);
+    if first <= tolerance {
+        return Ok(split(1, first, true));
+    }
+    // Doubling: `lo` is known to be above the tolerance, `hi` within it.
+    let mut lo = 1;
+    let mut hi = 2;
+    let mut at_hi = worst(hi);
+    while at_hi > tolerance {
+        if hi >= MAX_SPLIT {
+            return Ok(split(MAX_SPLIT, at_hi, false));
+        }
+        lo = hi;
+        hi = (2 * hi).min(MAX_SPLIT);
+        at_hi = worst(hi);
+    }
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        let at = worst(mid);
+        if at <= tolerance {
+            hi = mid;
+            at_hi = at;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(split(hi, at_hi, true))
+}
+
 /// The exact maximum error (fraction of `L`) of many moves of one type, for bulk use:
 /// `moves` holds `[θk0, θm0, θk1, θm1]` per move (radians), the result one value per move.
 pub fn max_errors(rtype: RotaryType, moves: &[[f64; 4]]) -> Vec<f64> {

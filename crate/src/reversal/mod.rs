@@ -230,7 +230,7 @@ crate::inputs! {
         },
         /// Coulomb friction f_c, N·m.
         pub friction: f64 = "friction" optional {
-            label: "Coulomb friction torque f_c (N·m)",
+            label: "Coulomb friction torque (N·m)",
             help: "Eq 2's f_c: the friction torque far from a reversal. 0: no friction.",
             kind: schema::Kind::Number { quantity: Quantity::Number, min: 0.0, max: 1e5, exclusive_min: false },
             default: DefaultValue::Num(10.0),

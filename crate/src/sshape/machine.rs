@@ -86,7 +86,7 @@ crate::choices! {
         },
         /// All axes at zero (eq 14 as printed).
         AxesZero = "axesZero" {
-            label: "All axes at zero (eq 14 as printed)",
+            label: "All axes at zero (as the paper prints it)",
             help: "The defect with every axis at zero is subtracted, as eq 14 is printed.",
         },
     }
@@ -97,7 +97,7 @@ crate::choices! {
     pub enum DefectPoint {
         /// The tool tip (eq 14).
         Tip = "tip" {
-            label: "Tool tip (eq 14)",
+            label: "Tool tip",
             help: "The defect is the tool tip's displacement along the normal, as in eq 14.",
         },
         /// The point of the tool axis at the measurement height.

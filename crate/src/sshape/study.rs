@@ -64,8 +64,8 @@ crate::inputs! {
         },
         /// Reference pose of eq 14.
         pub reference: DefectReference = "reference" optional {
-            label: "Defect subtracted (eq 14)",
-            help: "The defect at this pose is subtracted: where the work offset was set.",
+            label: "Defect subtracted",
+            help: "The defect at this pose is subtracted: where the work offset was set (Chanal et al.'s eq 14).",
             kind: Kind::Choice(DefectReference::CHOICES),
             default: DefaultValue::Str("workOrigin"),
             group: "Model",

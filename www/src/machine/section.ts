@@ -278,7 +278,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
     const moving = [...motionFields.values()].filter((e) => onMachine(e.def) && given(e)).length;
     summary.textContent = `Machine: ${ctx.kind}, type ${r.k}${r.m}${r.home} (${r.k}: K, ${r.m}: M, spindle along ${r.home}); ${entered.length ? `${entered.length} error${entered.length === 1 ? '' : 's'} entered` : 'no errors entered'}` +
       (moving ? `; ${moving} error motion${moving === 1 ? '' : 's'} entered (Volumetric tab)` : '');
-    roles.textContent = `${r.axes.filter((a) => a.motion === 'rotary').map((a) => a.description).join('. ')}. Group ${r.group}. ${r.swingLength === null ? '' : `Pivot to tool tip (the nonlinear study's L): ${fmt.num(r.swingLength)} mm.`}`;
+    roles.textContent = `${r.axes.filter((a) => a.motion === 'rotary').map((a) => a.description).join('. ')}. Tool ${r.group === 'I' ? `along ${r.k}’s axis` : `across ${r.k}’s axis`} with both at zero (Geng et al.’s Group ${r.group}). ${r.swingLength === null ? '' : `Pivot to tool tip (the nonlinear study's L): ${fmt.num(r.swingLength)} mm.`}`;
   };
 
   const runSchematic = channel('machineSchematic');

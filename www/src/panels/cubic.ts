@@ -14,6 +14,7 @@ import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../u
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText, type Source } from '../ui/identify';
 import { download } from '../ui/export';
+import { errorWords, lowerFirst, rankParts, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -42,16 +43,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     'Cubic-machining test: 3 × 3 zone heights',
     'A ball-end mill (Ø6 mm) cuts the nine 16 × 16 mm zones of a 48 × 48 mm face square to the spindle, with the ' +
       'rotary axes standing still in each zone: ZONE I with the tool along the spindle, the others tilted 30° towards ' +
-      'the centre (Tables 1, 2). The machine’s geometric errors (above) make each zone come out higher (material left, ' +
-      'positive) or lower than nominal. Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), eqs 1–15, on ' +
-      'any machine.',
+      'the centre. The machine’s geometric errors (above) make each zone come out higher (material left, ' +
+      'positive) or lower than nominal; the verdict compares the worst zone with your tolerance and names the errors behind it. ' +
+      'After Li, Sato, Shirase & Sakamoto, Precision Engineering 71 (2021), on any machine.',
   );
 
   // ---- inputs: the shown fields of the cubic exports; the colour scale is the page's own
   form.append(presetPicker('cubic', 'cb', machine));
   const inputs = renderFields(cubicPanel.exports.flatMap((n) => schema.exports[n]), 'cb', form, machine.context());
   const range = numberField({ id: 'cb-range', label: 'Colour scale ± (0: automatic)', quantity: 'errLength', value: 0, min: 0, max: 50,
-    hint: 'Fig 16 uses ±0.01 mm.' });
+    hint: 'The paper’s Fig 16 uses ±0.01 mm.' });
   (inputs.groups.get('Height map') ?? form).append(range.root);
   const fileLabel = el('label', { class: 'import', for: 'cb-file' }, 'Choose a file ');
   const file = el('input', { id: 'cb-file', type: 'file', accept: '.csv,text/csv,text/plain' });
@@ -63,6 +64,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   if (csvArea) csvArea.placeholder = 'zone,height_um,slope_x,slope_y\nI,0,,\nII-1,-5.4,0.00002,0\n…';
 
   // ---- outputs
+  const words = errorWords(schema);
+  const verdict = verdictBox({
+    prefix: 'cb',
+    tolerance: { label: 'Tolerance on a zone’s height', value: 0.01, hint: 'The largest height error of a zone you accept (material left or missing, from nominal).' },
+    onTolerance: () => judgeTest(),
+  });
   const summary = el('dl', { class: 'summary', id: 'cb-summary', 'aria-live': 'polite' });
   const plot = (id: string, wide = false, tall = false) => {
     const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
@@ -86,7 +93,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const svPlot = plot('cb-design-sv', true);
   const designPlots = el('div', { class: 'plots' });
   designPlots.append(svPlot.wrap);
-  results.append(alert, summary, plots,
+  results.append(verdict.root, alert, summary, plots,
     el('h3', {}, 'Identification from measured zones'), ident, identPlots,
     el('h3', {}, 'Test designer: a test that can tell the errors apart'), designOut, designPlots);
 
@@ -103,6 +110,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const engineError = engineErrors({ ...inputs.byPath, range }, machine);
 
   let lastTest: { r: CubicResult; input: CubicInput } | null = null;
+  /** Whether `lastTest` answers the inputs as they are (a verdict may be drawn from it). */
+  let fresh = false;
   let lastMap: CubicMapResult | null = null;
   let fixedRange: number | null = null; // mm, or null for automatic
 
@@ -120,6 +129,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const own = inputs.read();
     const rng = range.read();
     if (!m || !own || rng === null) {
+      fresh = false;
+      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       for (const p of [zonesPlot, mapPlot, sensPlot, fitPlot, svPlot]) stale(p.p, true);
       stale(ident, true);
       stale(designOut, true);
@@ -129,12 +140,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     fixedRange = rng ? rng : null;
     const { nx, ny, csv, parameters, rtol, decision, grid, maxTilt, slopes, secondSetup, noise, ...test } = own as Record<string, unknown>;
     const input = { ...test, machine: m as Machine } as CubicInput;
+    verdict.pending();
+    fresh = false; // the verdict waits for the zones of these inputs
     runTest(input).then((r) => {
       if (r === SUPERSEDED) return;
       lastTest = { r, input };
+      fresh = true;
       showTest(r, input);
+      judgeTest();
       if (lastMap) showMap(lastMap);
     }, (e) => {
+      fresh = false;
+      verdict.none('No verdict: the engine could not compute the zones (see the message at the field or over the plot).');
       engineError(e, zonesPlot.p);
       stale(sensPlot.p, true); // fed by the same computation
     });
@@ -200,7 +217,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     stale(ident, false);
     const labels = r.rowZone.map((z, i) => `${r.zones[z].name} ${r.rowKind[i] === 'height' ? 'height' : r.rowKind[i] === 'slopeX' ? `tilt along ${machine.context().u}` : `tilt along ${machine.context().v}`}`);
     const x = labels.map((_, i) => i + 1);
-    draw(fitPlot.p, `Measured and fitted per zone<br>a tilt as the height it makes over half a zone<br>${from.name}; residual RMS ${show('errLength', r.rms)}`, [
+    draw(fitPlot.p, `Measured and fitted per zone<br>a tilt as the height it makes over half a zone<br>${from.name}<br>residual RMS ${show('errLength', r.rms)}`, [
       { x, y: Array.from(r.measured, D), type: 'bar', name: 'measured', marker: { color: '#9fb7d0' }, hovertext: labels, hovertemplate: `%{hovertext}<br>measured %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
       { x, y: Array.from(r.fitted, D), type: 'scatter', mode: 'markers', name: 'identified errors', marker: { color: '#d62728', size: 8, symbol: 'diamond' }, text: labels, hovertemplate: `%{text}<br>model %{y:.4g} ${unitDef('errLength').label}<extra></extra>` },
     ], {
@@ -275,7 +292,43 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   const frameText = (r: CubicResult) =>
-    `${r.transform ? 'workpiece set at zero (M_WC)' : 'workpiece frame = table frame'}, ${REFERENCE_SHORT[r.reference] ?? r.reference}`;
+    `${r.transform ? 'workpiece set with every axis at zero' : 'workpiece frame = table frame'}, ${REFERENCE_SHORT[r.reference] ?? r.reference}`;
+
+  /** The zones judged: all but ZONE I when it is the reference (its height 0 by definition). */
+  const judged = (r: CubicResult) => r.zones.filter((z) => !(z.name === 'I' && (r.reference !== 'workpiece' || Math.abs(z.height) < ROUND_OFF)));
+
+  /** The verdict: the worst zone's height (the engine's) against the tolerance, the errors behind it. */
+  const judgeTest = () => {
+    const tol = verdict.tolerance();
+    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (!lastTest || !fresh) return;
+    const { r } = lastTest;
+    const n = r.errorNames.length;
+    const zones = judged(r);
+    const worst = zones.reduce((a, z) => (Math.abs(z.height) > Math.abs(a.height) ? z : a), zones[0]);
+    const zi = r.zones.indexOf(worst);
+    const parts: [string, number][] = r.errorNames.map((name, e) => [name, r.single[zi * n + e]]);
+    const anyError = Array.from(r.single).some((v) => v !== 0);
+    const status = Math.abs(worst.height) <= tol ? 'pass' : 'fail';
+    const t = show('errLength', tol);
+    if (!anyError && Math.abs(worst.height) < ROUND_OFF) {
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, sentence: `No errors entered: every zone at 0 (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });
+    }
+    if (Math.abs(worst.height) < ROUND_OFF) {
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol,
+        sentence: `Every zone at 0: the errors entered change no zone’s height (${r.visibility.invisible.join(', ') || 'they cancel'}), within the ${t} tolerance.` });
+    }
+    const ranked = rankParts(parts, (v) => show('errLength', v), words);
+    const top = ranked[0];
+    const side = worst.height < 0 ? 'low' : 'high';
+    const because = top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name}, the ${lowerFirst(top.label ?? top.name)}` : '';
+    verdict.show({
+      status, worst: Math.abs(worst.height), tolerance: tol,
+      sentence: `Worst zone ${worst.name} is ${show('errLength', Math.abs(worst.height))} ${side}, ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance${because}.`,
+      contributors: ranked,
+      contributorsOf: `each error alone on zone ${worst.name}, as a share of the sum of their sizes`,
+    });
+  };
 
   const showTest = (r: CubicResult, input: CubicInput) => {
     const ctx = machine.context();
@@ -285,20 +338,31 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const heights = r.zones.map((z) => z.height);
     const lo = Math.min(...heights);
     const hi = Math.max(...heights);
+    // ZONE I is left out of "highest / lowest" when it is the reference (0 by definition).
+    const others = judged(r);
+    const oh = others.map((z) => z.height);
+    const highest = others[oh.indexOf(Math.max(...oh))];
+    const lowest = others[oh.indexOf(Math.min(...oh))];
     const worst = Math.max(...r.zones.map((z) => Math.abs(z.height - z.linearHeight)));
     const v = r.visibility;
     const alike = v.alike.map((g) => g.map((x) => x.name).join(' ~ ')).join('; ');
     const items: [string, string, string][] = [
       ['cb-span', 'Zone heights', `${show('errLength', lo)} to ${show('errLength', hi)} (spread ${show('errLength', hi - lo)})`],
-      ['cb-high', 'Highest / lowest zone', hi - lo < ROUND_OFF ? 'all zones at the same height' : `${r.zones[heights.indexOf(hi)].name} / ${r.zones[heights.indexOf(lo)].name}`],
-      ['cb-linear', 'Exact vs first order Σ k·ε', `differ by at most ${show('errLength', worst)}`],
+      ['cb-high', 'Highest / lowest zone', hi - lo < ROUND_OFF ? 'all zones at the same height' : `${highest.name} / ${lowest.name}`],
+      ['cb-linear', 'Exact vs first-order estimate (sensitivity × error, summed)', `differ by at most ${show('errLength', worst)}`],
       ['cb-blind', 'Errors this test cannot see', v.invisible.length ? `${v.invisible.join(', ')} (no zone height changes${v.tiltOnly.length ? `; ${v.tiltOnly.join(', ')} only tilt zones` : ''})` : 'none'],
       ['cb-alike', 'Errors it cannot tell apart', alike ? `${alike} (their height changes are proportional)` : 'none'],
       ['cb-rank', 'Independent combinations the heights give', `${v.rank} of ${r.errorNames.length} errors`],
       ['cb-frame', 'Frame', frameText(r)],
     ];
     summary.replaceChildren();
-    for (const [id, k, val] of items) summary.append(el('dt', {}, k), el('dd', { id }, val));
+    const tips: Record<string, string> = {
+      'cb-linear': 'The first-order estimate adds each error times its sensitivity k = E/ε (the height change per unit of error, Li et al. eq 15); the exact heights come from the machine’s chain without approximation.',
+      'cb-high': 'ZONE I, cut with the tool along the spindle where the workpiece was set, is the reference and is left out.',
+      'cb-frame': 'Set with every axis at zero: the workpiece coordinate system is probed with the axes at zero (Li et al.’s M_WC, eqs 10–12).',
+      'cb-rank': 'How many independent combinations of the errors the nine zone heights determine.',
+    };
+    for (const [id, k, val] of items) summary.append(el('dt', tips[id] ? { title: tips[id] } : {}, k), el('dd', { id }, val));
 
     // 3 × 3 map: rows bottom (−v) to top, columns left (−u) to right, like Fig 2.
     const R = D(colourRange());
@@ -404,6 +468,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   machine.onChange(update);
   onUnitsChange(() => {
     if (lastTest) showTest(lastTest.r, lastTest.input);
+    judgeTest();
     if (lastMap) showMap(lastMap);
     if (lastIdent) showIdentification(lastIdent.r, lastIdent.from);
     if (lastDesign) showDesign(lastDesign);

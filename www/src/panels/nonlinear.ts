@@ -11,6 +11,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
+import { verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -28,10 +29,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const { form, results } = panelShell(
     root,
     'Nonlinear error of rotary-axis interpolation',
-    'When both rotary axes move together with linearly interpolated angles, the tool does not stay in the plane ' +
-      'through its start and end orientations. δ is the largest distance of the tool point (at length L from the ' +
-      'pivot) from that plane. The machine (its rotary-axis type and pivot) is the one above. ' +
-      'Geng, Wu & Qiu, Math. Problems in Engineering 2018, eqs 4–31.',
+    'When both rotary axes move together, the control interpolates their angles in a straight line, so the tool ' +
+      'does not turn in the plane of its start and end directions. The nonlinear error δ is the largest distance of ' +
+      'the tool point (at length L from the pivot) from that plane; splitting the move into shorter steps reduces ' +
+      'it. The machine (its rotary-axis type and pivot) is the one above. ' +
+      'After Geng, Wu & Qiu, Math. Problems in Engineering 2018.',
   );
 
   // ---- inputs: the shown fields of the panel's exports (the machine is the Machine section's)
@@ -43,7 +45,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   ikSet?.append(el('p', { class: 'field-hint' }, 'Workpiece coordinates; the solution nearest the start pose is marked, within the machine\'s travel.'), ikOut);
 
   // ---- outputs
+  const tolField = inputs.field('tolerance');
+  if (!tolField) throw new Error('the engine declares no tolerance for nonlinearMove');
+  const verdict = verdictBox({ prefix: 'nl', tolerance: { adopt: tolField }, onTolerance: () => update() });
   const summary = el('dl', { class: 'summary', id: 'nl-summary', 'aria-live': 'polite' });
+  const paperSummary = el('dl', { class: 'summary', id: 'nl-paper-summary' });
   const plot = (id: string, wide = false) => {
     const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
     const p = el('div', { class: 'plot', id });
@@ -58,7 +64,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const compare = plot('nl-compare', true);
   const plots = el('div', { class: 'plots' });
   plots.append(curve.wrap, sweepK.wrap, sweepM.wrap, mapMax.wrap, mapU.wrap, compare.wrap);
-  results.append(summary, plots);
+  results.append(verdict.root, summary, plots);
 
   // ---- computation, one channel per output so that bursts of edits coalesce
   const runMove = channel('nonlinearMove');
@@ -82,6 +88,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) {
+      verdict.none(verdict.tolerance() === null
+        ? 'No verdict: enter a tolerance greater than 0 (see the message at the field).'
+        : 'No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       // Messages are at the fields; the plots no longer show what the inputs ask for.
       for (const p of allPlots) stale(p.p, true);
       stale(ikOut, true);
@@ -99,10 +108,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const dM = end.m - start.m;
     const base = { machine: m as Machine, ...(length === undefined ? {} : { length }) };
 
-    runMove({ ...base, start, end }).then((r) => {
+    verdict.pending();
+    runMove({ ...base, start, end, tolerance: own.tolerance as number }).then((r) => {
       if (r === SUPERSEDED) return;
       showMove(r, t, start, end);
-    }, (e) => engineError(e, curve.p));
+    }, (e) => {
+      engineError(e, curve.p);
+      verdict.none('No verdict: the engine could not compute this move (see the message at the field or over the plot).');
+    });
 
     runSweepK({ ...base, thetaM: start.m, dK, dM, from: -180, to: 180, n: 73 }).then((r) => {
       if (r === SUPERSEDED) return;
@@ -144,9 +157,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       let lo = Infinity;
       let hi = -Infinity;
       for (const x of u) if (x !== null) (lo = Math.min(lo, x)), (hi = Math.max(hi, x));
-      draw(mapU.p, fill(`Where the maximum lies, u* (Figs 3, 8)<br>from {M} = ${fmt.num(start.m)}°: u* from ${fmt.num(lo)} to ${fmt.num(hi)}`, ctx), [{
+      draw(mapU.p, fill(`Where along the move the error is largest (0 start, 1 end; the paper’s u*, Figs 3, 8)<br>from {M} = ${fmt.num(start.m)}°: from ${fmt.num(lo)} to ${fmt.num(hi)}`, ctx), [{
         type: 'heatmap', x: Array.from(g.dK), y: Array.from(g.dM), z: rows(u, g.nx, g.ny), colorscale: 'RdBu', zmid: 0.5,
-        colorbar: { title: { text: 'u*' } }, hovertemplate: fill('Δ{K} %{x}°<br>Δ{M} %{y}°<br>u* %{z:.4f}<extra></extra>', ctx),
+        colorbar: { title: { text: 'where (0–1)' } }, hovertemplate: fill('Δ{K} %{x}°<br>Δ{M} %{y}°<br>largest at %{z:.4f} of the move<extra></extra>', ctx),
       } as Data], { xaxis: axis(fill('Δ{K} (°)', ctx)), yaxis: axis(fill('Δ{M} (°)', ctx)) }, 'nonlinear-fig3-8');
     }, (e) => engineError(e, mapU.p));
 
@@ -159,9 +172,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       draw(compare.p, `The same tool path (start and end tool vectors of this move) on all 12 types; this machine: ${t}${note}`, [{
         type: 'bar', x: rowsOut.map((r) => r.type), y: rowsOut.map((r) => (r.max === null ? null : D(r.max))), marker: { color: colors },
         customdata: rowsOut.map((r) => [r.uAtMax === null ? '' : fmt.num(r.uAtMax), r.group, pose(r.start), pose(r.end)]),
-        hovertemplate: '%{x} (Group %{customdata[1]})<br>δ %{y:.4g} at u = %{customdata[0]}<br>axes (%{customdata[2]}) → (%{customdata[3]})<extra></extra>',
+        hovertemplate: '%{x} (the paper’s Group %{customdata[1]})<br>δ %{y:.4g}, largest at %{customdata[0]} of the move<br>axes (%{customdata[2]}) → (%{customdata[3]})<extra></extra>',
         name: 'exact δ',
-      } as Data], { xaxis: axis('rotary-axis type (Group I left, Group II right)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
+      } as Data], { xaxis: axis('rotary-axis type (left: tool along K at zero; right: tool across K; the paper’s Groups I, II)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }), showlegend: false }, 'nonlinear-types');
     }, (e) => engineError(e, compare.p));
 
     updateIk(m as Machine, own.vector as number[], start);
@@ -199,22 +212,31 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     note(curve.p, null);
     const eq = r.group === 'I' ? 'eq 25' : 'eq 30';
     const items: [string, string, string][] = [
-      ['nl-max', 'Exact maximum δ', `${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax, 5)}`],
-      ['nl-approx', `u = 0.5 approximation (${eq})`, r.approx === null ? 'undefined (no unique plane)' : show('errLength', r.approx)],
+      ['nl-max', 'Largest deviation δ of the tool point', `${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax, 5)} (${fmt.percent(r.uAtMax)} of the way)`],
+      ['nl-used-length', 'L (tool point from its pivot)', `${fmt.num(L)} mm`],
+      ['nl-sweep', 'Angle between start and end tool', fmt.degrees(r.sweepAngle, 5)],
+      ['nl-split', 'Steps that keep within the tolerance', splitText(r, ctx)],
+    ];
+    const paperItems: [string, string, string][] = [
+      ['nl-approx', `u = 0.5 approximation (${eq}, type Group ${r.group})`, r.approx === null ? 'undefined (no unique plane)' : show('errLength', r.approx)],
       ['nl-shortfall', 'Approximation falls short by', r.approxShortfall === null ? '—' : `${fmt.percent(r.approxShortfall)} (${show('errLength', r.max - (r.approx ?? 0))})`],
       ['nl-eq26', 'Closed form at the pole (eq 26)', r.closedForm === null
         ? `not applicable: the move does not start at θm = ${r.group === 'I' ? '0°' : '±90°'}`
         : show('errLength', r.closedForm)],
-      ['nl-used-length', 'L (tool point from its pivot)', `${fmt.num(L)} mm`],
-      ['nl-sweep', 'Angle between start and end tool', fmt.degrees(r.sweepAngle, 5)],
       ['nl-ref', 'Reference', referenceText(r)],
       ['nl-v0', 'Start tool vector V0', fmt.vector(r.startVector)],
       ['nl-v1', 'End tool vector V1', fmt.vector(r.endVector)],
     ];
     summary.replaceChildren();
-    for (const [id, k, v] of items) {
-      summary.append(el('dt', {}, k), el('dd', { id }, v));
-    }
+    for (const [id, k, v] of items) summary.append(el('dt', TIPS[id] ? { title: TIPS[id] } : {}, k), el('dd', { id }, v));
+    paperSummary.replaceChildren();
+    for (const [id, k, v] of paperItems) paperSummary.append(el('dt', {}, k), el('dd', { id }, v));
+    verdict.details('From the paper: approximations, symbols and vectors (Geng, Wu & Qiu 2018)',
+      el('p', { class: 'field-hint' }, 'u runs from 0 at the start of the move to 1 at its end (eq 10); u* is where δ is largest. ' +
+        'The paper estimates δ at u = 0.5 (eq 25 for Group I types, whose tool is along K at M = 0; eq 30 for Group II) and gives a closed form ' +
+        'for moves starting at the pole (eq 26). V0 and V1 are the start and end tool directions; their plane is the reference (eqs 19–21).'),
+      paperSummary);
+    judgeMove(r, ctx);
     const data: Data[] = [
       { x: Array.from(r.u), y: Array.from(r.delta, D), type: 'scatter', mode: 'lines', name: 'δ(u)', line: { color: '#1f77b4', width: 2 } },
       { x: [r.uAtMax], y: [D(r.max)], type: 'scatter', mode: 'markers', name: `maximum ${show('errLength', r.max)} at u = ${fmt.num(r.uAtMax)}`, marker: { color: '#d62728', size: 10, symbol: 'diamond' } },
@@ -229,11 +251,59 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       { xaxis: axis('interpolation parameter u', { range: [0, 1] }), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero' }) }, 'nonlinear-curve');
   };
 
+  /** The verdict: the engine's δ and split against the tolerance. */
+  const judgeMove = (r: NonlinearMoveResult, ctx: { k: string; m: string }) => {
+    const sp = r.split;
+    if (!sp) return verdict.none('No verdict: no tolerance was given.');
+    const head = `Nonlinear error ${show('errLength', r.max)} at L = ${fmt.num(r.length)} mm`;
+    const tol = show('errLength', sp.tolerance);
+    if (r.max <= sp.tolerance) {
+      verdict.show({
+        status: 'pass', worst: r.max, tolerance: sp.tolerance,
+        sentence: r.max < 1e-12
+          ? `No nonlinear error: the tool turns in the plane of its start and end directions (within the ${tol} tolerance).`
+          : `${head}: within the ${tol} tolerance as one move.`,
+      });
+      return;
+    }
+    const steps = (n: number) => stepWords(sp.stepK, sp.stepM, ctx, n);
+    verdict.show({
+      status: 'fail', worst: r.max, tolerance: sp.tolerance,
+      sentence: sp.steps === null
+        ? `${head}, above the ${tol} tolerance: even ${sp.maxSteps} equal steps leave ${show('errLength', sp.max)}; shorten the move or choose another path.`
+        : `${head}, above the ${tol} tolerance: split the move into ${sp.steps} equal steps ${steps(sp.steps)} to stay under it.`,
+      notes: sp.steps === null ? [] : [`With ${sp.steps} steps the largest error of a step is ${show('errLength', sp.max)}.`],
+    });
+  };
+
   // 'input' fires on every edit of a text field and on every choice in a select.
   form.addEventListener('input', update);
   machine.onChange(update);
   onUnitsChange(update);
   update();
+}
+
+/** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
+const TIPS: Record<string, string> = {
+  'nl-max': 'δ: the nonlinear error, the largest distance of the tool point from the plane of its start and end directions during the move (Geng et al. eqs 19–21). u: how far along the move, 0 at the start, 1 at the end (eq 10).',
+  'nl-used-length': 'L: the distance of the tool point from the axis it swings about (tool length, or the pivot distance).',
+  'nl-split': 'The move programmed as this many equal blocks of both axes, each interpolated by the control on its own.',
+};
+
+/** "of at most 1.6° on C and 0.79° on B" for steps of both axes, else of the one that moves. */
+function stepWords(stepK: number, stepM: number, ctx: { k: string; m: string }, n: number): string {
+  const parts: string[] = [];
+  if (stepK > 0) parts.push(`${fmt.num(stepK, 3)}° on ${ctx.k}`);
+  if (stepM > 0) parts.push(`${fmt.num(stepM, 3)}° on ${ctx.m}`);
+  return parts.length ? `of ${parts.join(' and ')}${n > 1 ? ' each' : ''}` : '';
+}
+
+function splitText(r: NonlinearMoveResult, ctx: { k: string; m: string }): string {
+  const sp = r.split;
+  if (!sp) return '—';
+  if (sp.steps === null) return `more than ${sp.maxSteps}`;
+  if (sp.steps === 1) return '1: the move as it is';
+  return `${sp.steps} ${stepWords(sp.stepK, sp.stepM, ctx, sp.steps)} (largest error of a step ${show('errLength', sp.max)})`;
 }
 
 function referenceText(r: NonlinearMoveResult): string {

@@ -13,6 +13,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
+import { verdictBox } from '../ui/verdict';
 
 export const reversalPanel: Panel = {
   id: 'reversal',
@@ -58,6 +59,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   if (csvArea) csvArea.placeholder = 'angle_deg,deviation_um\n0.1,-4.9\n…';
 
   // ---- outputs
+  const verdict = verdictBox({
+    prefix: 'rv',
+    tolerance: { label: 'Tolerance on the dent', value: 0.01, hint: 'The deepest dent you accept in the circle just after C reverses (what a ball bar shows as a spike).' },
+    onTolerance: () => judgeSim(),
+  });
   const summary = el('dl', { class: 'summary', id: 'rv-summary', 'aria-live': 'polite' });
   const plot = (id: string, wide = false, tall = false) => {
     const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
@@ -79,7 +85,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fitPlots = el('div', { class: 'plots' });
   fitPlots.append(fitPlot.wrap, residualPlot.wrap);
   results.append(
-    summary, plots,
+    verdict.root, summary, plots,
     el('h3', {}, 'The dent for Table 1’s feeds and radii'), dentsBox,
     el('h3', {}, 'Friction from a measured trace'), fitBox, fitPlots,
   );
@@ -113,12 +119,41 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ff = String(i.rest.feedForward ?? 'none');
     const c = (i.rest.c ?? {}) as Record<string, number>;
     return `${machine.context()?.k ?? 'C'} table on ${String(i.machine.type ?? 'CBZ')}: R ${fmt.num(t.radius ?? 50)} mm, r ${fmt.num(t.offset ?? 25)} mm, F ${fmt.num(t.feed ?? 1000)} mm/min, ` +
-      `f_c ${fmt.num(c.friction ?? 10)} N·m, a ${fmt.num(c.frictionSlope ?? 500)} 1/rad, feed-forward ${ff}`;
+      `friction ${fmt.num(c.friction ?? 10)} N·m (slope ${fmt.num(c.frictionSlope ?? 500)} 1/rad), feed-forward ${ff}`;
+  };
+
+  /** Whether `last` answers the inputs as they are (a verdict may be drawn from it). */
+  let fresh = false;
+  /** The last fit of a measured trace, while it answers the inputs. */
+  let lastFit: ReversalFitResult | null = null;
+  /** The verdict: the engine's dent depth against the tolerance, and the fitted friction. */
+  const judgeSim = () => {
+    const tol = verdict.tolerance();
+    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (!last || !fresh) return;
+    const d = last.dent;
+    const t = show('errLength', tol);
+    const k = machine.context()?.k ?? 'C';
+    const notes = lastFit
+      ? [`From the measured trace: Coulomb friction of ${k} ${fmt.num(lastFit.friction.value, 3)} N·m (95 % interval ${fmt.num(lastFit.friction.low, 3)} to ${fmt.num(lastFit.friction.high, 3)}); a friction compensator needs a torque step of ${fmt.num(2 * lastFit.friction.value, 3)} N·m at each reversal.`]
+      : ['Load a measured ball-bar trace (below) to fit the friction of your machine.'];
+    if (!(d.depth > 0)) {
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes, sentence: `No friction dent at ${k}’s reversal (within the ${t} tolerance).` });
+    }
+    const status = d.depth <= tol ? 'pass' : 'fail';
+    verdict.show({
+      status, worst: d.depth, tolerance: tol, notes,
+      sentence: `The friction dent at ${k}’s reversal is ${show('errLength', d.depth)} deep (at ${fmt.num(d.angle, 4)}° of the trace, ${fmt.num(d.width, 3)}° wide), ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
+        (status === 'fail' ? ': friction compensation on the C axis, or a smaller circle offset from the C axis, would reduce it.' : '.'),
+    });
   };
 
   const update = () => {
     const i = read();
     if (!i) {
+      fresh = false;
+      lastFit = null;
+      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       for (const p of [polar, radial, timePlot, linearPlot, fitPlot, residualPlot]) stale(p.p, true);
       stale(dentsBox, true);
       stale(fitBox, true);
@@ -127,12 +162,17 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     }
     const input = { machine: i.machine, ...i.rest };
     const came = conditions(i);
+    fresh = false;
+    verdict.pending();
     runSim({ ...input, checkStep: true } as never).then((r) => {
       if (r === SUPERSEDED) return;
       last = r;
       lastCase = came;
+      fresh = true;
       showSim(r, came);
+      judgeSim();
     }, (e) => {
+      verdict.none('No verdict: the engine could not simulate this test (see the message at the field or over the plot).');
       for (const p of [radial, timePlot, linearPlot]) stale(p.p, true);
       engineError(e, polar.p);
     });
@@ -147,6 +187,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   const fit = (i: NonNullable<ReturnType<typeof read>>, input: Record<string, unknown>, came: string) => {
+    lastFit = null;
     if (i.csv.trim() === '') {
       inputs.byPath.csv?.setError(null);
       fitBox.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measured trace (trace angle, radial deviation), choose a file, or load the sample trace (simulated with f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s and 0.3 µm of noise) to fit C’s friction.'));
@@ -157,7 +198,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     runFit({ ...input, csv: i.csv } as never).then((f) => {
       if (f === SUPERSEDED) return;
       inputs.byPath.csv?.setError(null);
+      lastFit = f;
       showFit(f, came);
+      judgeSim();
     }, (e) => {
       fitBox.replaceChildren(el('p', { class: 'warn' }, 'No fit: see the message at the field or above the plot.'));
       stale(fitBox, false);
@@ -185,6 +228,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       { type: 'scatterpolar', r: rp(dev), theta, mode: 'lines', name: 'with friction (eq 2)', customdata: dev.map(D), line: { color: '#d62728', width: 1.5 }, hovertemplate: hover('with friction') } as Data,
     ], {
       polar: {
+        // Room between the circle and the title for the angle label at 90° (it sat under the title).
+        domain: { x: [0, 1], y: [0, 0.92] },
         radialaxis: { range: [0, base + 3], dtick: 1, showticklabels: false, ticks: '', gridcolor: '#e6e8eb' },
         angularaxis: { direction: 'counterclockwise', rotation: 0, dtick: 30, ticksuffix: '°' },
       },

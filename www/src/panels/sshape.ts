@@ -14,6 +14,7 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText as sourceText_, type Source } from '../ui/identify';
+import { errorWords, lowerFirst, rankParts, verdictBox } from '../ui/verdict';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -34,8 +35,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     'The five-axis acceptance part: two ruled surfaces between cubic B-splines, flank milled with a Ø20 mm end mill, ' +
       'its base on the table square to the spindle. How much of the 0.12 mm tolerance the geometry itself takes (overcut ' +
       'of a non-developable ruled surface), what the machine’s errors (above) do at the 100 measurement points, and ' +
-      'which of them a measured part gives back. Chanal, Duc & Chevalier, Precision Engineering 75 (2022), eqs 1–14, ' +
-      'Table 4, on any machine.',
+      'which of them a measured part gives back; the verdict compares the machine’s worst point with your tolerance. ' +
+      'After Chanal, Duc & Chevalier, Precision Engineering 75 (2022), on any machine.',
   );
 
   // ---- inputs: the shown fields of the S-shape exports; loading a file is the page's own
@@ -54,6 +55,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   if (csvArea) csvArea.placeholder = 'curve,point,deviation_mm\ntop,1,0.0123\n…';
 
   // ---- outputs
+  const words = errorWords(schema);
+  const verdict = verdictBox({
+    prefix: 'ss',
+    tolerance: { label: 'Tolerance on the part’s surface', value: 0.02, hint: 'The largest deviation of a measured point from the nominal surface that you accept from the machine’s errors.' },
+    onTolerance: () => judgeDefects(),
+  });
   const summary = el('dl', { class: 'summary', id: 'ss-summary', 'aria-live': 'polite' });
   // A failed measurement file is said here, at the top, where it cannot be missed.
   const alert = el('p', { class: 'alert', id: 'ss-alert', role: 'alert' });
@@ -76,7 +83,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   plots.append(part3d.wrap, mapA.wrap, mapB.wrap, defects.wrap);
   const identPlots = el('div', { class: 'plots' });
   identPlots.append(fitPlot.wrap, residualPlot.wrap);
-  results.append(alert, summary, plots, el('h3', {}, 'Identification from measured deviations'), ident, identPlots);
+  results.append(verdict.root, alert, summary, plots, el('h3', {}, 'Identification from measured deviations'), ident, identPlots);
 
   // ---- state shared between the outputs
   const part = (await call('sshapePart', { nu: 131, nv: 7 })) as SShapePartResult;
@@ -84,10 +91,17 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let lastDefects: SShapeDefectsResult | null = null;
   let lastOvercut: SShapeOvercutResult | null = null;
   const summaryItems = new Map<string, [string, string]>();
+  // The overcut by the paper's equation and its vectors: one level down, in the verdict's details.
+  const paperSummary = el('dl', { class: 'summary', id: 'ss-paper-summary' });
+  const PAPER_ROWS = new Set(['ss-max-a', 'ss-max-b', 'ss-max-b-inner']);
   const setSummary = (id: string, label: string, value: string) => {
     summaryItems.set(id, [label, value]);
     summary.replaceChildren();
-    for (const [key, [k, v]] of summaryItems) summary.append(el('dt', {}, k), el('dd', { id: key }, v));
+    paperSummary.replaceChildren();
+    for (const [key, [k, v]] of summaryItems) (PAPER_ROWS.has(key) ? paperSummary : summary).append(el('dt', {}, k), el('dd', { id: key }, v));
+    verdict.details('From the paper: the overcut by its eq 6 and the exact gouge (Chanal et al. 2022)',
+      el('p', { class: 'field-hint' }, 'Eq 6 estimates the overcut of flank milling a ruled surface from the tool radius R and the surface’s twist (its tangent T; the paper’s T, or T⊥ square to the rulings); the exact gouge is computed from the tool’s swept surface. N = R × T is the paper’s side of the tool.'),
+      paperSummary);
   };
 
   /** Where the text in the measurement field came from. */
@@ -116,9 +130,48 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     return { machine: m as Machine, tool, model, dR, nu, nv, csv: csv as string, parameters, radiusTerm, rtol, decision };
   };
 
+  /** Whether `lastDefects` answers the inputs as they are (a verdict may be drawn from it). */
+  let fresh = false;
+  /** The verdict: the engine's defect at its worst point against the tolerance, the errors behind it. */
+  const judgeDefects = () => {
+    const tol = verdict.tolerance();
+    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    const d = lastDefects;
+    if (!d || !fresh) return;
+    const n = d.names.length;
+    let k = 0;
+    for (let i = 1; i < d.total.length; i++) if (Math.abs(d.total[i]) > Math.abs(d.total[k])) k = i;
+    const worst = Math.abs(d.total[k]);
+    const t = show('errLength', tol);
+    const overcut = lastOvercut ? Math.max(...lastOvercut.surfaces.map((x) => x.maxGouge)) : null;
+    const notes = overcut === null ? [] : [`Apart from the machine, flank milling this non-developable surface with a Ø20 mm tool overcuts it by up to ${show('errLength', overcut)} (the part’s geometry, shown below).`];
+    if (worst < 1e-9) {
+      const any = Array.from(d.contributions).some((v) => v !== 0) || Array.from(d.radius).some((v) => v !== 0);
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes,
+        sentence: any ? `The errors entered move no measured point off the surface (within the ${t} tolerance).` : `No errors entered: every measured point on the nominal surface (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });
+    }
+    const parts: [string, number][] = d.names.map((name, j) => [name, d.contributions[n * k + j]]);
+    if (d.radius[k] !== 0) parts.push(['tool radius', d.radius[k]]);
+    const ranked = rankParts(parts, (v) => show('errLength', v), words);
+    for (const c of ranked) if (c.name === 'tool radius') (c.label = 'tool radius R′ − R'), (c.title = 'The tool’s actual radius minus its nominal radius (the paper’s dR).');
+    const top = ranked[0];
+    const p = part.points[k];
+    const status = worst <= tol ? 'pass' : 'fail';
+    const side = d.total[k] > 0 ? 'outside' : 'inside';
+    verdict.show({
+      status, worst, tolerance: tol, notes,
+      sentence: `Worst point ${p.curve.toUpperCase()} ${p.number} (surface ${p.surface}) is ${show('errLength', worst)} ${side} the nominal surface, ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
+        (top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name === 'tool radius' ? 'the tool radius' : `${top.name}, the ${lowerFirst(top.label ?? top.name)}`}.` : '.'),
+      contributors: ranked,
+      contributorsOf: `each error’s part at ${p.curve.toUpperCase()} ${p.number}, as a share of the sum of their sizes`,
+    });
+  };
+
   const update = () => {
     const i = read();
     if (!i) {
+      fresh = false;
+      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       for (const p of [part3d, mapA, mapB, defects, fitPlot, residualPlot]) stale(p.p, true);
       stale(ident, true);
       for (const run of [runOvercut, runDefects, runIdentify]) run.cancel(); // a late result would look current
@@ -128,13 +181,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       if (o === SUPERSEDED) return;
       lastOvercut = o;
       showOvercut(o);
+      judgeDefects();
     }, (e) => engineError(e, mapA.p));
+    fresh = false;
+    verdict.pending();
     runDefects({ machine: i.machine, tool: i.tool, model: i.model, dR: i.dR } as never).then((d) => {
       if (d === SUPERSEDED) return;
       lastDefects = d;
+      fresh = true;
       showDefects(d);
       showPart();
+      judgeDefects();
     }, (e) => {
+      verdict.none('No verdict: the engine could not compute the defect (see the message at the field or over the plot).');
       engineError(e, defects.p);
       stale(part3d.p, true); // coloured by the same defects
     });

@@ -14,6 +14,7 @@ import { axis, draw, note, stale } from '../ui/plot';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
+import { verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -74,6 +75,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   inputs.groups.get('Toolpath')?.append(typeSel.root);
 
   // ---- outputs
+  const tolField = inputs.field('tolerance');
+  if (!tolField) throw new Error('the engine declares no tolerance for the toolpath');
+  const verdict = verdictBox({ prefix: 'tp', tolerance: { adopt: tolField }, onTolerance: () => update() });
   const summary = el('dl', { class: 'summary', id: 'tp-summary', 'aria-live': 'polite' });
   const tableWrap = el('div', { class: 'table-wrap', id: 'tp-ranking' });
   const plot = (id: string) => {
@@ -91,7 +95,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   refineBox.append(refineButton, refineOut, exportButton);
   const plots = el('div', { class: 'plots' });
   plots.append(along.wrap, path3d.wrap);
-  results.append(summary, tableWrap, refineBox, plots);
+  results.append(verdict.root, summary, tableWrap, refineBox, plots);
 
   let ranks = 0;
   let details = 0;
@@ -102,9 +106,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let refined: { type: string; r: ToolpathRefined; from: Loaded } | null = null;
 
   const fileText = (text: string) => (fileMsg.textContent = text);
+  /** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
+  const tips: Record<string, string> = {
+    'Largest δ': 'δ: the nonlinear error of a segment, the largest distance of the tool tip from the motion programmed between two points of the path, when the control interpolates the rotary axes\' angles in a straight line (Geng, Wu & Qiu 2018, eqs 19–21).',
+    L: 'L: the distance of the tool tip from the axis it swings about (tool length, or the pivot distance).',
+    Flips: 'A flip: the rotary axes swing round (the other of the two solutions) between two points, the tool stopping meanwhile.',
+  };
   const setSummary = (rows: [string, string][]) => {
     summary.replaceChildren();
-    for (const [k, v] of rows) summary.append(el('dt', {}, k), el('dd', {}, v));
+    for (const [k, v] of rows) summary.append(el('dt', tips[k] ? { title: tips[k] } : {}, k), el('dd', {}, v));
   };
 
   /** Reads a file in a worker; on a bad line the message names it and the last analysis stays
@@ -145,6 +155,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
   const greyAll = () => {
+    verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
     for (const p of [along.p, path3d.p]) stale(p, true);
     tableWrap.classList.add('stale');
   };
@@ -194,11 +205,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!c) return;
     const { m, base, t, loaded: l } = c;
     for (const tr of tableWrap.querySelectorAll<HTMLElement>('tbody tr')) tr.classList.toggle('shown', tr.dataset.type === t);
+    verdict.pending();
     runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, l.parsed.points).then((a) => {
       if (a === SUPERSEDED || mine !== details) return;
       showAnalysis(a, t, l.name, l.parsed);
     }, (e) => {
-      if (mine === details) engineError(e, along.p);
+      if (mine !== details) return;
+      engineError(e, along.p);
+      verdict.none('No verdict: the engine could not follow the path (see the message at the field or over the plot).');
     });
   };
 
@@ -213,6 +227,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     if (!current()) {
+      if (!loaded) verdict.none('No verdict yet: choose a sample path or a file of your own.');
+      else if (verdict.tolerance() === null) verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+      else verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       // Whatever is still being computed no longer answers the inputs.
       ranks++;
       details++;
@@ -258,6 +275,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const showAnalysis = (a: ToolpathAnalysis, t: string, name: string, parsed: ParsedToolpath) => {
     const s = a.summary;
+    judgeAnalysis(a, t, name, parsed);
     note(along.p, null);
     setSummary([
       ['File', `${name} (${parsed.count} points, ${parsed.format.toUpperCase()})`],
@@ -289,6 +307,27 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       line: { color: c, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: c, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
       hovertemplate: 'x %{x:.3f}<br>y %{y:.3f}<br>z %{z:.3f}<extra></extra>',
     } as Data], { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto' }, margin: { l: 0, r: 0, b: 0 } }, 'toolpath-3d');
+  };
+
+  /** The verdict: the engine's largest deviation along the path against the tolerance. */
+  const judgeAnalysis = (a: ToolpathAnalysis, t: string, name: string, parsed: ParsedToolpath) => {
+    const s = a.summary;
+    const tol = show('errLength', a.tolerance);
+    const on = `${name} on ${t}`;
+    const flips = s.flips ? [`${s.flips} flip${s.flips > 1 ? 's' : ''} of the rotary axes (a swing round, marked on the plot): the tool stops and turns there.`] : [];
+    if (s.unreachable) {
+      return verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes: flips,
+        sentence: `${on}: this configuration cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}.` });
+    }
+    if (!s.segments) return verdict.none(`No verdict: ${name} has fewer than two points.`);
+    const worst = `${show('errLength', s.max)} (segment ${s.maxSegment + 1}, from line ${parsed.lines[s.maxSegment]} of the file)`;
+    if (s.max <= a.tolerance) {
+      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes: flips,
+        sentence: `${on}: largest nonlinear error ${worst}, every one of the ${s.segments} segments within the ${tol} tolerance.` });
+    }
+    verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes: flips,
+      sentence: `${on}: largest nonlinear error ${worst}, above the ${tol} tolerance; ${s.above} of ${s.segments} segments are above it. ` +
+        'Insert points with the button below to keep every segment within it.' });
   };
 
   refineButton.addEventListener('click', async () => {

@@ -14,6 +14,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { fromDisplay, onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
+import { errorWords, lowerFirst, verdictBox } from '../ui/verdict';
 
 export const volumetricPanel: Panel = {
   id: 'volumetric',
@@ -73,7 +74,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       'radial, axial, tilt and angular errors of the rotary axes), each a constant or a table from the measuring ' +
       'software (laser interferometer, straightness optics, ball bar). The deviation of the tool tip from where the ' +
       'control believes it is computed exactly over a plane of the working volume, with the worst point and each ' +
-      'error’s share. Tan & Lim, Modeling the Volumetric Errors in Calibration of Five-axis CNC Machine, on any machine.',
+      'error’s share; the verdict compares the worst point with your tolerance. After Tan & Lim, Modeling the Volumetric ' +
+      'Errors in Calibration of Five-axis CNC Machine, on any machine.',
   );
 
   // ---- inputs: the region (from the schema), then the error motions per axis
@@ -104,7 +106,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   }
 
   // ---- outputs
+  const words = errorWords(schema);
+  const verdict = verdictBox({
+    prefix: 'vm',
+    tolerance: { label: 'Tolerance on the tool tip’s position', value: 0.02, hint: 'The largest deviation of the tool tip you accept anywhere on the plane.' },
+    onTolerance: () => judgeMap(),
+  });
   const sentence = el('p', { class: 'result-sentence', id: 'vm-sentence', 'aria-live': 'polite' });
+  verdict.root.querySelector('.verdict-head')?.after(sentence);
   const summary = el('dl', { class: 'summary', id: 'vm-summary', 'aria-live': 'polite' });
   const mapPlot = plotBox('vm-map', 'wide', 'tall');
   const compPlot = plotBox('vm-component');
@@ -121,7 +130,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const paper = el('details', { class: 'paper', id: 'vm-paper' });
   const paperBody = el('div', { id: 'vm-paper-body', 'aria-live': 'polite' });
   paper.append(el('summary', {}, 'Tan & Lim’s model (paper)'), paperBody);
-  results.append(sentence, summary, exportRow, plots, el('h3', {}, 'Error budget'), budgetTable, paper);
+  results.append(verdict.root, summary, exportRow, plots, el('h3', {}, 'Error budget'), budgetTable, paper);
   const allPlots = [mapPlot.p, compPlot.p, tiltPlot.p, budgetPlot.p];
 
   // ---- computation
@@ -130,7 +139,38 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fieldErrors = engineErrors(inputs.byPath, machine);
   let last: { r: VolumetricMapResult; input: VolumetricInput } | null = null;
 
+  /** The verdict: the engine's worst point against the tolerance, the budget ranked. */
+  const judgeMap = () => {
+    const tol = verdict.tolerance();
+    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (!last || !fresh) return;
+    const { r } = last;
+    const w = r.worst;
+    const t = show('errLength', tol);
+    if (w.norm === 0) {
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol,
+        sentence: r.budget.length ? `The errors entered do not move the tool tip on this plane (within the ${t} tolerance).` : `No errors entered: the tool tip is where the control puts it everywhere on the plane (within the ${t} tolerance).` });
+    }
+    const status = w.norm <= tol ? 'pass' : 'fail';
+    const top = r.budget.find((b) => b.share > 0);
+    const at = `X ${fmt.num(w.position[0])}, Y ${fmt.num(w.position[1])}, Z ${fmt.num(w.position[2])} mm`;
+    verdict.show({
+      status, worst: w.norm, tolerance: tol,
+      sentence: `Worst point ${show('errLength', w.norm)} off (at ${at}), ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
+        (top ? `; the largest share, ${fmt.percent(top.share, 2)}, is ${top.name}, the ${lowerFirst(words.get(top.name)?.label ?? top.label)}.` : '.'),
+      contributors: r.budget.filter((b) => b.share > 0).slice(0, 8).map((b) => ({
+        name: b.name, label: words.get(b.name)?.label ?? b.label, title: words.get(b.name)?.title, share: b.share,
+        amount: `up to ${show('errLength', b.max)} alone`,
+      })),
+      contributorsOf: 'share of the squared deviation over the plane, the error budget',
+    });
+  };
+
+  /** Whether `last` answers the inputs as they are (a verdict may be drawn from it). */
+  let fresh = false;
   const greyAll = () => {
+    fresh = false;
+    verdict.none('No verdict: the inputs marked (here, in the error motions or in the machine above) need a valid value first.');
     for (const p of allPlots) stale(p, true);
     budgetTable.classList.add('stale');
     sentence.classList.add('stale');
@@ -164,11 +204,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     const input = { ...own, machine: m as Machine } as VolumetricInput;
+    verdict.pending();
+    fresh = false;
     runMap(input).then((r) => {
       if (r === SUPERSEDED) return;
       for (const row of motionRows.values()) if (!row.msg.dataset.csv) describe(row);
       last = { r, input };
+      fresh = true;
       showMap(r);
+      judgeMap();
       comparePaper(r, input);
     }, engineError);
   };
@@ -205,7 +249,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ['vm-linear', 'Exact vs first order', `the first-order (linear) deviation differs from the exact one by at most ${show('errLength', r.firstOrderGap)}, where the first-order |Δ| reaches ${show('errLength', r.firstOrderMax)} (${r.budgetSide[0]} × ${r.budgetSide[1]} points)`],
     ];
     summary.replaceChildren();
-    for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
+    const tips: Record<string, string> = {
+      'vm-worst': '|Δ|: the distance of the tool tip from where the control believes it is (the volumetric error; Tan & Lim’s ΔX, ΔY, ΔZ combined).',
+      'vm-worst-dev': 'Δx, Δy, Δz: the tool tip’s deviation along X, Y and Z (workpiece coordinates); the tilt: the angle between the actual and the commanded tool axis.',
+      'vm-linear': 'First order: the sum of each error’s own effect, as the paper’s small-angle formulas give it; exact: the chain of the machine’s axes computed without approximation.',
+    };
+    for (const [id, k, v] of items) summary.append(el('dt', tips[id] ? { title: tips[id] } : {}, k), el('dd', { id }, v));
     exportButton.removeAttribute('disabled');
 
     // |Δ| with the in-plane deviation as arrows, scaled so that the longest is 7 % of the plane.
@@ -485,6 +534,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   onUnitsChange(() => {
     for (const row of motionRows.values()) showFunction(row);
     if (last) showMap(last.r);
+    judgeMap();
   });
   // The titles are broken to the plots' width: drawn again when the width changes.
   let width = root.clientWidth;

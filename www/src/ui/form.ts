@@ -80,6 +80,8 @@ export interface RenderedForm {
   setContext(ctx: Context): void;
   /** The fields of kind errorNames get these names to choose from. */
   setNames(options: { name: string; label: string }[]): void;
+  /** The rendered field of an input path (its root, its control, its reader), if rendered. */
+  field(path: string): { root: HTMLElement; input: HTMLInputElement; read(): unknown } | undefined;
 }
 
 /** Sets `value` at a dotted path of `obj`. */
@@ -166,6 +168,8 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
     }
     const r = render(info, fieldId(prefix, info.path), ctx);
     r.root.dataset.path = info.path;
+    // The label's tooltip: the plain meaning (the engine's help), which also names the paper's symbol.
+    if (info.help) r.label.title = fill(info.help, ctx);
     set.append(r.root);
     rendered.push(r);
   }
@@ -192,6 +196,7 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
         if (r.label.textContent !== text) r.label.textContent = text;
         const hint = r.root.querySelector(':scope > .field-hint');
         if (hint && r.info.help) hint.textContent = fill(r.info.help, next);
+        if (r.info.help) r.label.title = fill(r.info.help, next);
         r.root.hidden = r.info.kinds.length > 0 && !r.info.kinds.includes(next.kind);
       }
       for (const set of groups.values()) {
@@ -200,6 +205,11 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
     },
     setNames(options) {
       for (const r of rendered) r.setOptions?.(options);
+    },
+    field(path) {
+      const r = rendered.find((x) => x.info.path === path);
+      const input = r?.root.querySelector<HTMLInputElement>('input');
+      return r && input ? { root: r.root, input, read: () => r.read() } : undefined;
     },
   };
 }

@@ -92,6 +92,8 @@ export function reportHeader(section: HTMLElement, prefix: string, study: string
   if (verdict) {
     const copy = verdict.cloneNode(true) as HTMLElement;
     for (const e of [copy, ...copy.querySelectorAll<HTMLElement>('[id]')]) e.removeAttribute('id');
+    // Its tolerance field is in the table above (a cloned input would show its default).
+    for (const e of copy.querySelectorAll('.verdict-tolerance')) e.remove();
     copy.classList.add('report-verdict');
     box.append(el('h3', {}, 'Verdict'), copy);
   }

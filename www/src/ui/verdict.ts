@@ -1,0 +1,210 @@
+// The verdict at the top of every panel's results: a tolerance (an ordinary field of the panel,
+// carried in share links, saved cases and the printed report), a pass/fail badge, one plain
+// sentence with the worst value and what to do, the contributors ranked by their share, and the
+// papers' equations and symbols one level down (a <details>, never the headline).
+//
+// The numbers come from the engine's results; the panel only compares them with the tolerance,
+// ranks and formats them. `data-verdict` is "pass", "fail" or "none" (nothing to judge yet,
+// inputs invalid, a computation on its way): "none" never shows the badge of earlier inputs.
+import type { Schema } from '@engine';
+import { el, numberField } from './fields';
+import * as fmt from './format';
+
+export type VerdictStatus = 'pass' | 'fail' | 'none';
+
+/** One contributor to the worst value: its name, what it is in words, its share (0..1). */
+export interface Contributor {
+  /** ISO 230-1 name or a short name ("E_X0B", "tool radius"). */
+  name: string;
+  /** What it is, in plain words ("B axis offset along X"). */
+  label?: string;
+  /** Tooltip: the plain meaning, the ISO 230-1 name and the paper's symbol. */
+  title?: string;
+  /** Its share of the worst value, 0..1. */
+  share: number;
+  /** Its amount, formatted ("+3.2 µm"). */
+  amount?: string;
+}
+
+export interface Judgement {
+  status: Exclude<VerdictStatus, 'none'>;
+  /** The headline: plain words, the worst value, the tolerance, what to do. */
+  sentence: string;
+  /** The worst value judged, mm (data-worst, for tests and the report). */
+  worst: number;
+  /** The tolerance it was compared with, mm. */
+  tolerance: number;
+  /** Ranked by share, largest first (the component keeps the order it is given). */
+  contributors?: Contributor[];
+  /** What the contributors' shares are of ("of the worst zone's height"). */
+  contributorsOf?: string;
+  /** Further plain lines under the headline. */
+  notes?: string[];
+}
+
+export interface VerdictOptions {
+  /** The panel's field prefix ("nl"): the section is `<prefix>-verdict`. */
+  prefix: string;
+  /** The tolerance field: made here (`<prefix>-tolerance`), or a field the panel rendered from
+   *  the engine's schema (moved into the verdict, so the tolerance sits next to the badge). */
+  tolerance:
+    | { label: string; value: number; max?: number; hint?: string }
+    | { adopt: { root: HTMLElement; input: HTMLInputElement; read(): unknown } };
+  /** Called when the tolerance is edited (the panel judges its last results again). */
+  onTolerance: () => void;
+}
+
+export interface Verdict {
+  readonly root: HTMLElement;
+  readonly input: HTMLInputElement;
+  /** The tolerance in mm, or null (its message shown at the field). */
+  tolerance(): number | null;
+  /** Shows a verdict. */
+  show(j: Judgement): void;
+  /** Nothing to judge: says why (no stale badge). */
+  none(message: string): void;
+  /** Inputs changed, a result is on its way: the badge goes, the last sentence stays greyed. */
+  pending(): void;
+  /** The papers' level: replaces the contents of the <details>. */
+  details(summary: string, ...body: (Node | string)[]): void;
+}
+
+const BADGE: Record<VerdictStatus, string> = { pass: 'PASS', fail: 'FAIL', none: 'NO VERDICT' };
+
+/** Makes the verdict section; the panel puts `root` first in its results. */
+export function verdictBox(o: VerdictOptions): Verdict {
+  const root = el('section', { class: 'verdict', id: `${o.prefix}-verdict`, 'data-verdict': 'none', 'aria-labelledby': `${o.prefix}-verdict-sentence` });
+  const head = el('div', { class: 'verdict-head' });
+  const badge = el('span', { class: 'verdict-badge', id: `${o.prefix}-verdict-badge` }, BADGE.none);
+  const sentence = el('p', { class: 'verdict-sentence', id: `${o.prefix}-verdict-sentence`, 'aria-live': 'polite' }, 'Computing…');
+  head.append(badge, sentence);
+  const notes = el('ul', { class: 'verdict-notes', id: `${o.prefix}-verdict-notes` });
+  const contrib = el('div', { class: 'verdict-contrib', id: `${o.prefix}-verdict-contrib` });
+  const paper = el('details', { class: 'verdict-details', id: `${o.prefix}-verdict-details` });
+  const paperSummary = el('summary', {}, 'From the paper: equations and symbols');
+  const paperBody = el('div', { class: 'verdict-details-body' });
+  paper.append(paperSummary, paperBody);
+  paper.hidden = true;
+
+  let field: { root: HTMLElement; input: HTMLInputElement; read(): unknown };
+  if ('adopt' in o.tolerance) {
+    field = o.tolerance.adopt;
+  } else {
+    field = numberField({
+      id: `${o.prefix}-tolerance`,
+      label: o.tolerance.label,
+      quantity: 'errLength',
+      value: o.tolerance.value,
+      min: 0,
+      max: o.tolerance.max ?? 10,
+      positive: true,
+      hint: o.tolerance.hint,
+    });
+  }
+  const fieldRoot = field.root;
+  fieldRoot.classList.add('verdict-tolerance');
+  // Edits of the tolerance reach the panel here; they still bubble to the page (saved state).
+  field.input.addEventListener('input', () => o.onTolerance());
+  root.append(head, fieldRoot, notes, contrib, paper);
+
+  const set = (status: VerdictStatus) => {
+    root.dataset.verdict = status;
+    badge.textContent = BADGE[status];
+  };
+  const clear = () => {
+    notes.replaceChildren();
+    contrib.replaceChildren();
+    delete root.dataset.worst;
+    delete root.dataset.tolerance;
+  };
+
+  return {
+    root,
+    input: field.input,
+    tolerance: () => {
+      const v = field.read();
+      return typeof v === 'number' ? v : null;
+    },
+    show(j) {
+      set(j.status);
+      root.classList.remove('stale');
+      sentence.textContent = j.sentence;
+      root.dataset.worst = String(j.worst);
+      root.dataset.tolerance = String(j.tolerance);
+      notes.replaceChildren(...(j.notes ?? []).map((n) => el('li', {}, n)));
+      contrib.replaceChildren();
+      const list = (j.contributors ?? []).filter((c) => c.share > 0);
+      if (list.length) {
+        contrib.append(el('p', { class: 'verdict-contrib-title' }, `Where it comes from${j.contributorsOf ? ` (${j.contributorsOf})` : ''}:`));
+        const ol = el('ol');
+        for (const c of list) {
+          const li = el('li');
+          li.dataset.name = c.name;
+          li.dataset.share = String(c.share);
+          const bar = el('span', { class: 'verdict-bar', 'aria-hidden': 'true' });
+          bar.style.setProperty('--share', String(Math.min(1, Math.max(0, c.share))));
+          const text = el('span', { class: 'verdict-contrib-text' });
+          const tip = c.title ?? c.label;
+          const name = el('b', tip ? { title: tip, tabindex: '0' } : {}, c.name);
+          text.append(name, ` ${c.label ? `${c.label}: ` : ''}${fmt.percent(c.share, 2)}${c.amount ? ` (${c.amount})` : ''}`);
+          li.append(bar, text);
+          ol.append(li);
+        }
+        contrib.append(ol);
+      }
+    },
+    none(message) {
+      set('none');
+      root.classList.remove('stale');
+      sentence.textContent = message;
+      clear();
+    },
+    pending() {
+      if (root.dataset.verdict === 'none') return;
+      set('none');
+      root.classList.add('stale');
+    },
+    details(summary, ...body) {
+      paperSummary.textContent = summary;
+      paperBody.replaceChildren(...body);
+      paper.hidden = body.length === 0;
+    },
+  };
+}
+
+/** "within the 10 µm tolerance" / "above the 10 µm tolerance": the comparison in words. */
+export function judge(worst: number, tolerance: number): Exclude<VerdictStatus, 'none'> {
+  return Math.abs(worst) <= tolerance ? 'pass' : 'fail';
+}
+
+/**
+ * Contributors ranked by the size of their part (absolute), shares of the sum of those sizes;
+ * `parts` as [name, signed amount, label]. Zero parts are left out.
+ */
+export function rankParts(parts: [string, number][], amount: (v: number) => string,
+  words?: Map<string, { label: string; title: string }>): Contributor[] {
+  const total = parts.reduce((s, [, v]) => s + Math.abs(v), 0);
+  if (!(total > 0)) return [];
+  return parts
+    .filter(([, v]) => v !== 0)
+    .map(([name, v]) => ({ name, label: words?.get(name)?.label, title: words?.get(name)?.title, share: Math.abs(v) / total, amount: amount(v) }))
+    // A part below a millionth of the whole is rounding, not a contributor.
+    .filter((c) => c.share > 1e-6)
+    .sort((a, b) => b.share - a.share);
+}
+
+/** The machine's errors in words, from the engine's schema: a short label and a tooltip with the
+ *  plain meaning, the ISO 230-1 name and the papers' symbols. */
+export function errorWords(schema: Schema): Map<string, { label: string; title: string }> {
+  const out = new Map<string, { label: string; title: string }>();
+  for (const d of [...schema.errors, ...schema.motions]) {
+    const aliases = d.aliases.map((a) => `${a.symbol} in ${a.source} (${d.name} = ${a.sign < 0 ? '−' : ''}${a.symbol})`).join('; ');
+    out.set(d.name, { label: d.label, title: `${d.label} (ISO 230-1: ${d.name}). ${d.description}${aliases ? ` Paper symbol: ${aliases}.` : ''}` });
+  }
+  return out;
+}
+
+/** "Squareness of Y to X" → "squareness of Y to X" (after "the"); "X yaw" stays. */
+export function lowerFirst(text: string): string {
+  return /^[A-Z][a-z]/.test(text) ? text[0].toLowerCase() + text.slice(1) : text;
+}
