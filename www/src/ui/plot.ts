@@ -1,14 +1,32 @@
-// Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
+// Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part): its
+// core with the 2D trace types first, the 3D types (a further bundle) only once a 3D plot is
+// about to be shown. Until a plot is drawn its box shows a spinner (style.css, `.plot`).
 import type { Config, Data, Layout } from 'plotly.js';
 import { download, graphCsv } from './export';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
+let plotly3d: Promise<PlotlyModule> | null = null;
 
+/** Plotly with the 2D trace types (scatter, bar, heatmap, scatterpolar). */
 export function loadPlotly(): Promise<PlotlyModule> {
-  plotly ??= import('plotly.js-dist-min').then((m) => ((m as { default?: PlotlyModule }).default ?? m) as PlotlyModule);
+  plotly ??= import('./plotly-2d').then((m) => m.default as unknown as PlotlyModule);
   return plotly;
 }
+
+/** Plotly with the 3D trace types too (scatter3d, surface, mesh3d, cone). */
+export function loadPlotly3d(): Promise<PlotlyModule> {
+  // The core first (the 2D plots wait for it), then the 3D types.
+  plotly3d ??= loadPlotly().then(async (core) => {
+    const three = await import('./plotly-3d');
+    (core as unknown as { register(m: unknown[]): void }).register(three.traces3d);
+    return core;
+  });
+  return plotly3d;
+}
+
+const TYPES_3D = new Set(['scatter3d', 'surface', 'mesh3d', 'cone']);
+const is3d = (data: Data[]) => data.some((t) => TYPES_3D.has(String((t as { type?: string }).type)));
 
 const baseLayout: Partial<Layout> = {
   font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', size: 12, color: '#1f2328' },
@@ -26,7 +44,7 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
 
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
-  const P = await loadPlotly();
+  const P = is3d(data) ? await loadPlotly3d() : await loadPlotly();
   const config: Partial<Config> = {
     responsive: true,
     displaylogo: false,
