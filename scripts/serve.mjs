@@ -74,13 +74,14 @@ export function serve(dir, port = 0, host = '127.0.0.1') {
       const etag = `"${info.size.toString(36)}-${Math.floor(info.mtimeMs).toString(36)}${encoding ? `-${encoding}` : ''}"`;
       headers.etag = etag;
       if (encoding) headers['content-encoding'] = encoding;
+      for (const [k, v] of Object.entries(headers)) res.setHeader(k, v);
       if (req.headers['if-none-match']?.split(',').some((t) => t.trim().replace(/^W\//, '') === etag)) {
-        res.writeHead(304, headers).end();
+        res.writeHead(304).end();
         return;
       }
       body ??= await readFile(file);
-      headers['content-length'] = body.length;
-      res.writeHead(200, headers);
+      res.setHeader('content-length', body.length);
+      res.writeHead(200);
       res.end(req.method === 'HEAD' ? undefined : body);
     } catch {
       res.writeHead(404, { 'content-type': 'text/plain' }).end('not found');

@@ -270,9 +270,12 @@ async function start() {
 }
 
 // The same engine on the main thread, for the browser console: `fiveaxis.nonlinearMove({...})`.
-// The page itself computes in a Web Worker. Loaded once the first panel is up, so that it reuses
-// the engine file the worker fetched (the browser's cache) instead of racing it for the network.
+// The page itself computes in a Web Worker. Loaded once the first panel has drawn, so that it
+// reuses the engine file the worker fetched (the browser's cache) and compiles it when the page
+// has nothing more urgent to do.
 async function consoleEngine() {
+  for (let t = 0; t < 100 && !document.querySelector('.plot[data-plotted]'); t++) await new Promise((r) => setTimeout(r, 100));
+  await new Promise((r) => ('requestIdleCallback' in window ? requestIdleCallback(r, { timeout: 2000 }) : setTimeout(r, 0)));
   const engine = await import('@engine');
   await engine.default();
   (window as unknown as { fiveaxis: typeof engine }).fiveaxis = engine;

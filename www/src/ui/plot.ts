@@ -42,6 +42,31 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
   return { title: { text: title }, zeroline: false, gridcolor: '#e6e8eb', automargin: true, ...extra };
 }
 
+/** Height of Plotly's mode bar, kept clear above every title. */
+const MODEBAR = 26;
+
+/**
+ * `title` (lines separated by `<br>`) with every line longer than a `width`-px box can show at
+ * the title's size broken at spaces (Plotly does not wrap titles; it cuts them).
+ */
+export function wrapTitle(title: string, width: number): string {
+  if (!width) return title;
+  const max = Math.max(24, Math.floor((width - 16) / 6.8));
+  const out: string[] = [];
+  for (const line of title.split('<br>')) {
+    let current = '';
+    for (const word of line.split(' ')) {
+      const plain = (s: string) => s.replace(/<[^>]+>/g, '');
+      if (current && plain(`${current} ${word}`).length > max) {
+        out.push(current);
+        current = word;
+      } else current = current ? `${current} ${word}` : word;
+    }
+    out.push(current);
+  }
+  return out.join('<br>');
+}
+
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
   const P = is3d(data) ? await loadPlotly3d() : await loadPlotly();
@@ -58,9 +83,12 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   // lines after the first. (Anchored to the container's top, Plotly cuts the first line of a
   // two-line title; with the margin grown by Plotly's automargin instead, the first drawing places
   // the traces before the margin grows, so that they sit above their axes until the next redraw.)
-  const lines = title.split('<br>').length;
-  const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
-  const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines };
+  // Above the title, a strip of MODEBAR px is left for Plotly's mode bar (top right), so that the
+  // bar never covers the title. A title longer than the box is wrapped onto further lines.
+  const text = wrapTitle(title, el.clientWidth);
+  const lines = text.split('<br>').length;
+  const titleLayout = { text, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
+  const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines + MODEBAR };
   await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
   toolbar(el, title, filename);
   stale(el, false);
