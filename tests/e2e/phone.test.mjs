@@ -35,6 +35,10 @@ function layoutProblems(page, width) {
         .map((e) => `${e.tagName.toLowerCase()}${e.id ? `#${e.id}` : ''}.${[...e.classList].join('.')} (right ${Math.round(e.getBoundingClientRect().right)})`);
       out.push(`page ${document.documentElement.scrollWidth} px wide (layout viewport ${window.innerWidth}) at ${w}: ${wide.join(', ')}`);
     }
+    // A field too narrow for its number (the S-shape preset's E_A0B = 0.018574718760346158°).
+    for (const i of document.querySelectorAll('input:not([type=checkbox]):not([type=file]):not([type=hidden])')) {
+      if (i.offsetParent && i.scrollWidth > i.clientWidth + 1) out.push(`field ${i.id} cuts its text ${i.value}`);
+    }
     for (const gd of document.querySelectorAll('.js-plotly-plot')) {
       if (!gd.offsetParent) continue;
       const bar = gd.querySelector('.modebar');
@@ -60,6 +64,10 @@ for (const width of [360, 390]) {
         await page.click(`#tab-${tab}`);
         await drawn(page, tab);
         if (tab === 'sshape') {
+          // Chanal et al.'s machine (its long E_A0B), and the sample measurement drawn.
+          await page.waitForFunction(() => document.querySelectorAll('#ss-preset-menu option').length > 1);
+          await page.selectOption('#ss-preset-menu', '0');
+          await drawn(page, tab);
           await page.click('#ss-load-sample');
           await page.waitForFunction(() => document.getElementById('ss-csv')?.value.split('\n').length > 100);
           await drawn(page, tab);

@@ -67,6 +67,67 @@ export function wrapTitle(title: string, width: number): string {
   return out.join('<br>');
 }
 
+/** Narrower than this (px), a plot is laid out for a phone. */
+const COMPACT = 520;
+
+type AnyAxis = Record<string, unknown> & { domain?: number[]; anchor?: string };
+
+/**
+ * The layout adjusted to the plot's box. Everywhere: axis and colour-bar values are written out
+ * (Plotly's default shortens 150000 µm to "150k" µm, which reads as kilo-micrometres). In a box
+ * narrower than COMPACT px (a phone): two plots side by side (x and x2) are stacked, the box made
+ * taller for them; legends go under the plot, horizontally; 3D axes get fewer ticks.
+ */
+function fitToBox(layout: Partial<Layout>, el: HTMLElement): Partial<Layout> {
+  const out = { ...layout } as Record<string, unknown>;
+  const plain = (a: unknown) => ({ exponentformat: 'none', separatethousands: true, ...(a as object) });
+  for (const key of Object.keys(out)) {
+    if (/^[xy]axis\d*$/.test(key)) out[key] = plain(out[key]);
+    if (key === 'coloraxis' || /^coloraxis\d+$/.test(key)) {
+      const c = out[key] as { colorbar?: object };
+      out[key] = { ...c, colorbar: plain(c?.colorbar) };
+    }
+  }
+  // 3D axes: at most 5 ticks (the default crowds a short axis's labels into its neighbours').
+  if (out.scene) {
+    const sc = out.scene as Record<string, AnyAxis>;
+    out.scene = { ...sc, xaxis: { nticks: 5, ...sc.xaxis }, yaxis: { nticks: 5, ...sc.yaxis }, zaxis: { nticks: 5, ...sc.zaxis } };
+  }
+  const compact = el.clientWidth > 0 && el.clientWidth < COMPACT;
+  const x = out.xaxis as AnyAxis | undefined;
+  const x2 = out.xaxis2 as AnyAxis | undefined;
+  const sideBySide = !!(x?.domain && x2?.domain && x2.domain[0] >= x.domain[1]);
+  el.classList.toggle('stacked', compact && sideBySide);
+  if (!compact) return out as Partial<Layout>;
+  if (sideBySide) {
+    out.xaxis = { ...x, domain: [0, 1], anchor: 'y' };
+    out.yaxis = { ...(out.yaxis as AnyAxis), domain: [0.6, 1], anchor: 'x' };
+    out.xaxis2 = { ...x2, domain: [0, 1], anchor: 'y2' };
+    out.yaxis2 = { ...(out.yaxis2 as AnyAxis), domain: [0, 0.4], anchor: 'x2' };
+  }
+  out.legend = { ...(out.legend as object), orientation: 'h', x: 0, xanchor: 'left', xref: 'container', y: 0, yanchor: 'bottom', yref: 'container' };
+  const margin = out.margin as Partial<Layout['margin']>;
+  out.margin = { ...margin, r: Math.min(margin?.r ?? 20, 10), l: Math.min(margin?.l ?? 64, 56) };
+  if (out.scene) {
+    const sc = out.scene as Record<string, AnyAxis>;
+    // The camera a little further out, so that the axes' titles stay in the narrow box.
+    const cam = sc.camera as { eye?: { x: number; y: number; z: number } } | undefined;
+    const eye = cam?.eye ? { camera: { ...cam, eye: { x: cam.eye.x * 1.2, y: cam.eye.y * 1.2, z: cam.eye.z * 1.2 } } } : {};
+    out.scene = { ...sc, ...eye, xaxis: { ...sc.xaxis, nticks: 4 }, yaxis: { ...sc.yaxis, nticks: 4 }, zaxis: { ...sc.zaxis, nticks: 4 } };
+  }
+  return out as Partial<Layout>;
+}
+
+/** A trace whose colour bar (its own or its markers') writes its values out, as fitToBox's axes. */
+function plainColorbar(t: Data): Data {
+  const c = t as { type?: string; colorbar?: object; marker?: { colorbar?: object; showscale?: boolean } };
+  const plain = (a?: object) => ({ exponentformat: 'none', separatethousands: true, ...a });
+  let out = t;
+  if (c.colorbar || ['heatmap', 'surface', 'contour'].includes(c.type ?? '')) out = { ...out, colorbar: plain(c.colorbar) } as Data;
+  if (c.marker?.colorbar || c.marker?.showscale) out = { ...out, marker: { ...c.marker, colorbar: plain(c.marker.colorbar) } } as Data;
+  return out;
+}
+
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
   const P = is3d(data) ? await loadPlotly3d() : await loadPlotly();
@@ -89,7 +150,8 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   const lines = text.split('<br>').length;
   const titleLayout = { text, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
   const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines + MODEBAR };
-  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
+  const fitted = fitToBox({ ...baseLayout, title: titleLayout, ...layout, margin }, el);
+  await P.react(el, data.map(plainColorbar), fitted, config);
   toolbar(el, title, filename);
   stale(el, false);
   el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
