@@ -118,6 +118,59 @@ function fitToBox(layout: Partial<Layout>, el: HTMLElement): Partial<Layout> {
   return out as Partial<Layout>;
 }
 
+/** Lengths in µm from this size on are labelled in mm (150 mm, not "150,000 µm" or "150k µm"). */
+const MM_FROM = 10_000;
+
+/** About five round tick values over [lo, hi] (mm), in mm. */
+function niceTicks(lo: number, hi: number): number[] {
+  const raw = (hi - lo) / 5 || 1;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw) ?? 10 * p;
+  const out: number[] = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(Number(v.toPrecision(12)));
+  return out;
+}
+
+/** The title and ticks of an axis or colour bar in µm whose values reach MM_FROM µm, in mm. */
+function inMm<T extends { title?: unknown }>(target: T | undefined, values: number[]): T | undefined {
+  const t = target?.title as { text?: string } | string | undefined;
+  const text = typeof t === 'string' ? t : t?.text;
+  if (!target || !text || !text.includes('(µm)') || (target as { tickvals?: unknown }).tickvals) return target;
+  const finite = values.filter(Number.isFinite);
+  if (!finite.length) return target;
+  const lo = Math.min(0, ...finite) / 1000;
+  const hi = Math.max(0, ...finite) / 1000;
+  if (Math.max(-lo, hi) * 1000 < MM_FROM) return target;
+  const ticks = niceTicks(lo, hi);
+  const title = typeof t === 'string' ? t.replace('(µm)', '(mm)') : { ...t, text: text.replace('(µm)', '(mm)') };
+  return { ...target, title, tickmode: 'array', tickvals: ticks.map((v) => v * 1000), ticktext: ticks.map((v) => String(v)) };
+}
+
+const flat = (v: unknown): number[] =>
+  Array.isArray(v) || ArrayBuffer.isView(v) ? Array.from(v as ArrayLike<unknown>).flatMap(flat) : typeof v === 'number' ? [v] : [];
+
+/**
+ * Axes and colour bars in µm whose values reach MM_FROM µm labelled in mm instead (the data, its
+ * hover text and its CSV stay in µm: only the ticks' text and the title change).
+ */
+function millimetres(layout: Partial<Layout>, traces: Data[]): Partial<Layout> {
+  const out = { ...layout } as Record<string, unknown>;
+  for (const key of Object.keys(out)) {
+    const m = /^([xy])axis(\d*)$/.exec(key);
+    if (!m) continue;
+    const ref = `${m[1]}${m[2]}`;
+    const values = traces
+      .filter((t) => ((t as Record<string, unknown>)[`${m[1]}axis`] ?? m[1]) === ref)
+      .flatMap((t) => flat((t as Record<string, unknown>)[m[1]]));
+    out[key] = inMm(out[key] as { title?: unknown }, values);
+  }
+  for (let i = 0; i < traces.length; i++) {
+    const t = traces[i] as { z?: unknown; colorbar?: { title?: unknown } };
+    if (t.colorbar && t.z) traces[i] = { ...t, colorbar: inMm(t.colorbar, flat(t.z)) } as Data;
+  }
+  return out as Partial<Layout>;
+}
+
 /** A trace whose colour bar (its own or its markers') writes its values out, as fitToBox's axes. */
 function plainColorbar(t: Data): Data {
   const c = t as { type?: string; colorbar?: object; marker?: { colorbar?: object; showscale?: boolean } };
@@ -150,8 +203,9 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
   const lines = text.split('<br>').length;
   const titleLayout = { text, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
   const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines + MODEBAR };
-  const fitted = fitToBox({ ...baseLayout, title: titleLayout, ...layout, margin }, el);
-  await P.react(el, data.map(plainColorbar), fitted, config);
+  const traces = data.map(plainColorbar);
+  const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin }, traces), el);
+  await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
   stale(el, false);
   el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
