@@ -107,7 +107,16 @@ function fitToBox(layout: Partial<Layout>, el: HTMLElement): Partial<Layout> {
   }
   out.legend = { ...(out.legend as object), orientation: 'h', x: 0, xanchor: 'left', xref: 'container', y: 0, yanchor: 'bottom', yref: 'container' };
   const margin = out.margin as Partial<Layout['margin']>;
-  out.margin = { ...margin, r: Math.min(margin?.r ?? 20, 10), l: Math.min(margin?.l ?? 64, 56) };
+  // A polar plot's angle labels (180° on the left) need room on both sides.
+  const side = out.polar ? 40 : 0;
+  out.margin = { ...margin, r: Math.max(side, Math.min(margin?.r ?? 20, 10)), l: Math.max(side, Math.min(margin?.l ?? 64, 56)) };
+  // Labels in the plot (a zone's name and value) on two lines and smaller, so that neighbours
+  // do not run into each other.
+  if (Array.isArray(out.annotations)) {
+    out.annotations = (out.annotations as { text?: string; font?: { size?: number } }[]).map((a) => ({
+      ...a, text: a.text?.replace(': ', ':<br>'), font: { ...a.font, size: Math.min(a.font?.size ?? 12, 10) },
+    }));
+  }
   if (out.scene) {
     const sc = out.scene as Record<string, AnyAxis>;
     // The camera a little further out, so that the axes' titles stay in the narrow box.
