@@ -1,6 +1,10 @@
 // A small static file server for the built page (dist/), with no dependencies.
 //   node scripts/serve.mjs [--port 8080] [--dir dist]
 // Used by `npm start` and by the browser tests. Serves only files under the directory.
+// Compressed: the build writes `file.br` and `file.gz` beside each file, and the server sends
+// the one the browser accepts (Accept-Encoding), with Content-Encoding and Vary. Cached: files
+// under assets/ have their content's hash in their name and are kept for a year; the others
+// (index.html, sw.js, presets) are revalidated on every use with an ETag (a 304 costs no body).
 import { createServer } from 'node:http';
 import { readFile, stat } from 'node:fs/promises';
 import { extname, join, normalize, resolve, sep } from 'node:path';
@@ -21,6 +25,19 @@ const TYPES = {
   '.webmanifest': 'application/manifest+json',
 };
 
+/** The encodings the request accepts, in the server's order of preference (q=0 refuses). */
+function accepted(header = '') {
+  const ok = new Set();
+  for (const part of header.toLowerCase().split(',')) {
+    const [name, ...params] = part.trim().split(';');
+    const q = params.map((p) => p.trim()).find((p) => p.startsWith('q='));
+    if (name && !(q && Number(q.slice(2)) === 0)) ok.add(name.trim());
+  }
+  return ['br', 'gzip'].filter((e) => ok.has(e) || ok.has('*'));
+}
+
+const SUFFIX = { br: '.br', gzip: '.gz' };
+
 /** Starts serving `dir` on `port` (0 picks a free one); resolves to { server, url }. */
 export function serve(dir, port = 0, host = '127.0.0.1') {
   const root = resolve(dir);
@@ -32,14 +49,40 @@ export function serve(dir, port = 0, host = '127.0.0.1') {
         res.writeHead(403).end('forbidden');
         return;
       }
-      if ((await stat(file).catch(() => null))?.isDirectory()) file = join(file, 'index.html');
-      const body = await readFile(file);
-      res.writeHead(200, {
+      let info = await stat(file).catch(() => null);
+      if (info?.isDirectory()) {
+        file = join(file, 'index.html');
+        info = await stat(file).catch(() => null);
+      }
+      if (!info?.isFile()) throw new Error('not found');
+      const headers = {
         'content-type': TYPES[extname(file)] ?? 'application/octet-stream',
-        'cache-control': 'no-cache',
+        'cache-control': file.startsWith(join(root, 'assets') + sep) ? 'public, max-age=31536000, immutable' : 'no-cache',
         'x-content-type-options': 'nosniff',
-      });
-      res.end(body);
+        vary: 'Accept-Encoding',
+      };
+      // The smallest variant the browser accepts: a precompressed file when the build wrote one.
+      let body = null;
+      let encoding = null;
+      for (const e of accepted(req.headers['accept-encoding'])) {
+        body = await readFile(file + SUFFIX[e]).catch(() => null);
+        if (body) {
+          encoding = e;
+          break;
+        }
+      }
+      const etag = `"${info.size.toString(36)}-${Math.floor(info.mtimeMs).toString(36)}${encoding ? `-${encoding}` : ''}"`;
+      headers.etag = etag;
+      if (encoding) headers['content-encoding'] = encoding;
+      for (const [k, v] of Object.entries(headers)) res.setHeader(k, v);
+      if (req.headers['if-none-match']?.split(',').some((t) => t.trim().replace(/^W\//, '') === etag)) {
+        res.writeHead(304).end();
+        return;
+      }
+      body ??= await readFile(file);
+      res.setHeader('content-length', body.length);
+      res.writeHead(200);
+      res.end(req.method === 'HEAD' ? undefined : body);
     } catch {
       res.writeHead(404, { 'content-type': 'text/plain' }).end('not found');
     }

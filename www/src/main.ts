@@ -179,6 +179,7 @@ async function show(id: string) {
       await panel.mount(section, machine);
       ignoredSettings(state.applyPending(panel.prefix));
       section.dataset.ready = 'true';
+      keepFetched();
     } catch (err) {
       section.append(el('p', { class: 'warn' }, `This panel failed to load: ${String(err)}`));
       throw err;
@@ -369,17 +370,30 @@ async function start() {
 }
 
 // The same engine on the main thread, for the browser console: `fiveaxis.nonlinearMove({...})`.
-// The page itself computes in a Web Worker.
-import('@engine').then(async (engine) => {
+// The page itself computes in a Web Worker. Loaded once the first panel has drawn, so that it
+// reuses the engine file the worker fetched (the browser's cache) and compiles it when the page
+// has nothing more urgent to do.
+async function consoleEngine() {
+  for (let t = 0; t < 100 && !document.querySelector('.plot[data-plotted]'); t++) await new Promise((r) => setTimeout(r, 100));
+  await new Promise((r) => ('requestIdleCallback' in window ? requestIdleCallback(r, { timeout: 2000 }) : setTimeout(r, 0)));
+  const engine = await import('@engine');
   await engine.default();
   (window as unknown as { fiveaxis: typeof engine }).fiveaxis = engine;
-});
+}
 
-void start();
+/** Asks the service worker to keep the files this visit fetched before it took control. */
+function keepFetched() {
+  if ('serviceWorker' in navigator) navigator.serviceWorker.controller?.postMessage('sweep');
+}
+
+void start().finally(() => {
+  void consoleEngine().finally(keepFetched);
+});
 
 // Offline use after the first visit (the built page only; the dev server has no sw.js).
 if ('serviceWorker' in navigator && import.meta.env.PROD) {
   window.addEventListener('load', () => {
     navigator.serviceWorker.register('./sw.js').catch((err) => banner(`Offline use is unavailable: ${String(err)}`));
+    navigator.serviceWorker.addEventListener('controllerchange', keepFetched);
   });
 }

@@ -1,15 +1,33 @@
-// Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part).
+// Plotting through Plotly.js, loaded lazily on first use (it is the page's heaviest part): its
+// core with the 2D trace types first, the 3D types (a further bundle) only once a 3D plot is
+// about to be shown. Until a plot is drawn its box shows a spinner (style.css, `.plot`).
 import type { Config, Data, Layout } from 'plotly.js';
 import { download, graphCsv } from './export';
 import { drawStarted } from '../engine/idle';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
+let plotly3d: Promise<PlotlyModule> | null = null;
 
+/** Plotly with the 2D trace types (scatter, bar, heatmap, scatterpolar). */
 export function loadPlotly(): Promise<PlotlyModule> {
-  plotly ??= import('plotly.js-dist-min').then((m) => ((m as { default?: PlotlyModule }).default ?? m) as PlotlyModule);
+  plotly ??= import('./plotly-2d').then((m) => m.default as unknown as PlotlyModule);
   return plotly;
 }
+
+/** Plotly with the 3D trace types too (scatter3d, surface, mesh3d, cone). */
+export function loadPlotly3d(): Promise<PlotlyModule> {
+  // The core first (the 2D plots wait for it), then the 3D types.
+  plotly3d ??= loadPlotly().then(async (core) => {
+    const three = await import('./plotly-3d');
+    (core as unknown as { register(m: unknown[]): void }).register(three.traces3d);
+    return core;
+  });
+  return plotly3d;
+}
+
+const TYPES_3D = new Set(['scatter3d', 'surface', 'mesh3d', 'cone']);
+const is3d = (data: Data[]) => data.some((t) => TYPES_3D.has(String((t as { type?: string }).type)));
 
 const baseLayout: Partial<Layout> = {
   font: { family: 'system-ui, -apple-system, "Segoe UI", Roboto, sans-serif', size: 12, color: '#1f2328' },
@@ -25,6 +43,154 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
   return { title: { text: title }, zeroline: false, gridcolor: '#e6e8eb', automargin: true, ...extra };
 }
 
+/** Height of Plotly's mode bar, kept clear above every title. */
+const MODEBAR = 26;
+
+/**
+ * `title` (lines separated by `<br>`) with every line longer than a `width`-px box can show at
+ * the title's size broken at spaces (Plotly does not wrap titles; it cuts them).
+ */
+export function wrapTitle(title: string, width: number): string {
+  if (!width) return title;
+  const max = Math.max(24, Math.floor((width - 16) / 6.8));
+  const out: string[] = [];
+  for (const line of title.split('<br>')) {
+    let current = '';
+    for (const word of line.split(' ')) {
+      const plain = (s: string) => s.replace(/<[^>]+>/g, '');
+      if (current && plain(`${current} ${word}`).length > max) {
+        out.push(current);
+        current = word;
+      } else current = current ? `${current} ${word}` : word;
+    }
+    out.push(current);
+  }
+  return out.join('<br>');
+}
+
+/** Narrower than this (px), a plot is laid out for a phone. */
+const COMPACT = 520;
+
+type AnyAxis = Record<string, unknown> & { domain?: number[]; anchor?: string };
+
+/**
+ * The layout adjusted to the plot's box. Everywhere: axis and colour-bar values are written out
+ * (Plotly's default shortens 150000 µm to "150k" µm, which reads as kilo-micrometres). In a box
+ * narrower than COMPACT px (a phone): two plots side by side (x and x2) are stacked, the box made
+ * taller for them; legends go under the plot, horizontally; 3D axes get fewer ticks.
+ */
+function fitToBox(layout: Partial<Layout>, el: HTMLElement): Partial<Layout> {
+  const out = { ...layout } as Record<string, unknown>;
+  const plain = (a: unknown) => ({ exponentformat: 'none', separatethousands: true, ...(a as object) });
+  for (const key of Object.keys(out)) {
+    if (/^[xy]axis\d*$/.test(key)) out[key] = plain(out[key]);
+    if (key === 'coloraxis' || /^coloraxis\d+$/.test(key)) {
+      const c = out[key] as { colorbar?: object };
+      out[key] = { ...c, colorbar: plain(c?.colorbar) };
+    }
+  }
+  // 3D axes: at most 5 ticks (the default crowds a short axis's labels into its neighbours').
+  if (out.scene) {
+    const sc = out.scene as Record<string, AnyAxis>;
+    out.scene = { ...sc, xaxis: { nticks: 5, ...sc.xaxis }, yaxis: { nticks: 5, ...sc.yaxis }, zaxis: { nticks: 5, ...sc.zaxis } };
+  }
+  const compact = el.clientWidth > 0 && el.clientWidth < COMPACT;
+  const x = out.xaxis as AnyAxis | undefined;
+  const x2 = out.xaxis2 as AnyAxis | undefined;
+  const sideBySide = !!(x?.domain && x2?.domain && x2.domain[0] >= x.domain[1]);
+  el.classList.toggle('stacked', compact && sideBySide);
+  if (!compact) return out as Partial<Layout>;
+  if (sideBySide) {
+    out.xaxis = { ...x, domain: [0, 1], anchor: 'y' };
+    out.yaxis = { ...(out.yaxis as AnyAxis), domain: [0.6, 1], anchor: 'x' };
+    out.xaxis2 = { ...x2, domain: [0, 1], anchor: 'y2' };
+    out.yaxis2 = { ...(out.yaxis2 as AnyAxis), domain: [0, 0.4], anchor: 'x2' };
+  }
+  out.legend = { ...(out.legend as object), orientation: 'h', x: 0, xanchor: 'left', xref: 'container', y: 0, yanchor: 'bottom', yref: 'container' };
+  const margin = out.margin as Partial<Layout['margin']>;
+  // A polar plot's angle labels (180° on the left) need room on both sides.
+  const side = out.polar ? 40 : 0;
+  out.margin = { ...margin, r: Math.max(side, Math.min(margin?.r ?? 20, 10)), l: Math.max(side, Math.min(margin?.l ?? 64, 56)) };
+  // Labels in the plot (a zone's name and value) on two lines and smaller, so that neighbours
+  // do not run into each other.
+  if (Array.isArray(out.annotations)) {
+    out.annotations = (out.annotations as { text?: string; font?: { size?: number } }[]).map((a) => ({
+      ...a, text: a.text?.replace(': ', ':<br>'), font: { ...a.font, size: Math.min(a.font?.size ?? 12, 10) },
+    }));
+  }
+  if (out.scene) {
+    const sc = out.scene as Record<string, AnyAxis>;
+    // The camera a little further out, so that the axes' titles stay in the narrow box.
+    const cam = sc.camera as { eye?: { x: number; y: number; z: number } } | undefined;
+    const eye = cam?.eye ? { camera: { ...cam, eye: { x: cam.eye.x * 1.2, y: cam.eye.y * 1.2, z: cam.eye.z * 1.2 } } } : {};
+    out.scene = { ...sc, ...eye, xaxis: { ...sc.xaxis, nticks: 4 }, yaxis: { ...sc.yaxis, nticks: 4 }, zaxis: { ...sc.zaxis, nticks: 4 } };
+  }
+  return out as Partial<Layout>;
+}
+
+/** Lengths in µm from this size on are labelled in mm (150 mm, not "150,000 µm" or "150k µm"). */
+const MM_FROM = 10_000;
+
+/** About five round tick values over [lo, hi] (mm), in mm. */
+function niceTicks(lo: number, hi: number): number[] {
+  const raw = (hi - lo) / 5 || 1;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw) ?? 10 * p;
+  const out: number[] = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(Number(v.toPrecision(12)));
+  return out;
+}
+
+/** The title and ticks of an axis or colour bar in µm whose values reach MM_FROM µm, in mm. */
+function inMm<T extends { title?: unknown }>(target: T | undefined, values: number[]): T | undefined {
+  const t = target?.title as { text?: string } | string | undefined;
+  const text = typeof t === 'string' ? t : t?.text;
+  if (!target || !text || !text.includes('(µm)') || (target as { tickvals?: unknown }).tickvals) return target;
+  const finite = values.filter(Number.isFinite);
+  if (!finite.length) return target;
+  const lo = Math.min(0, ...finite) / 1000;
+  const hi = Math.max(0, ...finite) / 1000;
+  if (Math.max(-lo, hi) * 1000 < MM_FROM) return target;
+  const ticks = niceTicks(lo, hi);
+  const title = typeof t === 'string' ? t.replace('(µm)', '(mm)') : { ...t, text: text.replace('(µm)', '(mm)') };
+  return { ...target, title, tickmode: 'array', tickvals: ticks.map((v) => v * 1000), ticktext: ticks.map((v) => String(v)) };
+}
+
+const flat = (v: unknown): number[] =>
+  Array.isArray(v) || ArrayBuffer.isView(v) ? Array.from(v as ArrayLike<unknown>).flatMap(flat) : typeof v === 'number' ? [v] : [];
+
+/**
+ * Axes and colour bars in µm whose values reach MM_FROM µm labelled in mm instead (the data, its
+ * hover text and its CSV stay in µm: only the ticks' text and the title change).
+ */
+function millimetres(layout: Partial<Layout>, traces: Data[]): Partial<Layout> {
+  const out = { ...layout } as Record<string, unknown>;
+  for (const key of Object.keys(out)) {
+    const m = /^([xy])axis(\d*)$/.exec(key);
+    if (!m) continue;
+    const ref = `${m[1]}${m[2]}`;
+    const values = traces
+      .filter((t) => ((t as Record<string, unknown>)[`${m[1]}axis`] ?? m[1]) === ref)
+      .flatMap((t) => flat((t as Record<string, unknown>)[m[1]]));
+    out[key] = inMm(out[key] as { title?: unknown }, values);
+  }
+  for (let i = 0; i < traces.length; i++) {
+    const t = traces[i] as { z?: unknown; colorbar?: { title?: unknown } };
+    if (t.colorbar && t.z) traces[i] = { ...t, colorbar: inMm(t.colorbar, flat(t.z)) } as Data;
+  }
+  return out as Partial<Layout>;
+}
+
+/** A trace whose colour bar (its own or its markers') writes its values out, as fitToBox's axes. */
+function plainColorbar(t: Data): Data {
+  const c = t as { type?: string; colorbar?: object; marker?: { colorbar?: object; showscale?: boolean } };
+  const plain = (a?: object) => ({ exponentformat: 'none', separatethousands: true, ...a });
+  let out = t;
+  if (c.colorbar || ['heatmap', 'surface', 'contour'].includes(c.type ?? '')) out = { ...out, colorbar: plain(c.colorbar) } as Data;
+  if (c.marker?.colorbar || c.marker?.showscale) out = { ...out, marker: { ...c.marker, colorbar: plain(c.marker.colorbar) } } as Data;
+  return out;
+}
+
 /** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
   const end = drawStarted();
@@ -36,7 +202,7 @@ export async function draw(el: HTMLElement, title: string, data: Data[], layout:
 }
 
 async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
-  const P = await loadPlotly();
+  const P = is3d(data) ? await loadPlotly3d() : await loadPlotly();
   const config: Partial<Config> = {
     responsive: true,
     displaylogo: false,
@@ -50,10 +216,15 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   // lines after the first. (Anchored to the container's top, Plotly cuts the first line of a
   // two-line title; with the margin grown by Plotly's automargin instead, the first drawing places
   // the traces before the margin grows, so that they sit above their axes until the next redraw.)
-  const lines = title.split('<br>').length;
-  const titleLayout = { text: title, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
-  const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines };
-  await P.react(el, data, { ...baseLayout, title: titleLayout, ...layout, margin }, config);
+  // Above the title, a strip of MODEBAR px is left for Plotly's mode bar (top right), so that the
+  // bar never covers the title. A title longer than the box is wrapped onto further lines.
+  const text = wrapTitle(title, el.clientWidth);
+  const lines = text.split('<br>').length;
+  const titleLayout = { text, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
+  const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines + MODEBAR };
+  const traces = data.map(plainColorbar);
+  const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin }, traces), el);
+  await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
   stale(el, false);
   el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
