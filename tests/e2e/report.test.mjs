@@ -36,16 +36,9 @@ test('report: header, tolerance, verdict, plots and a line to sign, printed to P
     await page.fill('#tp-tolerance', '7.5');
     await waitIdle(page);
     const unit = await page.$eval('#tp-tolerance', (e) => e.closest('.field-row')?.querySelector('.unit')?.textContent);
-    // A panel's verdict section (as the panels with a tolerance check give it: the first child
-    // of the results), put here by hand so that this test does not depend on a panel having one.
-    await page.evaluate(() => {
-      const v = document.createElement('section');
-      v.className = 'verdict';
-      v.dataset.verdict = 'pass';
-      v.innerHTML = '<table><tr><th>Check</th><th>Result</th></tr><tr><td id="verdict-row">largest δ within the tolerance</td><td>PASS</td></tr></table>';
-      document.querySelector('#panel-toolpath .results').prepend(v);
-    });
-
+    // The panel's own verdict (the first child of its results), judged against that tolerance.
+    await page.waitForSelector('#panel-toolpath .results > .verdict:is([data-verdict=pass], [data-verdict=fail])');
+    const judged = await page.$eval('#panel-toolpath .results > .verdict', (v) => v.dataset.verdict);
     await page.emulateMedia({ media: 'print' });
     await page.waitForSelector('#panel-toolpath > .report-header', { state: 'attached' });
     assert.equal(await page.$eval('#panel-toolpath', (s) => s.firstElementChild.classList.contains('report-header')), true, 'the header comes first');
@@ -55,10 +48,11 @@ test('report: header, tolerance, verdict, plots and a line to sign, printed to P
     assert.deepEqual(header, want);
     assert.match(await page.textContent('#panel-toolpath .report-title'), /^Machine accuracy report: /);
     // The verdict printed once, in the header, without duplicate ids.
-    assert.equal(await page.$eval('#panel-toolpath .report-verdict', (v) => getComputedStyle(v).display !== 'none' && v.dataset.verdict), 'pass');
-    assert.match(await page.textContent('#panel-toolpath .report-verdict'), /PASS/);
+    assert.equal(await page.$eval('#panel-toolpath .report-verdict', (v) => getComputedStyle(v).display !== 'none' && v.dataset.verdict), judged);
+    assert.match(await page.textContent('#panel-toolpath .report-verdict'), judged === 'pass' ? /PASS/ : /FAIL/);
     assert.equal(await page.$eval('#panel-toolpath .results > .verdict', (v) => getComputedStyle(v).display), 'none');
-    assert.equal(await page.$$eval('[id=verdict-row]', (es) => es.length), 1);
+    assert.equal(await page.$$eval('#panel-toolpath .report-verdict [id]', (es) => es.length), 0, 'the copy has no ids');
+    assert.equal(await page.$$eval('#panel-toolpath .report-verdict input', (es) => es.length), 0, 'no tolerance field in the copy');
     // The plots and, at the end, the line to sign.
     assert.ok(await page.$$eval('#panel-toolpath .js-plotly-plot', (gs) => gs.filter((g) => getComputedStyle(g).display !== 'none').length) >= 1);
     assert.deepEqual(await page.$$eval('#panel-toolpath .report-signature .sign-label', (ls) => ls.map((l) => l.textContent)), ['Checked by', 'Date', 'Signature']);
@@ -72,8 +66,8 @@ test('report: header, tolerance, verdict, plots and a line to sign, printed to P
     await page.waitForSelector('#panel-toolpath .report-signature', { state: 'detached' });
     await page.waitForSelector('#panel-toolpath > .report-header', { state: 'detached' });
 
-    // No tolerance field, no verdict: those are left out; an empty header field is a line to
-    // fill in by hand; no date entered: today's.
+    // Another panel: its own tolerance and verdict; an empty header field is a line to fill in
+    // by hand; no date entered: today's.
     await page.click('#tab-nonlinear');
     await page.click('#report-menu summary');
     await page.fill('#rp-operator', '');
@@ -86,9 +80,9 @@ test('report: header, tolerance, verdict, plots and a line to sign, printed to P
       const d = new Date();
       return `${d.getFullYear()}-${String(d.getMonth() + 1).padStart(2, '0')}-${String(d.getDate()).padStart(2, '0')}`;
     });
-    const { Tolerance: _, ...rest } = want;
-    assert.deepEqual(plain, { ...rest, Operator: '', Date: today });
-    assert.equal(await page.$$eval('#panel-nonlinear .report-verdict', (v) => v.length), 0);
+    const nlTolerance = await page.$eval('#nl-tolerance', (e) => `${e.value} ${e.closest('.field-row')?.querySelector('.unit')?.textContent}`);
+    assert.deepEqual(plain, { ...want, Operator: '', Date: today, Tolerance: nlTolerance });
+    assert.equal(await page.$$eval('#panel-nonlinear .report-verdict', (v) => v.length), 1);
     await page.emulateMedia({ media: 'screen' });
 
     // Kept with the page state: a reload, a saved case, a share link.

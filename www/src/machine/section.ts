@@ -76,7 +76,10 @@ function loadMachinePresets(): Promise<MachinePreset[]> {
 
 export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   const schema = await loadSchema();
-  const details = el('details', { id: 'machine-details', open: '' });
+  // On a phone the machine starts folded to its one-line summary, so that the open panel's
+  // verdict is on the first screen; a tap on the summary opens it.
+  const phone = window.matchMedia?.('(max-width: 600px)').matches ?? false;
+  const details = el('details', phone ? { id: 'machine-details' } : { id: 'machine-details', open: '' });
   const summary = el('summary', { id: 'machine-summary' }, 'Machine');
   const grid = el('div', { class: 'machine-grid' });
   const form = el('form', { class: 'inputs machine-form', novalidate: '' });
