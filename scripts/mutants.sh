@@ -82,8 +82,8 @@ done
 [ "${#scopes[@]}" -gt 0 ] || scopes=(chain binding)
 
 # Its own target directory, so that a run does not wait on the lock of the tree's builds; the
-# dependencies are built once and kept there.
-export CARGO_TARGET_DIR="$PWD/target/mutants-run"
+# dependencies are built once and kept there (MUTANTS_TARGET_DIR chooses another).
+export CARGO_TARGET_DIR="${MUTANTS_TARGET_DIR:-$PWD/target/mutants-run}"
 jobs="${MUTANTS_JOBS:-1}"
 
 equivalents=mutants-equivalent.txt

@@ -60,7 +60,11 @@ fn a_rigid_error_rotates_about_x_then_y_then_z_and_then_translates() {
         ..Default::default()
     }
     .transform();
-    assert!(near(&(t * Point3::origin()).coords, &Vector3::new(0.5, 0.0, 0.0), 0.0));
+    assert!(near(
+        &(t * Point3::origin()).coords,
+        &Vector3::new(0.5, 0.0, 0.0),
+        0.0
+    ));
     assert!(near(&(t * Vector3::z()), &Vector3::z(), 0.0));
 }
 
@@ -71,7 +75,10 @@ fn rigid_error_components_by_index_are_the_named_fields() {
     for k in 0..6 {
         e.set(k, (k + 1) as f64);
     }
-    assert_eq!((e.x, e.y, e.z, e.a, e.b, e.c), (1.0, 2.0, 3.0, 4.0, 5.0, 6.0));
+    assert_eq!(
+        (e.x, e.y, e.z, e.a, e.b, e.c),
+        (1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
+    );
     for k in 0..6 {
         assert_eq!(e.get(k), (k + 1) as f64);
     }
@@ -123,7 +130,8 @@ fn position_errors_name_the_positions_and_the_axis() {
     let e = chain.tool_pose(&[0.0; 4], false, &Setup::None).unwrap_err();
     assert_eq!(e.field, "positions");
     assert!(
-        e.message.contains("expected 5 axis positions (B, C, X, Y, Z), got 4"),
+        e.message
+            .contains("expected 5 axis positions (B, C, X, Y, Z), got 4"),
         "{}",
         e.message
     );
@@ -155,11 +163,23 @@ fn axis_frames_follow_the_offsets_and_the_motions_before_each_axis() {
     let origin = |i: usize| (f[i] * Point3::origin()).coords;
     assert!(near(&origin(0), &Vector3::zeros(), 1e-12));
     // R_Y(−90°)·(0, 0, 100) = (−100, 0, 0).
-    assert!(near(&origin(1), &Vector3::new(-100.0, 0.0, 0.0), 1e-9), "{}", origin(1));
-    assert!(near(&(f[1] * Vector3::z()), &Vector3::new(-1.0, 0.0, 0.0), 1e-12));
+    assert!(
+        near(&origin(1), &Vector3::new(-100.0, 0.0, 0.0), 1e-9),
+        "{}",
+        origin(1)
+    );
+    assert!(near(
+        &(f[1] * Vector3::z()),
+        &Vector3::new(-1.0, 0.0, 0.0),
+        1e-12
+    ));
     assert!(near(&origin(2), &Vector3::zeros(), 1e-12));
     // Y sits 5 mm along X from X's frame, which has moved by X = 7.
-    assert!(near(&origin(3), &Vector3::new(12.0, 0.0, 0.0), 1e-12), "{}", origin(3));
+    assert!(
+        near(&origin(3), &Vector3::new(12.0, 0.0, 0.0), 1e-12),
+        "{}",
+        origin(3)
+    );
     assert!(near(&origin(4), &Vector3::new(12.0, 0.0, 0.0), 1e-12));
 }
 
@@ -173,7 +193,9 @@ fn sensitivities_carry_the_iso_names_in_the_documented_order() {
     assert_eq!(chain.link(2).location_name(0), "E_X0X");
     assert_eq!(chain.link(1).motion_name(5), "E_CC");
     assert_eq!(chain.link(4).motion_name(1), "E_YZ");
-    let j = chain.jacobian(&[0.1, 0.2, 1.0, 2.0, 3.0], &Setup::None).unwrap();
+    let j = chain
+        .jacobian(&[0.1, 0.2, 1.0, 2.0, 3.0], &Setup::None)
+        .unwrap();
     assert_eq!(j.len(), 60);
     let letters = ["X", "Y", "Z", "A", "B", "C"];
     let axes = ["B", "C", "X", "Y", "Z"];
