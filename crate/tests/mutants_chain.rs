@@ -253,3 +253,31 @@ fn without_errors_the_pose_is_the_closed_form_whatever_the_set_up() {
             .is_err());
     }
 }
+
+/// Continuing from a previous pose, inverse kinematics picks, of the two rotary solutions, the
+/// one nearest the previous commands. For the B/C table the tool direction is
+/// `(cos c·sin b, sin c·sin b, cos b)`, so `(c, b)` and `(c + π, −b)` give the same direction
+/// (worked by hand); the previous pose decides between them.
+#[test]
+fn inverse_continues_from_the_previous_pose_on_the_nearer_solution() {
+    use std::f64::consts::PI;
+    let chain = bc_table();
+    let (b, c) = (0.3_f64, 0.7_f64);
+    let dir = Vector3::new(c.cos() * b.sin(), c.sin() * b.sin(), b.cos());
+    let tip = Vector3::new(5.0, -3.0, 20.0);
+    // Equally far in C (π/2 from each), nearer (c + π, −b) in B: −0.2 is 0.1 from −0.3.
+    // Chain order B, C, X, Y, Z.
+    let prev = [-0.2, c + PI / 2.0, 0.0, 0.0, 0.0];
+    let (q, singular) = chain.inverse(&tip, &dir, Some(&prev)).unwrap();
+    assert!(!singular);
+    assert!(
+        (q[0] + b).abs() < 1e-9 && (q[1] - (c + PI)).abs() < 1e-9,
+        "{q:?}"
+    );
+    // Equally far in B (0.3 from ±0.3), nearer (c, b) in C.
+    let prev = [0.0, c + PI / 2.0 - 0.3, 0.0, 0.0, 0.0];
+    let (q, _) = chain.inverse(&tip, &dir, Some(&prev)).unwrap();
+    assert!((q[0] - b).abs() < 1e-9 && (q[1] - c).abs() < 1e-9, "{q:?}");
+    let p = chain.tool_pose(&q, false, &Setup::None).unwrap();
+    assert!(near(&p.tip, &tip, 1e-9) && near(&p.axis, &dir, 1e-12));
+}
