@@ -25,6 +25,9 @@ mod sshape;
 mod toolpath;
 mod volumetric;
 
+#[cfg(test)]
+mod native_tests;
+
 pub use cubic::*;
 pub use identify::*;
 pub use machine::*;
@@ -141,7 +144,12 @@ pub(crate) fn f64_array(values: &[f64]) -> Series {
 
 /// A `Float64Array` of `radians` in degrees (angles at the API edge).
 pub(crate) fn degrees(radians: &[f64]) -> Series {
-    f64_array(&radians.iter().map(|x| x.to_degrees()).collect::<Vec<_>>())
+    f64_array(&degrees_of(radians))
+}
+
+/// `radians` in degrees (the pure part of [`degrees`], testable natively).
+pub(crate) fn degrees_of(radians: &[f64]) -> Vec<f64> {
+    radians.iter().map(|x| x.to_degrees()).collect()
 }
 
 /// The quantity of an error by ISO name; names not in the table (`"dR"`) are small lengths.

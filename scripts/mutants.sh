@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# `npm run mutants`: mutation testing of the engine with cargo-mutants (installed when missing,
+# like scripts/setup.sh installs its cargo tools). Not part of `npm test`: it is slow.
+#
+#   npm run mutants                       the default scopes: chain, binding
+#   npm run mutants -- chain sshape       named scopes (list below)
+#   npm run mutants -- all                every scope, one after the other (hours)
+#   npm run mutants -- chain -- --shard 1/4 --baseline skip
+#                                         anything after a second `--` goes to cargo-mutants
+#
+# A scope is a set of source files and the test binaries run against each of their mutants.
+# Test binaries outside a scope's list are left out only to keep a mutant to tens of seconds;
+# the slow ones (reversal_fit ≈ 3 min, nonlinear_fast_peak ≈ 25 s, nonlinear_paper ≈ 17 s) run
+# only in their own study's scope.
+#
+# Results: mutants.out/<scope>/mutants.out/{caught,missed,timeout,unviable}.txt. The summary
+# counts each scope's missed mutants that are listed in mutants-equivalent.txt (one line per
+# mutant exactly as cargo-mutants prints it, then ` # why it is equivalent`), and exits non-zero
+# when a missed mutant is neither killed nor listed there, or a mutant timed out.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+say() { printf '[mutants] %s\n' "$*"; }
+
+cargo_install() {
+  cargo install --locked "$@" || { say "retrying without --locked"; cargo install "$@"; }
+}
+if ! cargo mutants --version >/dev/null 2>&1; then
+  say "installing cargo-mutants; this takes a few minutes"
+  cargo_install cargo-mutants
+fi
+
+# scope → files (cargo-mutants --file globs), extra cargo-mutants filters, test binaries.
+files() {
+  case "$1" in
+    chain) echo "crate/src/chain.rs" ;;
+    binding) echo "wasm/src/lib.rs" ;;
+    nonlinear | cubic | sshape | volumetric | reversal | toolpath | identify | machine)
+      echo "crate/src/$1/*.rs" ;;
+    *) return 1 ;;
+  esac
+}
+# The binding's exports turn JavaScript values into JSON and back through wasm-bindgen, which
+# only runs under WebAssembly (wasm-pack test, tests/node, tests/e2e); natively cargo-mutants can
+# test its pure conversions, the functions named here.
+filters() {
+  case "$1" in
+    binding) echo "--re ^wasm/src/lib.rs:.*(api_combination|error_quantity|degrees_of)" ;;
+    *) echo "" ;;
+  esac
+}
+fast="--test chain_model --test machine_model --test rotary_kinematics --test volumetric_map
+  --test volumetric_paper --test cubic_any_machine --test sshape_any_machine"
+tests() {
+  case "$1" in
+    chain) echo "$fast --test mutants_chain" ;;
+    binding) echo "--lib" ;;
+    nonlinear) echo "--lib --test nonlinear_paper --test nonlinear_fast_peak --test toolpath_compare $fast" ;;
+    cubic) echo "--test cubic_paper --test cubic_design --test cubic_identify $fast" ;;
+    sshape) echo "--test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
+    volumetric) echo "$fast" ;;
+    reversal) echo "--test reversal_fit --test reversal_friction --test reversal_motion" ;;
+    toolpath) echo "--test toolpath_parse --test toolpath_compare $fast" ;;
+    identify) echo "--test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
+    machine) echo "--lib $fast" ;;
+  esac
+}
+package() { [ "$1" = binding ] && echo fiveaxis-wasm || echo fiveaxis; }
+
+all_scopes="chain binding nonlinear cubic sshape volumetric reversal toolpath identify machine"
+scopes=()
+extra=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --) shift; extra=("$@"); break ;;
+    all) read -r -a scopes <<<"$all_scopes" ;;
+    *) files "$1" >/dev/null || { echo "[mutants] unknown scope '$1' (known: $all_scopes, all)" >&2; exit 2; }
+       scopes+=("$1") ;;
+  esac
+  shift
+done
+[ "${#scopes[@]}" -gt 0 ] || scopes=(chain binding)
+
+# Its own target directory, so that a run does not wait on the lock of the tree's builds; the
+# dependencies are built once and kept there (MUTANTS_TARGET_DIR chooses another).
+export CARGO_TARGET_DIR="${MUTANTS_TARGET_DIR:-$PWD/target/mutants-run}"
+jobs="${MUTANTS_JOBS:-1}"
+
+equivalents=mutants-equivalent.txt
+status=0
+summary=()
+for s in "${scopes[@]}"; do
+  out="mutants.out/$s"
+  say "scope $s: $(files "$s")"
+  mkdir -p "$out"
+  args=(--package "$(package "$s")" --output "$out" -j "$jobs" --no-shuffle)
+  for f in $(files "$s"); do args+=(--file "$f"); done
+  read -r -a fl <<<"$(filters "$s")"
+  read -r -a tb <<<"$(tests "$s" | tr '\n' ' ')"
+  for t in "${tb[@]}"; do args+=("--cargo-arg=$t"); done
+  set +e
+  nice -n 10 cargo mutants "${args[@]}" "${fl[@]}" "${extra[@]}"
+  rc=$?
+  set -e
+  # cargo-mutants: 0 all caught, 2 some missed, 3 some timed out; anything else is a failure.
+  case $rc in 0 | 2 | 3) ;; *) say "cargo mutants failed ($rc) in scope $s"; status=1; continue ;; esac
+  d="$out/mutants.out"
+  count() { if [ -f "$d/$1.txt" ]; then grep -c . "$d/$1.txt" || true; else echo 0; fi; }
+  listed=0
+  unlisted=()
+  if [ -f "$d/missed.txt" ]; then
+    while IFS= read -r m; do
+      [ -n "$m" ] || continue
+      if grep -Fq -- "$m #" "$equivalents" 2>/dev/null; then
+        listed=$((listed + 1))
+      else
+        unlisted+=("$m")
+      fi
+    done <"$d/missed.txt"
+  fi
+  line="$s: caught $(count caught), missed $(count missed) (equivalent $listed, unexplained ${#unlisted[@]}), unviable $(count unviable), timeout $(count timeout)"
+  summary+=("$line")
+  for m in "${unlisted[@]}"; do say "  unexplained survivor: $m"; done
+  [ "${#unlisted[@]}" -eq 0 ] && [ "$(count timeout)" -eq 0 ] || status=1
+done
+
+printf '\n== mutation testing summary\n'
+printf '%s\n' "${summary[@]}"
+exit $status
