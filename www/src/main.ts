@@ -355,6 +355,11 @@ async function start() {
   setupPrint(activeSection);
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
+  // On a phone the privacy note and the panels' lead paragraphs show two lines; a tap, all.
+  document.addEventListener('click', (e) => {
+    const p = (e.target as HTMLElement | null)?.closest?.('p.privacy, p.lead');
+    if (p) p.classList.toggle('expanded');
+  });
   document.getElementById('banner-action')?.addEventListener('click', () => void shown?.action?.run());
   // Any edit anywhere in a panel, the machine or the report's header is saved (URL and local storage).
   document.getElementById('panels')!.addEventListener('input', scheduleSave);
