@@ -48,3 +48,23 @@ fn sweep_angle_plane_sine_and_shortfall_follow_their_definitions() {
     }
     assert!(shortfalls > 50, "{shortfalls} moves with a shortfall");
 }
+
+/// A move's angles are refused beyond ±3600° (the documented `MAX_ANGLE_DEG`, ten turns) and when
+/// not finite, each at its own field; 3600° itself is accepted (the bound is inclusive).
+#[test]
+fn a_move_beyond_ten_turns_or_not_finite_is_refused_at_its_field() {
+    let t = RotaryType::ALL[0];
+    let ok = Pose::new(0.0, 0.0);
+    let turns = 3600f64.to_radians();
+    assert!(analyze(Move::new(t, Pose::new(turns, 0.0), ok), 10.0, 8).is_ok());
+    let cases = [
+        ("start.k", Move::new(t, Pose::new(turns * 1.001, 0.0), ok)),
+        ("start.m", Move::new(t, Pose::new(0.0, -turns * 1.001), ok)),
+        ("end.k", Move::new(t, ok, Pose::new(f64::NAN, 0.0))),
+        ("end.m", Move::new(t, ok, Pose::new(0.0, f64::INFINITY))),
+    ];
+    for (field, mv) in cases {
+        let e = analyze(mv, 10.0, 8).expect_err(field);
+        assert_eq!(e.field, field, "{}", e.message);
+    }
+}
