@@ -117,7 +117,10 @@ test('volumetric panel: a measured table changes the map, heads the budget, is e
     // Tan & Lim's model beside the machine's at the worst point, on their machine only.
     await other.page.waitForSelector('#vm-paper-table', { state: 'attached' });
     assert.match(await other.page.textContent('#vm-paper-table'), /Their printed first-order/);
-    // Resetting the machine clears its error motions as it clears its errors.
+    // Resetting the machine clears its error motions as it clears its errors. (On a phone the
+    // machine starts folded to its summary: a tap opens it.)
+    assert.equal(await other.page.$eval('#machine-details', (d) => d.open), false, 'folded on a phone');
+    await other.page.click('#machine-summary');
     await other.page.click('#machine-reset');
     await other.page.waitForFunction(() => /No error is entered/.test(document.getElementById('vm-sentence')?.textContent ?? ''));
     assert.equal(await other.page.inputValue('#m-motions'), '');
