@@ -6,30 +6,11 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 mod common;
 
-use common::{close, deg, Rng};
+use common::{bc_table, close, deg, Rng};
 use fiveaxis::chain::{Chain, ErrorKind, Link, RigidError, Setup};
 use fiveaxis::geometry::Axis;
 use fiveaxis::rotary::{Pose, RotaryType};
 use nalgebra::{Matrix4, Vector3, Vector4};
-
-/// The B/C tilting-rotary table of the cubic-test paper: B about Y on the bed, C about Z on B,
-/// both through the origin; X, Y, Z carry the tool. Chain order: B, C, X, Y, Z.
-fn bc_table() -> Chain {
-    Chain {
-        work: vec![
-            Link::rotary("B", Axis::Y).on_table(),
-            Link::rotary("C", Axis::Z).on_table(),
-        ],
-        tool: vec![
-            Link::linear("X", Axis::X),
-            Link::linear("Y", Axis::Y),
-            Link::linear("Z", Axis::Z),
-        ],
-        work_origin: Vector3::zeros(),
-        tool_tip: Vector3::zeros(),
-        tool_axis: Axis::Z,
-    }
-}
 
 /// A head-B / table-C machine like the S-shape paper's (Y carries the table, X-Z-B the head),
 /// with non-zero offsets so that no lever arm is accidentally zero. Chain order: Y, C, X, Z, B.

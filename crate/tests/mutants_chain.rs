@@ -5,28 +5,12 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 mod common;
 
+use common::bc_table;
+
 use fiveaxis::chain::{Chain, Link, RigidError, Setup};
 use fiveaxis::geometry::Axis;
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::FRAC_PI_2;
-
-/// B about Y and C about Z on the table, X Y Z on the tool side; chain order B, C, X, Y, Z.
-fn bc_table() -> Chain {
-    Chain {
-        work: vec![
-            Link::rotary("B", Axis::Y).on_table(),
-            Link::rotary("C", Axis::Z).on_table(),
-        ],
-        tool: vec![
-            Link::linear("X", Axis::X),
-            Link::linear("Y", Axis::Y),
-            Link::linear("Z", Axis::Z),
-        ],
-        work_origin: Vector3::zeros(),
-        tool_tip: Vector3::zeros(),
-        tool_axis: Axis::Z,
-    }
-}
 
 fn near(a: &Vector3<f64>, b: &Vector3<f64>, tol: f64) -> bool {
     (a - b).norm() <= tol

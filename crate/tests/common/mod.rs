@@ -4,6 +4,28 @@
 pub mod chanal;
 pub mod li;
 
+/// The B/C tilting-rotary table of the cubic-test paper (Li et al. 2021) as a bare chain: B about
+/// Y on the bed, C about Z on B, both through the origin; X, Y, Z carry the tool. Chain order:
+/// B, C, X, Y, Z.
+pub fn bc_table() -> fiveaxis::chain::Chain {
+    use fiveaxis::chain::{Chain, Link};
+    use fiveaxis::geometry::Axis;
+    Chain {
+        work: vec![
+            Link::rotary("B", Axis::Y).on_table(),
+            Link::rotary("C", Axis::Z).on_table(),
+        ],
+        tool: vec![
+            Link::linear("X", Axis::X),
+            Link::linear("Y", Axis::Y),
+            Link::linear("Z", Axis::Z),
+        ],
+        work_origin: nalgebra::Vector3::zeros(),
+        tool_tip: nalgebra::Vector3::zeros(),
+        tool_axis: Axis::Z,
+    }
+}
+
 /// A small deterministic generator (xorshift64*), so tests need no extra crate and never flake.
 pub struct Rng(u64);
 
