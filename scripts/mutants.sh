@@ -61,7 +61,7 @@ tests() {
     volumetric) echo "$fast" ;;
     reversal) echo "--test reversal_fit --test reversal_friction --test reversal_motion" ;;
     toolpath) echo "--test toolpath_parse --test toolpath_compare $fast" ;;
-    identify) echo "--test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
+    identify) echo "--test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
     machine) echo "--lib $fast" ;;
   esac
 }

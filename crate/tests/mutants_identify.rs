@@ -1,0 +1,81 @@
+//! Tests written for mutants of `crate/src/identify/` that a sampled mutation run let survive
+//! (`npm run mutants -- identify`): the decision options' ranges and defaults, and the list of
+//! errors found, on a least-squares problem solved by hand.
+
+#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+
+use fiveaxis::identify::{check_options, identify, DecisionInput, Options, Param};
+use nalgebra::DMatrix;
+
+/// A tolerance of 0 means "none" (every error found is reported present); a positive one is
+/// kept as given (the input's documented meaning).
+#[test]
+fn a_zero_tolerance_is_none_and_a_positive_one_is_kept() {
+    let none = DecisionInput {
+        alpha: 0.05,
+        noise: None,
+        tolerance: 0.0,
+    };
+    assert_eq!(none.options().tolerance, None);
+    let some = DecisionInput {
+        tolerance: 0.002,
+        ..none
+    };
+    assert_eq!(some.options().tolerance, Some(0.002));
+}
+
+/// Each option outside its documented range is refused at its own name: α in [1e-6, 0.5],
+/// the level in [0.5, 0.999999], the noise in [1e-9, 10] mm, the tolerance in [0, 100] mm.
+#[test]
+fn options_outside_their_ranges_are_refused_by_name() {
+    let ok = Options::default();
+    assert!(check_options(&ok).is_ok());
+    let cases = [
+        ("alpha", Options { alpha: 0.7, ..ok }),
+        ("level", Options { level: 0.3, ..ok }),
+        (
+            "noise",
+            Options {
+                noise: Some(0.0),
+                ..ok
+            },
+        ),
+        (
+            "tolerance",
+            Options {
+                tolerance: Some(-1.0),
+                ..ok
+            },
+        ),
+    ];
+    for (name, o) in cases {
+        assert_eq!(check_options(&o).unwrap_err().field, name);
+        // The whole identification refuses them too, before fitting anything.
+        let a = DMatrix::identity(3, 1);
+        let p = [Param::error("E_X0B").unwrap()];
+        assert_eq!(
+            identify(&a, &p, &[0.1, 0.1, 0.1], 1e-9, &o)
+                .unwrap_err()
+                .field,
+            name
+        );
+    }
+}
+
+/// Two measurements of each of two errors with unit sensitivity: each estimate is the mean of
+/// its two. 0.1 mm under 1 µm of noise is found present; 0 ± 0.4 µm is not (t ≈ 0).
+#[test]
+fn an_error_far_above_its_noise_is_found_and_a_zero_one_is_not() {
+    let a = DMatrix::from_row_slice(4, 2, &[1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0]);
+    let p = [
+        Param::error("E_X0B").unwrap(),
+        Param::error("E_Y0B").unwrap(),
+    ];
+    let d = [0.1005, 0.0995, 0.0004, -0.0004];
+    let o = Options {
+        noise: Some(0.001),
+        ..Options::default()
+    };
+    let j = identify(&a, &p, &d, 1e-9, &o).unwrap();
+    assert_eq!(j.found(), vec!["E_X0B"]);
+}
