@@ -60,7 +60,7 @@ tests() {
     sshape) echo "--test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
     volumetric) echo "$fast" ;;
     reversal) echo "--test reversal_fit --test reversal_friction --test reversal_motion" ;;
-    toolpath) echo "--test toolpath_parse --test toolpath_compare $fast" ;;
+    toolpath) echo "--test mutants_toolpath --test toolpath_parse --test toolpath_compare $fast" ;;
     identify) echo "--test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
     machine) echo "--lib $fast" ;;
   esac
