@@ -57,7 +57,7 @@ tests() {
     binding) echo "--lib" ;;
     nonlinear) echo "--lib --test nonlinear_paper --test nonlinear_fast_peak --test toolpath_compare $fast" ;;
     cubic) echo "--test mutants_cubic --test cubic_paper --test cubic_design --test cubic_identify $fast" ;;
-    sshape) echo "--test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
+    sshape) echo "--test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
     volumetric) echo "$fast" ;;
     reversal) echo "--test reversal_fit --test reversal_friction --test reversal_motion" ;;
     toolpath) echo "--test mutants_toolpath --test toolpath_parse --test toolpath_compare $fast" ;;
