@@ -55,7 +55,7 @@ tests() {
   case "$1" in
     chain) echo "$fast --test mutants_chain" ;;
     binding) echo "--lib" ;;
-    nonlinear) echo "--lib --test nonlinear_paper --test nonlinear_fast_peak --test toolpath_compare $fast" ;;
+    nonlinear) echo "--lib --test nonlinear_outputs --test nonlinear_paper --test nonlinear_fast_peak --test toolpath_compare $fast" ;;
     cubic) echo "--test mutants_cubic --test cubic_paper --test cubic_design --test cubic_identify $fast" ;;
     sshape) echo "--test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
     volumetric) echo "$fast" ;;
