@@ -256,7 +256,8 @@ test('an unreadable link says so and changes nothing; a link opens beside the us
     assert.deepEqual(await ownWork(page), mine);
     assert.match(await page.textContent('#banner .banner-text'), /Your own inputs are back/);
     await page.click('.cases summary');
-    assert.ok((await page.$$eval('#case-list .case-name', (ns) => ns.map((n) => n.textContent))).includes(m[1]));
+    // The list is drawn when the menu opens: wait for the case's name in it.
+    await page.waitForFunction((name) => [...document.querySelectorAll('#case-list .case-name')].some((n) => n.textContent === name), m[1]);
     // Reloading the page's own address is not opening a link: no message, no new case.
     await page.waitForFunction(() => /m-geometry-tableHeight=150/.test(location.hash));
     await page.reload();
