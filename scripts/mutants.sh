@@ -13,7 +13,8 @@
 # the slow ones (reversal_fit ≈ 3 min, nonlinear_fast_peak ≈ 25 s, nonlinear_paper ≈ 17 s) run
 # only in their own study's scope.
 #
-# Results: mutants.out/<scope>/mutants.out/{caught,missed,timeout,unviable}.txt. The summary
+# Results: mutants.out/<scope>/mutants.out/{caught,missed,timeout,unviable}.txt (after a second
+# pass, the first pass's caught and unviable mutants are in mutants.out/<scope>/first-pass/). The summary
 # counts each scope's missed mutants that are listed in mutants-equivalent.txt (one line per
 # mutant exactly as cargo-mutants prints it, then ` # why it is equivalent`), and exits non-zero
 # when a missed mutant is neither killed nor listed there, or a mutant timed out.
@@ -34,6 +35,7 @@ fi
 files() {
   case "$1" in
     chain) echo "crate/src/chain.rs" ;;
+    rotary) echo "crate/src/rotary.rs" ;;
     binding) echo "wasm/src/lib.rs" ;;
     nonlinear | cubic | sshape | volumetric | reversal | toolpath | identify | machine)
       echo "crate/src/$1/*.rs" ;;
@@ -49,25 +51,40 @@ filters() {
     *) echo "" ;;
   esac
 }
-fast="--test chain_model --test machine_model --test rotary_kinematics --test volumetric_map
-  --test volumetric_paper --test cubic_any_machine --test sshape_any_machine"
-tests() {
+# Two passes per scope. The first runs every mutant against the scope's own quick test binaries
+# (a few seconds a mutant: most of it is the rebuild). The second (`--iterate`) runs only the
+# first pass's survivors again, against every test binary of the crate, the slow ones included
+# (reversal_fit ≈ 30 s, nonlinear_fast_peak ≈ 7 s, nonlinear_paper ≈ 5 s), so that a mutant
+# survives only when no test at all kills it. reversal_fit runs in the second pass of the
+# reversal scope only: no other scope's code reaches it that the quick reversal tests miss.
+quick() {
   case "$1" in
-    chain) echo "$fast --test mutants_chain" ;;
+    chain) echo "--test mutants_chain --test chain_model --test machine_model --test rotary_kinematics --test volumetric_map --test cubic_any_machine --test sshape_any_machine" ;;
+    rotary) echo "--lib --test rotary_kinematics --test nonlinear_outputs --test nonlinear_split --test chain_model" ;;
     binding) echo "--lib" ;;
-    nonlinear) echo "--lib --test nonlinear_outputs --test nonlinear_paper --test nonlinear_fast_peak --test toolpath_compare $fast" ;;
-    cubic) echo "--test mutants_cubic --test cubic_paper --test cubic_design --test cubic_identify $fast" ;;
-    sshape) echo "--test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify $fast" ;;
-    volumetric) echo "$fast" ;;
-    reversal) echo "--test reversal_fit --test reversal_friction --test reversal_motion" ;;
-    toolpath) echo "--test mutants_toolpath --test toolpath_parse --test toolpath_compare $fast" ;;
-    identify) echo "--test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
-    machine) echo "--lib $fast" ;;
+    nonlinear) echo "--lib --test nonlinear_outputs --test nonlinear_split --test rotary_kinematics --test toolpath_compare" ;;
+    cubic) echo "--lib --test mutants_cubic --test cubic_paper --test cubic_design --test cubic_identify --test cubic_any_machine" ;;
+    sshape) echo "--lib --test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify --test sshape_any_machine --test sshape_eq14_vs_chain" ;;
+    volumetric) echo "--lib --test volumetric_map --test volumetric_paper" ;;
+    reversal) echo "--lib --test reversal_friction --test reversal_motion" ;;
+    toolpath) echo "--lib --test mutants_toolpath --test toolpath_parse --test toolpath_compare" ;;
+    identify) echo "--lib --test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
+    machine) echo "--lib --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;
   esac
+}
+every() {
+  [ "$1" = binding ] && { echo "--lib"; return; }
+  printf -- '--lib'
+  for f in crate/tests/*.rs; do
+    t=$(basename "$f" .rs)
+    [ "$t" = reversal_fit ] && [ "$1" != reversal ] && continue
+    printf -- ' --test %s' "$t"
+  done
+  echo
 }
 package() { [ "$1" = binding ] && echo fiveaxis-wasm || echo fiveaxis; }
 
-all_scopes="chain binding nonlinear cubic sshape volumetric reversal toolpath identify machine"
+all_scopes="chain binding rotary nonlinear cubic sshape volumetric reversal toolpath identify machine"
 scopes=()
 extra=()
 while [ $# -gt 0 ]; do
@@ -96,16 +113,36 @@ for s in "${scopes[@]}"; do
   args=(--package "$(package "$s")" --output "$out" -j "$jobs" --no-shuffle)
   for f in $(files "$s"); do args+=(--file "$f"); done
   read -r -a fl <<<"$(filters "$s")"
-  read -r -a tb <<<"$(tests "$s" | tr '\n' ' ')"
-  for t in "${tb[@]}"; do args+=("--cargo-arg=$t"); done
-  set +e
-  nice -n 10 cargo mutants "${args[@]}" "${fl[@]}" "${extra[@]}"
-  rc=$?
-  set -e
-  # cargo-mutants: 0 all caught, 2 some missed, 3 some timed out; anything else is a failure.
-  case $rc in 0 | 2 | 3) ;; *) say "cargo mutants failed ($rc) in scope $s"; status=1; continue ;; esac
+  failed=0
+  for pass in quick every; do
+    read -r -a tb <<<"$($pass "$s")"
+    targs=()
+    for t in "${tb[@]}"; do targs+=("--cargo-arg=$t"); done
+    more=()
+    if [ $pass = every ]; then
+      [ -s "$out/mutants.out/missed.txt" ] || break
+      say "scope $s: second pass, $(grep -c . "$out/mutants.out/missed.txt") survivors against every test"
+      more=(--iterate)
+      rm -rf "$out/first-pass" && cp -r "$out/mutants.out" "$out/first-pass"
+    fi
+    set +e
+    nice -n 10 cargo mutants "${args[@]}" "${targs[@]}" "${more[@]}" "${fl[@]}" "${extra[@]}"
+    rc=$?
+    set -e
+    # cargo-mutants: 0 all caught, 2 some missed, 3 some timed out; anything else is a failure.
+    case $rc in 0 | 2 | 3) ;; *) say "cargo mutants failed ($rc) in scope $s"; failed=1; break ;; esac
+  done
+  [ $failed = 0 ] || { status=1; continue; }
   d="$out/mutants.out"
-  count() { if [ -f "$d/$1.txt" ]; then grep -c . "$d/$1.txt" || true; else echo 0; fi; }
+  # After a second pass, caught and unviable mutants of the first pass are in first-pass/.
+  [ -s "$d/previously_caught.txt" ] || rm -rf "$out/first-pass"
+  lines() { if [ -f "$1" ]; then grep -c . "$1" || true; else echo 0; fi; }
+  count() {
+    case $1 in
+      caught | unviable) echo $(($(lines "$d/$1.txt") + $(lines "$out/first-pass/$1.txt"))) ;;
+      *) lines "$d/$1.txt" ;;
+    esac
+  }
   listed=0
   unlisted=()
   if [ -f "$d/missed.txt" ]; then
