@@ -69,7 +69,7 @@ quick() {
     reversal) echo "--lib --test reversal_friction --test reversal_motion" ;;
     toolpath) echo "--lib --test mutants_toolpath --test toolpath_parse --test toolpath_compare" ;;
     identify) echo "--lib --test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
-    machine) echo "--lib --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;
+    machine) echo "--lib --test mutants_machine --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;
   esac
 }
 every() {
