@@ -4,7 +4,7 @@
 //
 // Tests read it instead of sleeping: `document.body.dataset.busy` is "0" when idle, and
 // `window.__fiveaxis` holds the counters (`calls` started, `done` finished, `inFlight`,
-// `waiting` debounced edits, `drawing`, `draws` finished) and `idle()`.
+// `waiting` debounced edits, `drawing`, `draws` finished, `fetching`) and `idle()`.
 
 const counts = { calls: 0, done: 0, inFlight: 0, waiting: 0, drawing: 0, draws: 0, fetching: 0 };
 
@@ -96,24 +96,9 @@ export function debounced(fn: () => void, ms: number) {
   return Object.assign(run, { cancel });
 }
 
-(window as unknown as { __fiveaxis: unknown }).__fiveaxis = {
-  get calls() {
-    return counts.calls;
-  },
-  get done() {
-    return counts.done;
-  },
-  get inFlight() {
-    return counts.inFlight;
-  },
-  get waiting() {
-    return counts.waiting;
-  },
-  get drawing() {
-    return counts.drawing;
-  },
-  get draws() {
-    return counts.draws;
-  },
-  idle,
-};
+// Read-only live views of the counters, and `idle()`.
+const view: Record<string, unknown> = { idle };
+for (const k of Object.keys(counts) as (keyof typeof counts)[]) {
+  Object.defineProperty(view, k, { get: () => counts[k], enumerable: true });
+}
+(window as unknown as { __fiveaxis: unknown }).__fiveaxis = view;
