@@ -79,3 +79,19 @@ fn an_error_far_above_its_noise_is_found_and_a_zero_one_is_not() {
     let j = identify(&a, &p, &d, 1e-9, &o).unwrap();
     assert_eq!(j.found(), vec!["E_X0B"]);
 }
+
+/// Data the model fits exactly, with no noise given: the residual is 0, and so is every
+/// standard error. Two zero readings of one error: it is estimated at exactly 0 and shows
+/// nothing (p = 1: not distinguishable). Two equal non-zero readings: certain (p = 0: present).
+#[test]
+fn an_exact_fit_finds_a_nonzero_error_and_not_a_zero_one() {
+    let a = DMatrix::from_row_slice(2, 1, &[1.0, 1.0]);
+    let p = [Param::error("E_X0B").unwrap()];
+    let zero = identify(&a, &p, &[0.0, 0.0], 1e-9, &Options::default()).unwrap();
+    assert_eq!(zero.decisions[0].value, Some(0.0));
+    assert_eq!(zero.decisions[0].std_error, Some(0.0), "an exact fit");
+    assert!(zero.found().is_empty(), "{:?}", zero.decisions[0]);
+    let two = identify(&a, &p, &[0.25, 0.25], 1e-9, &Options::default()).unwrap();
+    assert_eq!(two.decisions[0].std_error, Some(0.0), "an exact fit");
+    assert_eq!(two.found(), vec!["E_X0B"]);
+}
