@@ -4,7 +4,7 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
-use fiveaxis::identify::{check_options, identify, DecisionInput, Options, Param};
+use fiveaxis::identify::{check_options, identify, DecisionInput, Options, Param, Verdict};
 use nalgebra::DMatrix;
 
 /// A tolerance of 0 means "none" (every error found is reported present); a positive one is
@@ -94,4 +94,36 @@ fn an_exact_fit_finds_a_nonzero_error_and_not_a_zero_one() {
     let two = identify(&a, &p, &[0.25, 0.25], 1e-9, &Options::default()).unwrap();
     assert_eq!(two.decisions[0].std_error, Some(0.0), "an exact fit");
     assert_eq!(two.found(), vec!["E_X0B"]);
+}
+
+/// The verdict's two thresholds, met exactly: a p-value equal to α is significant (the test
+/// rejects at p ≤ α), and an effect equal to the tolerance reaches it ("present" once the
+/// effect reaches the tolerance). The thresholds are set to the first run's own p-value and
+/// effect, so that they are met to the last bit.
+#[test]
+fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it() {
+    let a = DMatrix::from_row_slice(3, 1, &[1.0, 1.0, 1.0]);
+    let p = [Param::error("E_X0B").unwrap()];
+    let d = [0.010, 0.014, 0.009];
+    let first = identify(&a, &p, &d, 1e-9, &Options::default()).unwrap();
+    let p_adj = first.decisions[0].p_adjusted.unwrap();
+    assert!((1e-6..0.5).contains(&p_adj), "a p-value α can take: {p_adj}");
+    let at_alpha = Options {
+        alpha: p_adj,
+        ..Options::default()
+    };
+    let j = identify(&a, &p, &d, 1e-9, &at_alpha).unwrap();
+    assert_eq!(j.found(), vec!["E_X0B"], "p = α is significant");
+    let effect = first.decisions[0].effect;
+    close_to(effect, 0.011, 1e-12, "effect: the mean reading, sensitivity 1");
+    let at_tolerance = Options {
+        tolerance: Some(effect),
+        ..Options::default()
+    };
+    let j = identify(&a, &p, &d, 1e-9, &at_tolerance).unwrap();
+    assert_eq!(j.decisions[0].verdict, Verdict::Present, "effect = tolerance reaches it");
+}
+
+fn close_to(a: f64, b: f64, tol: f64, what: &str) {
+    assert!((a - b).abs() <= tol, "{what}: {a} vs {b}");
 }

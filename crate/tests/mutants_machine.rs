@@ -138,3 +138,34 @@ fn the_drawing_of_a_fork_head_fits_the_head() {
         close(s.scale, standoff + tool + pivot, 1e-9, "scale: centre to pivot");
     }
 }
+
+/// The machine's axes in chain order with what each does: for a table-table A/C trunnion with
+/// X, Y, Z on the spindle, A (M, the tilting axis) on the bed, C (K) on A, then X, Y, Z.
+#[test]
+fn the_axes_of_a_trunnion_are_a_then_c_on_the_table_and_x_y_z_on_the_spindle() {
+    let m = machine(json!({ "kind": "table-table", "type": "CAZ" }));
+    let axes = m.axes();
+    let got: Vec<(&str, &str, &str, &str)> = axes
+        .iter()
+        .map(|a| (a.name.as_str(), a.motion, a.side, a.role))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("A", "rotary", "table", "M"),
+            ("C", "rotary", "table", "K"),
+            ("X", "linear", "spindle", ""),
+            ("Y", "linear", "spindle", ""),
+            ("Z", "linear", "spindle", ""),
+        ]
+    );
+    assert!(axes.iter().all(|a| !a.description.is_empty()));
+    // The drawing lists the same axes.
+    let drawn: Vec<_> = schematic(&m, 0.3, 0.2, 10.0)
+        .unwrap()
+        .axes
+        .into_iter()
+        .map(|a| a.axis)
+        .collect();
+    assert_eq!(drawn, axes);
+}
