@@ -91,6 +91,7 @@ fn an_exact_fit_finds_a_nonzero_error_and_not_a_zero_one() {
     assert_eq!(zero.decisions[0].value, Some(0.0));
     assert_eq!(zero.decisions[0].std_error, Some(0.0), "an exact fit");
     assert!(zero.found().is_empty(), "{:?}", zero.decisions[0]);
+    assert_eq!(zero.decisions[0].t, None, "no t statistic without a standard error");
     let two = identify(&a, &p, &[0.25, 0.25], 1e-9, &Options::default()).unwrap();
     assert_eq!(two.decisions[0].std_error, Some(0.0), "an exact fit");
     assert_eq!(two.found(), vec!["E_X0B"]);
@@ -108,6 +109,10 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
     let first = identify(&a, &p, &d, 1e-9, &Options::default()).unwrap();
     let p_adj = first.decisions[0].p_adjusted.unwrap();
     assert!((1e-6..0.5).contains(&p_adj), "a p-value α can take: {p_adj}");
+    let dec = &first.decisions[0];
+    // t = value / standard error; the mean 0.011 of the readings over s/√3, s their deviation.
+    let s = ((0.001f64.powi(2) + 0.003f64.powi(2) + 0.002f64.powi(2)) / 2.0).sqrt();
+    close_to(dec.t.unwrap(), 0.011 / (s / 3f64.sqrt()), 1e-9, "t");
     let at_alpha = Options {
         alpha: p_adj,
         ..Options::default()

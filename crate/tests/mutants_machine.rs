@@ -159,7 +159,17 @@ fn the_axes_of_a_trunnion_are_a_then_c_on_the_table_and_x_y_z_on_the_spindle() {
             ("Z", "linear", "spindle", ""),
         ]
     );
-    assert!(axes.iter().all(|a| !a.description.is_empty()));
+    let words: Vec<&str> = axes.iter().map(|a| a.description.as_str()).collect();
+    assert_eq!(
+        words,
+        [
+            "A (M): table axis on the bed, carries C",
+            "C (K): table axis on A, carries the workpiece",
+            "X: linear axis, moves the spindle",
+            "Y: linear axis, moves the spindle",
+            "Z: linear axis, moves the spindle",
+        ]
+    );
     // The drawing lists the same axes.
     let drawn: Vec<_> = schematic(&m, 0.3, 0.2, 10.0)
         .unwrap()
@@ -168,4 +178,29 @@ fn the_axes_of_a_trunnion_are_a_then_c_on_the_table_and_x_y_z_on_the_spindle() {
         .map(|a| a.axis)
         .collect();
     assert_eq!(drawn, axes);
+}
+
+/// One rotary axis on each side (head-table B/C on a cross table: Y on the bed, X on Y, as the
+/// layout's help says): each rotary axis is alone
+/// on its branch, so it sits on nothing named and carries the branch's end.
+#[test]
+fn the_axes_of_a_head_table_machine_each_carry_their_branchs_end() {
+    let m = machine(json!({ "kind": "head-table", "type": "CBZ", "linear": "table-xy" }));
+    let got: Vec<(String, &str, &str, String)> = m
+        .axes()
+        .into_iter()
+        .map(|a| (a.name, a.side, a.role, a.description))
+        .collect();
+    let want = [
+        ("Y", "table", "", "Y: linear axis, moves the table"),
+        ("X", "table", "", "X: linear axis, moves the table"),
+        ("C", "table", "K", "C (K): table axis, carries the workpiece"),
+        ("Z", "spindle", "", "Z: linear axis, moves the spindle"),
+        ("B", "spindle", "M", "B (M): head axis, carries the spindle"),
+    ];
+    let want: Vec<(String, &str, &str, String)> = want
+        .iter()
+        .map(|(n, s, r, d)| (n.to_string(), *s, *r, d.to_string()))
+        .collect();
+    assert_eq!(got, want);
 }
