@@ -132,3 +132,41 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
 fn close_to(a: f64, b: f64, tol: f64, what: &str) {
     assert!((a - b).abs() <= tol, "{what}: {a} vs {b}");
 }
+
+/// Two pairs of errors the test cannot tell apart (each pair's columns are equal): only each
+/// pair's sum is measurable. The first sum reads 10, 14 and 9 µm, the second 1, −2 and 0.5 µm.
+/// Each sum is its readings' mean; the pooled deviation has 6 − 2 = 4 degrees of freedom; the
+/// 95 % half-width is t(0.975, 4) = 2.776445 times the standard error s/√3. The first sum is
+/// found, the second (−0.17 ± 3.5 µm) is not.
+#[test]
+fn each_measurable_combination_gets_its_own_interval_and_verdict() {
+    let a = DMatrix::from_row_slice(
+        6,
+        4,
+        &[
+            1.0, 1.0, 0.0, 0.0, //
+            1.0, 1.0, 0.0, 0.0, //
+            1.0, 1.0, 0.0, 0.0, //
+            0.0, 0.0, 1.0, 1.0, //
+            0.0, 0.0, 1.0, 1.0, //
+            0.0, 0.0, 1.0, 1.0,
+        ],
+    );
+    let p = ["E_X0B", "E_Y0B", "E_X0C", "E_Y0C"].map(|n| Param::error(n).unwrap());
+    let d = [0.010, 0.014, 0.009, 0.001, -0.002, 0.0005];
+    let j = identify(&a, &p, &d, 1e-9, &Options::default()).unwrap();
+    assert_eq!(j.combinations.len(), 2);
+    let m2 = (0.001 - 0.002 + 0.0005) / 3.0;
+    let ssr = [0.001, 0.003, 0.002].iter().map(|r: &f64| r * r).sum::<f64>()
+        + [0.001, -0.002, 0.0005].iter().map(|r: &f64| (r - m2).powi(2)).sum::<f64>();
+    let se = (ssr / 4.0).sqrt() / 3f64.sqrt();
+    let half = 2.776_445_105_197_793 * se;
+    for (c, mean) in j.combinations.iter().zip([0.011, m2]) {
+        close_to(c.combination.value, mean, 1e-12, "the sum is the mean reading");
+        close_to(c.combination.std_error, se, 1e-12, "standard error");
+        close_to(c.interval[0], mean - half, 1e-9, "interval low");
+        close_to(c.interval[1], mean + half, 1e-9, "interval high");
+    }
+    assert_eq!(j.combinations[0].verdict, Verdict::Present);
+    assert_eq!(j.combinations[1].verdict, Verdict::NotDistinguishable);
+}
