@@ -169,4 +169,30 @@ fn each_measurable_combination_gets_its_own_interval_and_verdict() {
     }
     assert_eq!(j.combinations[0].verdict, Verdict::Present);
     assert_eq!(j.combinations[1].verdict, Verdict::NotDistinguishable);
+    // A combination's p-value equal to α is significant, as for a single error.
+    let at_alpha = Options {
+        alpha: j.combinations[0].p_adjusted,
+        ..Options::default()
+    };
+    let again = identify(&a, &p, &d, 1e-9, &at_alpha).unwrap();
+    assert_eq!(again.combinations[0].verdict, Verdict::Present);
+}
+
+/// A length and an angle the test cannot tell apart (equal columns): the combination is
+/// written in its first term's unit, µm for the position error E_X0C, degrees for the
+/// squareness E_A0C.
+#[test]
+fn a_combination_is_written_in_its_first_terms_unit() {
+    let a = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
+    let p = ["E_X0C", "E_A0C"].map(|n| Param::error(n).unwrap());
+    let j = identify(&a, &p, &[0.010, 0.014, 0.009], 1e-9, &Options::default()).unwrap();
+    let c = &j.combinations[0];
+    let unit = match c.combination.terms[0].0.as_str() {
+        "E_X0C" => " µm",
+        "E_A0C" => "°",
+        other => panic!("first term {other}"),
+    };
+    // The sum, the mean reading 0.011, to three significant figures.
+    let value = if unit == " µm" { "11.0 µm" } else { "0.630°" };
+    assert!(c.words.contains(&format!(" = {value}")), "{}", c.words);
 }
