@@ -4,7 +4,9 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
-use fiveaxis::identify::{check_options, identify, DecisionInput, Options, Param, Verdict};
+use fiveaxis::identify::{
+    check_options, identify, meaning, DecisionInput, Options, Param, Verdict,
+};
 use nalgebra::DMatrix;
 
 /// A tolerance of 0 means "none" (every error found is reported present); a positive one is
@@ -91,7 +93,10 @@ fn an_exact_fit_finds_a_nonzero_error_and_not_a_zero_one() {
     assert_eq!(zero.decisions[0].value, Some(0.0));
     assert_eq!(zero.decisions[0].std_error, Some(0.0), "an exact fit");
     assert!(zero.found().is_empty(), "{:?}", zero.decisions[0]);
-    assert_eq!(zero.decisions[0].t, None, "no t statistic without a standard error");
+    assert_eq!(
+        zero.decisions[0].t, None,
+        "no t statistic without a standard error"
+    );
     let two = identify(&a, &p, &[0.25, 0.25], 1e-9, &Options::default()).unwrap();
     assert_eq!(two.decisions[0].std_error, Some(0.0), "an exact fit");
     assert_eq!(two.found(), vec!["E_X0B"]);
@@ -108,7 +113,10 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
     let d = [0.010, 0.014, 0.009];
     let first = identify(&a, &p, &d, 1e-9, &Options::default()).unwrap();
     let p_adj = first.decisions[0].p_adjusted.unwrap();
-    assert!((1e-6..0.5).contains(&p_adj), "a p-value α can take: {p_adj}");
+    assert!(
+        (1e-6..0.5).contains(&p_adj),
+        "a p-value α can take: {p_adj}"
+    );
     let dec = &first.decisions[0];
     // t = value / standard error; the mean 0.011 of the readings over s/√3, s their deviation.
     let s = ((0.001f64.powi(2) + 0.003f64.powi(2) + 0.002f64.powi(2)) / 2.0).sqrt();
@@ -120,13 +128,22 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
     let j = identify(&a, &p, &d, 1e-9, &at_alpha).unwrap();
     assert_eq!(j.found(), vec!["E_X0B"], "p = α is significant");
     let effect = first.decisions[0].effect;
-    close_to(effect, 0.011, 1e-12, "effect: the mean reading, sensitivity 1");
+    close_to(
+        effect,
+        0.011,
+        1e-12,
+        "effect: the mean reading, sensitivity 1",
+    );
     let at_tolerance = Options {
         tolerance: Some(effect),
         ..Options::default()
     };
     let j = identify(&a, &p, &d, 1e-9, &at_tolerance).unwrap();
-    assert_eq!(j.decisions[0].verdict, Verdict::Present, "effect = tolerance reaches it");
+    assert_eq!(
+        j.decisions[0].verdict,
+        Verdict::Present,
+        "effect = tolerance reaches it"
+    );
 }
 
 fn close_to(a: f64, b: f64, tol: f64, what: &str) {
@@ -157,12 +174,23 @@ fn each_measurable_combination_gets_its_own_interval_and_verdict() {
     let j = identify(&a, &p, &d, 1e-9, &Options::default()).unwrap();
     assert_eq!(j.combinations.len(), 2);
     let m2 = (0.001 - 0.002 + 0.0005) / 3.0;
-    let ssr = [0.001, 0.003, 0.002].iter().map(|r: &f64| r * r).sum::<f64>()
-        + [0.001, -0.002, 0.0005].iter().map(|r: &f64| (r - m2).powi(2)).sum::<f64>();
+    let ssr = [0.001, 0.003, 0.002]
+        .iter()
+        .map(|r: &f64| r * r)
+        .sum::<f64>()
+        + [0.001, -0.002, 0.0005]
+            .iter()
+            .map(|r: &f64| (r - m2).powi(2))
+            .sum::<f64>();
     let se = (ssr / 4.0).sqrt() / 3f64.sqrt();
     let half = 2.776_445_105_197_793 * se;
     for (c, mean) in j.combinations.iter().zip([0.011, m2]) {
-        close_to(c.combination.value, mean, 1e-12, "the sum is the mean reading");
+        close_to(
+            c.combination.value,
+            mean,
+            1e-12,
+            "the sum is the mean reading",
+        );
         close_to(c.combination.std_error, se, 1e-12, "standard error");
         close_to(c.interval[0], mean - half, 1e-9, "interval low");
         close_to(c.interval[1], mean + half, 1e-9, "interval high");
@@ -193,6 +221,138 @@ fn a_combination_is_written_in_its_first_terms_unit() {
         other => panic!("first term {other}"),
     };
     // The sum, the mean reading 0.011, to three significant figures.
-    let value = if unit == " µm" { "11.0 µm" } else { "0.630°" };
+    let value = if unit == " µm" {
+        "11.0 µm"
+    } else {
+        "0.630°"
+    };
     assert!(c.words.contains(&format!(" = {value}")), "{}", c.words);
+}
+
+/// What an error's value means, in the words of ISO 230-1's names `E_<component>0<axis>`: a
+/// position error of a rotary axis across its line moves the line, one along its own line
+/// moves the axis along it; an angle about its own line is the zero offset, about another
+/// direction a tilt; a linear axis's angle is a squareness. The sign follows the value.
+#[test]
+fn each_error_is_explained_by_its_iso_name() {
+    let cases = [
+        (
+            "E_X0C",
+            0.01,
+            "the C axis line lies 10.0 µm towards +X of where the control believes it is",
+        ),
+        (
+            "E_Y0C",
+            -0.01,
+            "the C axis line lies 10.0 µm towards −Y of where the control believes it is",
+        ),
+        (
+            "E_Z0C",
+            0.01,
+            "the C axis sits 10.0 µm towards +Z along its own line",
+        ),
+        (
+            "E_X0A",
+            -0.01,
+            "the A axis sits 10.0 µm towards −X along its own line",
+        ),
+        (
+            "E_Y0B",
+            0.01,
+            "the B axis sits 10.0 µm towards +Y along its own line",
+        ),
+        (
+            "E_Z0B",
+            0.01,
+            "the B axis line lies 10.0 µm towards +Z of where the control believes it is",
+        ),
+        (
+            "E_C0C",
+            1e-3,
+            "the C axis's zero is 0.0573° (206″) off: it stands turned +0.0573° (206″) at C = 0",
+        ),
+        (
+            "E_A0A",
+            -1e-3,
+            "the A axis's zero is 0.0573° (206″) off: it stands turned −0.0573° (206″) at A = 0",
+        ),
+        (
+            "E_B0B",
+            1e-3,
+            "the B axis's zero is 0.0573° (206″) off: it stands turned +0.0573° (206″) at B = 0",
+        ),
+        (
+            "E_A0C",
+            1e-3,
+            "the C axis line is tilted by 0.0573° (206″) about +X",
+        ),
+        (
+            "E_B0C",
+            -1e-3,
+            "the C axis line is tilted by 0.0573° (206″) about −Y",
+        ),
+        (
+            "E_C0Y",
+            1e-3,
+            "the Y axis is out of square by 0.0573° (206″) about +Z",
+        ),
+        (
+            "E_A0Z",
+            1e-3,
+            "the Z axis is out of square by 0.0573° (206″) about +X",
+        ),
+    ];
+    for (name, v, want) in cases {
+        let def = fiveaxis::machine::errors::find(name).unwrap();
+        assert_eq!(meaning(def, v), want, "{name}");
+    }
+    // A zero value is "+", not "−".
+    assert!(meaning(fiveaxis::machine::errors::find("E_X0C").unwrap(), 0.0).contains("+X"));
+}
+
+/// The summary: the false-call rate α as a percentage when nothing is found, and the
+/// goodness of fit said once, first when the errors do not explain the measurement, last
+/// otherwise (and when no noise is given, so nothing can be judged).
+#[test]
+fn the_summary_states_alpha_and_the_goodness_of_fit_once() {
+    let a = DMatrix::from_row_slice(3, 1, &[1.0, 1.0, 1.0]);
+    let p = [Param::error("E_X0B").unwrap()];
+    let zero = [0.0004, -0.0006, 0.0002];
+    for (alpha, rate) in [
+        (0.05, "rate 5 %)"),
+        (0.025, "rate 2.5 %)"),
+        (0.1, "rate 10 %)"),
+    ] {
+        let o = Options {
+            alpha,
+            ..Options::default()
+        };
+        let j = identify(&a, &p, &zero, 1e-9, &o).unwrap();
+        assert!(j.summary[0].contains(rate), "{alpha}: {}", j.summary[0]);
+        assert_eq!(j.summary.last(), Some(&j.goodness.words), "no noise: last");
+        assert_eq!(
+            j.summary.iter().filter(|s| **s == j.goodness.words).count(),
+            1
+        );
+    }
+    // Readings scattered ±0.5 mm against a stated noise of 1 µm: not explained, said first.
+    let o = Options {
+        noise: Some(0.001),
+        ..Options::default()
+    };
+    let j = identify(&a, &p, &[0.5, -0.5, 0.1], 1e-9, &o).unwrap();
+    assert_eq!(j.goodness.explains, Some(false));
+    assert_eq!(j.summary[0], j.goodness.words);
+    assert_eq!(
+        j.summary.iter().filter(|s| **s == j.goodness.words).count(),
+        1
+    );
+    // Readings within the noise: explained, said last.
+    let j = identify(&a, &p, &[0.0105, 0.0095, 0.0101], 1e-9, &o).unwrap();
+    assert_eq!(j.goodness.explains, Some(true));
+    assert_eq!(j.summary.last(), Some(&j.goodness.words));
+    assert_eq!(
+        j.summary.iter().filter(|s| **s == j.goodness.words).count(),
+        1
+    );
 }
