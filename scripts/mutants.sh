@@ -4,20 +4,24 @@
 #
 #   npm run mutants                       the default scopes: chain, binding
 #   npm run mutants -- chain sshape       named scopes (list below)
-#   npm run mutants -- all                every scope, one after the other (hours)
+#   npm run mutants -- all                every scope, one after the other (many hours)
+#   npm run mutants -- resume cubic       go on where a stopped run of the scope left off
 #   npm run mutants -- chain -- --shard 1/4 --baseline skip
 #                                         anything after a second `--` goes to cargo-mutants
 #
-# A scope is a set of source files and the test binaries run against each of their mutants.
-# Test binaries outside a scope's list are left out only to keep a mutant to tens of seconds;
-# the slow ones (reversal_fit ≈ 3 min, nonlinear_fast_peak ≈ 25 s, nonlinear_paper ≈ 17 s) run
-# only in their own study's scope.
+# A scope is a set of source files and the test binaries run against each of their mutants, in
+# two passes (see `quick` below): every mutant against the scope's quick tests, then the
+# survivors against every test. Run one scope at a time: two runs side by side on two cores
+# take longer than the same runs one after the other.
 #
-# Results: mutants.out/<scope>/mutants.out/{caught,missed,timeout,unviable}.txt (after a second
-# pass, the first pass's caught and unviable mutants are in mutants.out/<scope>/first-pass/). The summary
-# counts each scope's missed mutants that are listed in mutants-equivalent.txt (one line per
-# mutant exactly as cargo-mutants prints it, then ` # why it is equivalent`), and exits non-zero
-# when a missed mutant is neither killed nor listed there, or a mutant timed out.
+# Results: each cargo-mutants run writes mutants.out/<scope>/mutants.out/ (outcomes.json, a
+# log per mutant); mutants.out/<scope>/ledger.json keeps every mutant's latest outcome over the
+# passes and resumed runs (scripts/mutants-ledger.mjs). `resume` trusts the ledger's mutant
+# names, which carry line numbers: after editing a scope's source files, run it afresh.
+#
+# The summary counts each scope's missed mutants that are listed in mutants-equivalent.txt (one
+# line per mutant exactly as cargo-mutants prints it, then ` # why it is equivalent`), and exits
+# non-zero when a missed mutant is neither killed nor listed there, or a mutant timed out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
@@ -87,9 +91,11 @@ package() { [ "$1" = binding ] && echo fiveaxis-wasm || echo fiveaxis; }
 all_scopes="chain binding rotary nonlinear cubic sshape volumetric reversal toolpath identify machine"
 scopes=()
 extra=()
+resume=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --) shift; extra=("$@"); break ;;
+    resume) resume=1 ;;
     all) read -r -a scopes <<<"$all_scopes" ;;
     *) files "$1" >/dev/null || { echo "[mutants] unknown scope '$1' (known: $all_scopes, all)" >&2; exit 2; }
        scopes+=("$1") ;;
@@ -113,52 +119,39 @@ for s in "${scopes[@]}"; do
   args=(--package "$(package "$s")" --output "$out" -j "$jobs" --no-shuffle)
   for f in $(files "$s"); do args+=(--file "$f"); done
   read -r -a fl <<<"$(filters "$s")"
+  resumed=()
+  if [ "$resume" = 1 ] && [ -f "$out/ledger.json" ]; then
+    resumed=(--iterate)
+    say "scope $s: resuming (the mutants caught or unviable before are skipped)"
+  else
+    rm -f "$out/ledger.json"
+  fi
   failed=0
   for pass in quick every; do
     read -r -a tb <<<"$($pass "$s")"
     targs=()
     for t in "${tb[@]}"; do targs+=("--cargo-arg=$t"); done
-    more=()
+    more=("${resumed[@]}")
     if [ $pass = every ]; then
       [ -s "$out/mutants.out/missed.txt" ] || break
       say "scope $s: second pass, $(grep -c . "$out/mutants.out/missed.txt") survivors against every test"
       more=(--iterate)
-      rm -rf "$out/first-pass" && cp -r "$out/mutants.out" "$out/first-pass"
     fi
     set +e
     nice -n 10 cargo mutants "${args[@]}" "${targs[@]}" "${more[@]}" "${fl[@]}" "${extra[@]}"
     rc=$?
     set -e
+    node scripts/mutants-ledger.mjs merge "$out"
     # cargo-mutants: 0 all caught, 2 some missed, 3 some timed out; anything else is a failure.
     case $rc in 0 | 2 | 3) ;; *) say "cargo mutants failed ($rc) in scope $s"; failed=1; break ;; esac
   done
   [ $failed = 0 ] || { status=1; continue; }
-  d="$out/mutants.out"
-  # After a second pass, caught and unviable mutants of the first pass are in first-pass/.
-  [ -s "$d/previously_caught.txt" ] || rm -rf "$out/first-pass"
-  lines() { if [ -f "$1" ]; then grep -c . "$1" || true; else echo 0; fi; }
-  count() {
-    case $1 in
-      caught | unviable) echo $(($(lines "$d/$1.txt") + $(lines "$out/first-pass/$1.txt"))) ;;
-      *) lines "$d/$1.txt" ;;
-    esac
-  }
-  listed=0
-  unlisted=()
-  if [ -f "$d/missed.txt" ]; then
-    while IFS= read -r m; do
-      [ -n "$m" ] || continue
-      if grep -Fq -- "$m #" "$equivalents" 2>/dev/null; then
-        listed=$((listed + 1))
-      else
-        unlisted+=("$m")
-      fi
-    done <"$d/missed.txt"
-  fi
-  line="$s: caught $(count caught), missed $(count missed) (equivalent $listed, unexplained ${#unlisted[@]}), unviable $(count unviable), timeout $(count timeout)"
-  summary+=("$line")
-  for m in "${unlisted[@]}"; do say "  unexplained survivor: $m"; done
-  [ "${#unlisted[@]}" -eq 0 ] && [ "$(count timeout)" -eq 0 ] || status=1
+  set +e
+  line=$(node scripts/mutants-ledger.mjs summary "$out" "$s" "$equivalents")
+  [ $? = 0 ] || status=1
+  set -e
+  printf '%s\n' "$line" | grep '^\[mutants\]' || true
+  summary+=("$(printf '%s\n' "$line" | tail -n 1)")
 done
 
 printf '\n== mutation testing summary\n'

@@ -1,0 +1,51 @@
+// The ledger of `npm run mutants` (scripts/mutants.sh): every cargo-mutants run of a scope (the
+// first pass, the second pass, a run resumed after a stop) writes its own outcomes.json; the
+// ledger keeps each mutant's latest outcome, so that the counts are those of all runs together.
+//
+//   node scripts/mutants-ledger.mjs merge <scope dir>      add <scope dir>/mutants.out/outcomes.json
+//   node scripts/mutants-ledger.mjs summary <scope dir> <scope> <equivalents file>
+//
+// `summary` prints the scope's counts, each survivor that mutants-equivalent.txt does not
+// explain, and exits 1 when there is one or a mutant timed out.
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+const [cmd, dir, scope, equivalentsFile] = process.argv.slice(2);
+const ledgerPath = join(dir, 'ledger.json');
+const ledger = existsSync(ledgerPath) ? JSON.parse(readFileSync(ledgerPath, 'utf8')) : {};
+
+if (cmd === 'merge') {
+  const outcomes = join(dir, 'mutants.out', 'outcomes.json');
+  if (existsSync(outcomes)) {
+    for (const o of JSON.parse(readFileSync(outcomes, 'utf8')).outcomes) {
+      const name = o.scenario?.Mutant?.name;
+      if (name) ledger[name] = o.summary;
+    }
+    writeFileSync(ledgerPath, JSON.stringify(ledger, null, 1));
+  }
+} else if (cmd === 'summary') {
+  const explained = new Set(
+    (existsSync(equivalentsFile) ? readFileSync(equivalentsFile, 'utf8') : '')
+      .split('\n')
+      .filter((l) => l.includes(' # '))
+      .map((l) => l.slice(0, l.indexOf(' # '))),
+  );
+  const by = { CaughtMutant: 0, MissedMutant: 0, Unviable: 0, Timeout: 0 };
+  const unexplained = [];
+  let equivalent = 0;
+  for (const [name, summary] of Object.entries(ledger)) {
+    by[summary] = (by[summary] ?? 0) + 1;
+    if (summary !== 'MissedMutant') continue;
+    if (explained.has(name)) equivalent++;
+    else unexplained.push(name);
+  }
+  for (const m of unexplained.sort()) console.log(`[mutants]   unexplained survivor: ${m}`);
+  console.log(
+    `${scope}: ${Object.keys(ledger).length} mutants: caught ${by.CaughtMutant}, missed ${by.MissedMutant} ` +
+      `(equivalent ${equivalent}, unexplained ${unexplained.length}), unviable ${by.Unviable}, timeout ${by.Timeout}`,
+  );
+  process.exit(unexplained.length === 0 && by.Timeout === 0 ? 0 : 1);
+} else {
+  console.error('usage: mutants-ledger.mjs merge <dir> | summary <dir> <scope> <equivalents>');
+  process.exit(2);
+}
