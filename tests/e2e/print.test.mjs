@@ -26,6 +26,8 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
       // Wait until the panel has drawn its plots and the page is idle (some plots, such as an
       // identification's, stay empty until the user gives data).
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
+      // L left empty: the machine's own value is used, and the report must say so.
+      if (tab === 'nonlinear') await page.fill('#nl-length', '');
       await waitIdle(page);
       const screen = await plotWidths(page);
       assert.ok(screen.some((w) => w > 700), `${tab}: some plot is wider than a page on screen (${screen})`);
@@ -46,6 +48,12 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
       // The panel's inputs: its form and the tolerance at the top of its results (the verdict).
       const controls = await page.$$eval(`#panel-${tab} :is(form.inputs, .verdict) :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
       assert.ok(rows.length >= 3 && rows.length <= controls, `${tab}: ${rows.length} input rows printed for ${controls} controls`);
+      // No value printed as a bare unit: an empty optional field says what it stands for.
+      for (const [label, value] of [...machineRows, ...rows]) assert.ok(!/^\s*(mm|µm|°|%)?\s*$/.test(value ?? ''), `${tab}: ${label} printed as "${value}"`);
+      if (tab === 'nonlinear') {
+        const l = rows.find(([label]) => /^Tool length/.test(label));
+        assert.match(l?.[1] ?? '', /^\(empty: the machine's \d/, `nonlinear: L left empty prints the machine's value (${l})`);
+      }
       assert.equal(await page.$eval(`#panel-${tab} form.inputs`, (f) => getComputedStyle(f).display), 'none');
       assert.equal(await page.$eval('#machine', (m) => getComputedStyle(m).display), 'none', 'the Machine section itself is not printed');
       await page.pdf({ path: `${ARTIFACTS}report-${tab}.pdf`, format: 'A4', printBackground: true });

@@ -37,7 +37,10 @@ function inputRows(section: HTMLElement, prefix: string): [string, string][] {
       value = `${lines} line${lines === 1 ? '' : 's'} of data`;
     } else {
       const unit = c.closest('.field-row')?.querySelector('.unit')?.textContent ?? '';
-      value = `${c.value}${unit ? ` ${unit}` : ''}`;
+      // An empty optional field prints what it stands for (its placeholder says so), not a
+      // bare unit.
+      if (c.value.trim() === '') value = c.placeholder ? `(${c.placeholder})` : '(empty)';
+      else value = `${c.value}${unit ? ` ${unit}` : ''}`;
     }
     rows.push([label, value]);
   }
