@@ -356,3 +356,23 @@ fn the_summary_states_alpha_and_the_goodness_of_fit_once() {
         1
     );
 }
+
+/// The least-squares fit refuses a problem that does not hold together, each alone: names for
+/// another number of columns, readings for another number of rows, a single reading, no
+/// parameter; two readings of one parameter are the smallest problem it solves.
+#[test]
+fn the_fit_refuses_shapes_that_do_not_match_and_solves_the_smallest_one() {
+    use fiveaxis::identify::fit;
+    let names = |n: usize| (0..n).map(|i| format!("p{i}")).collect::<Vec<_>>();
+    let a = DMatrix::from_row_slice(3, 1, &[1.0, 1.0, 1.0]);
+    assert!(fit(&a, &names(2), &[0.1, 0.1, 0.1], 1e-9).is_err(), "two names, one column");
+    assert!(fit(&a, &names(1), &[0.1, 0.1], 1e-9).is_err(), "two readings, three rows");
+    let one = DMatrix::from_row_slice(1, 1, &[1.0]);
+    assert!(fit(&one, &names(1), &[0.1], 1e-9).is_err(), "one reading");
+    let none = DMatrix::<f64>::zeros(3, 0);
+    assert!(fit(&none, &names(0), &[0.1, 0.1, 0.1], 1e-9).is_err(), "no parameter");
+    let two = DMatrix::from_row_slice(2, 1, &[1.0, 1.0]);
+    let f = fit(&two, &names(1), &[0.1, 0.3], 1e-9).unwrap();
+    close_to(f.estimates[0].value.unwrap(), 0.2, 1e-12, "the mean of two readings");
+    assert_eq!(f.dof, 1);
+}
