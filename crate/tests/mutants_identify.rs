@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
 use fiveaxis::identify::{
-    check_options, identify, meaning, DecisionInput, Options, Param, Verdict,
+    check_options, fit, identify, meaning, DecisionInput, Options, Param, Verdict,
 };
 use nalgebra::DMatrix;
 
@@ -362,17 +362,59 @@ fn the_summary_states_alpha_and_the_goodness_of_fit_once() {
 /// parameter; two readings of one parameter are the smallest problem it solves.
 #[test]
 fn the_fit_refuses_shapes_that_do_not_match_and_solves_the_smallest_one() {
-    use fiveaxis::identify::fit;
     let names = |n: usize| (0..n).map(|i| format!("p{i}")).collect::<Vec<_>>();
     let a = DMatrix::from_row_slice(3, 1, &[1.0, 1.0, 1.0]);
-    assert!(fit(&a, &names(2), &[0.1, 0.1, 0.1], 1e-9).is_err(), "two names, one column");
-    assert!(fit(&a, &names(1), &[0.1, 0.1], 1e-9).is_err(), "two readings, three rows");
+    assert!(
+        fit(&a, &names(2), &[0.1, 0.1, 0.1], 1e-9).is_err(),
+        "two names, one column"
+    );
+    assert!(
+        fit(&a, &names(1), &[0.1, 0.1], 1e-9).is_err(),
+        "two readings, three rows"
+    );
     let one = DMatrix::from_row_slice(1, 1, &[1.0]);
     assert!(fit(&one, &names(1), &[0.1], 1e-9).is_err(), "one reading");
     let none = DMatrix::<f64>::zeros(3, 0);
-    assert!(fit(&none, &names(0), &[0.1, 0.1, 0.1], 1e-9).is_err(), "no parameter");
+    assert!(
+        fit(&none, &names(0), &[0.1, 0.1, 0.1], 1e-9).is_err(),
+        "no parameter"
+    );
     let two = DMatrix::from_row_slice(2, 1, &[1.0, 1.0]);
     let f = fit(&two, &names(1), &[0.1, 0.3], 1e-9).unwrap();
-    close_to(f.estimates[0].value.unwrap(), 0.2, 1e-12, "the mean of two readings");
+    close_to(
+        f.estimates[0].value.unwrap(),
+        0.2,
+        1e-12,
+        "the mean of two readings",
+    );
     assert_eq!(f.dof, 1);
+}
+
+/// A column at most 1e-12 of the largest column's norm is no effect at all (rounding noise):
+/// the parameter is reported as not seen, alone in its group, not paired with the other column
+/// it would equal once scaled. Checked at exactly the bound, and relative to a largest column
+/// of norm 1000 (bound 1e-9).
+#[test]
+fn a_column_at_most_1e_12_of_the_largest_is_no_effect() {
+    let names = ["a".to_string(), "b".to_string()];
+    for (big, small) in [(1.0, 1e-12), (1000.0, 1e-10)] {
+        let a = DMatrix::from_row_slice(3, 2, &[big, small, 0.0, 0.0, 0.0, 0.0]);
+        let f = fit(&a, &names, &[0.1, 0.0, 0.0], 1e-9).unwrap();
+        assert_eq!(
+            f.estimates[1].value, None,
+            "{big}, {small}: b not identifiable"
+        );
+        let b = f
+            .groups
+            .iter()
+            .find(|g| g.members.contains(&names[1]))
+            .unwrap();
+        assert_eq!(
+            b.members,
+            ["b"],
+            "{big}, {small}: b alone, not combined with a"
+        );
+        assert!(b.combinations.is_empty());
+        close_to(f.estimates[0].value.unwrap(), 0.1 / big, 1e-15, "a");
+    }
 }

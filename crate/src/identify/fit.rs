@@ -11,7 +11,7 @@ pub const DEFAULT_RTOL: f64 = 1e-2;
 /// of their projector) exceeds this, i.e. a component above 0.1; two such parameters are in one
 /// group when the projector couples them by more than this.
 const GROUP_WEIGHT: f64 = 1e-2;
-/// A column below this fraction of the largest column's norm counts as zero.
+/// A column at or below this fraction of the largest column's norm counts as zero.
 pub const ZERO_COLUMN: f64 = 1e-12;
 
 /// One parameter of the fit.
@@ -108,7 +108,7 @@ pub fn fit(a: &DMatrix<f64>, names: &[String], d: &[f64], rtol: f64) -> Result<F
     if a.iter().chain(d.iter()).any(|v| !v.is_finite()) {
         return Err(Error::field("fit", "the data must be finite"));
     }
-    // A column whose norm is rounding noise (below 1e-12 of the largest, e.g. an offset along a
+    // A column whose norm is rounding noise (at most 1e-12 of the largest, e.g. an offset along a
     // rotary axis's own line) is no effect at all: scaled to unit norm it would be a random
     // direction and a false rank.
     let norms: Vec<f64> = (0..p).map(|j| a.column(j).norm()).collect();
