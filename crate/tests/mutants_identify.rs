@@ -418,3 +418,51 @@ fn a_column_at_most_1e_12_of_the_largest_is_no_effect() {
         close_to(f.estimates[0].value.unwrap(), 0.1 / big, 1e-15, "a");
     }
 }
+
+/// Four errors whose weak directions (what the measurement cannot see) span the columns
+/// `(√½, ½, 0, ½)` and `(0, ½, √½, −½)` of the parameters a, b, c, d: the measurement rows
+/// `(−√2, 1, 0, 1)` and `(0, 1, −√2, −1)` are square to both (worked by hand), and every column
+/// has the norm √2 · √2 = 2, so scaling the columns keeps that geometry. The projector onto
+/// the weak directions couples a with b and d, and c with b and d, but not a with c: c joins
+/// a's group only through b or d. All four are one group, two of its four directions weak,
+/// two combinations measurable.
+#[test]
+fn errors_linked_only_through_a_third_are_one_group() {
+    let s = 2f64.sqrt();
+    let r1 = [-s, 1.0, 0.0, 1.0];
+    let r2 = [0.0, 1.0, -s, -1.0];
+    let rows: Vec<f64> = [r1, r2, r1, r2].concat();
+    let a = DMatrix::from_row_slice(4, 4, &rows);
+    let names = ["a", "b", "c", "d"].map(String::from);
+    let f = fit(&a, &names, &[0.01, 0.02, 0.012, 0.018], 1e-9).unwrap();
+    assert_eq!(f.rank, 2);
+    assert_eq!(f.groups.len(), 1, "{:?}", f.groups);
+    assert_eq!(f.groups[0].members, names);
+    assert_eq!(f.groups[0].deficiency, 2);
+    assert_eq!(f.groups[0].combinations.len(), 2);
+    // Each combination is written with its first coefficient 1.
+    for c in &f.groups[0].combinations {
+        assert_eq!(c.terms[0].1, 1.0, "{}", c.text);
+    }
+}
+
+/// Two errors with the same effect direction, a's effect per unit `ka`, b's `kb`: only
+/// `ka·a + kb·b` is measurable, written with the first term's coefficient 1 as
+/// `a + (kb/ka)·b`, its value the mean reading over `ka`. A first coefficient small against the
+/// others is still the lead (only one below 10⁻⁶ of the largest counts as zero): a at 10⁻⁴ of
+/// b, and a at 10⁻⁵ of b with both effects small (10⁻⁷ and 10⁻² per unit).
+#[test]
+fn a_combination_leads_with_its_first_term_even_when_its_effect_is_small() {
+    for (ka, kb) in [(1e-4, 1.0), (1e-7, 1e-2)] {
+        let a = DMatrix::from_row_slice(3, 2, &[ka, kb, ka, kb, ka, kb]);
+        let names = ["a", "b"].map(String::from);
+        let f = fit(&a, &names, &[0.010, 0.014, 0.009], 1e-9).unwrap();
+        let c = &f.groups[0].combinations[0];
+        assert_eq!(c.terms[0].0, "a");
+        close_to(c.terms[0].1, 1.0, 1e-12, "first coefficient");
+        assert_eq!(c.terms[1].0, "b");
+        let want = kb / ka;
+        close_to(c.terms[1].1 / want, 1.0, 1e-9, "second coefficient");
+        close_to(c.value / (0.011 / ka), 1.0, 1e-9, "value");
+    }
+}
