@@ -466,3 +466,47 @@ fn a_combination_leads_with_its_first_term_even_when_its_effect_is_small() {
         close_to(c.value / (0.011 / ka), 1.0, 1e-9, "value");
     }
 }
+
+/// A combination as text: the first name alone (coefficient 1), then each term with its sign
+/// and its size to 4 decimals, trailing zeros dropped, and no "1·" for a size within 5e-5 of 1.
+/// A zero coefficient is written with "+".
+#[test]
+fn a_combination_is_written_with_signs_and_sizes_to_four_decimals() {
+    use fiveaxis::identify::combination_text;
+    let t = |terms: &[(&str, f64)]| {
+        combination_text(
+            &terms
+                .iter()
+                .map(|(n, c)| (n.to_string(), *c))
+                .collect::<Vec<_>>(),
+        )
+    };
+    assert_eq!(
+        t(&[("E_A0Z", 1.0), ("E_A0C", -1.0187)]),
+        "E_A0Z − 1.0187·E_A0C"
+    );
+    assert_eq!(t(&[("a", 1.0), ("b", 1.0), ("c", -1.0)]), "a + b − c");
+    assert_eq!(
+        t(&[("a", 1.0), ("b", 1.00004), ("c", -0.99996)]),
+        "a + b − c"
+    );
+    assert_eq!(
+        t(&[("a", 1.0), ("b", 1.0001), ("c", 0.9999)]),
+        "a + 1.0001·b + 0.9999·c"
+    );
+    assert_eq!(t(&[("a", 1.0), ("b", 2.5), ("c", -3.0)]), "a + 2.5·b − 3·c");
+    assert_eq!(t(&[("a", 1.0), ("b", 0.0)]), "a + 0·b");
+    assert_eq!(t(&[("a", 2.0)]), "a", "the first term is taken as 1");
+}
+
+/// The singular values reported are relative to the largest. Two unit columns at cos θ = 0.6
+/// have singular values √(1 ± 0.6) = √1.6 and √0.4, the ratio exactly 1/2.
+#[test]
+fn the_singular_values_are_relative_to_the_largest() {
+    let a = DMatrix::from_row_slice(3, 2, &[1.0, 0.6, 0.0, 0.8, 0.0, 0.0]);
+    let names = ["a", "b"].map(String::from);
+    let f = fit(&a, &names, &[0.1, 0.2, 0.0], 1e-9).unwrap();
+    close_to(f.singular_values[0], 1.0, 1e-15, "largest");
+    close_to(f.singular_values[1], 0.5, 1e-12, "ratio");
+    assert_eq!(f.dof, 1, "3 readings, rank 2");
+}

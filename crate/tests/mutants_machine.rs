@@ -7,6 +7,7 @@
 mod common;
 
 use common::close;
+use fiveaxis::chain::Setup;
 use fiveaxis::machine::schematic::schematic;
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
@@ -42,7 +43,10 @@ fn without_errors_drops_the_errors_and_error_motions_and_keeps_everything_else()
         "kind": "head-table", "type": "CBZ",
         "geometry": { "tableHeight": 40, "pivotLength": 250, "toolLength": 80 },
     }));
-    assert_ne!(m, bare, "the machine with errors differs from the one without");
+    assert_ne!(
+        m, bare,
+        "the machine with errors differs from the one without"
+    );
     assert_eq!(m.without_errors(), bare);
 }
 
@@ -75,10 +79,19 @@ fn the_drawing_of_a_trunnion_table_is_its_closed_form_geometry() {
         // C turns the table's in-plane directions about the normal: at A = 0, u = (cos C,
         // ±sin C, 0) up to the face's own choice of u, so its angle to X is ±C.
         if a == 0.0 {
-            close(s.table_frame[0][0].abs(), c.cos().abs(), 1e-9, "u·X at A = 0");
+            close(
+                s.table_frame[0][0].abs(),
+                c.cos().abs(),
+                1e-9,
+                "u·X at A = 0",
+            );
         }
         close3(s.tool_direction, [0.0, 0.0, 1.0], "tool direction");
-        close3(s.tool_tip, [centre[0], centre[1], centre[2] + standoff], "tool tip");
+        close3(
+            s.tool_tip,
+            [centre[0], centre[1], centre[2] + standoff],
+            "tool tip",
+        );
         close3(
             s.spindle_nose,
             [centre[0], centre[1], centre[2] + standoff + tool],
@@ -87,7 +100,11 @@ fn the_drawing_of_a_trunnion_table_is_its_closed_form_geometry() {
         // Axes in chain order: the table side from the bed (A, then C), then X, Y, Z.
         let names: Vec<&str> = s.axes.iter().map(|x| x.axis.name.as_str()).collect();
         assert_eq!(names, ["A", "C", "X", "Y", "Z"], "axis order");
-        close3(s.axes[0].direction.map(f64::abs), [1.0, 0.0, 0.0], "A along X");
+        close3(
+            s.axes[0].direction.map(f64::abs),
+            [1.0, 0.0, 0.0],
+            "A along X",
+        );
         close3(s.axes[1].direction, n, "C along the table normal");
         // C's line passes through the table centre (the axes meet, no offset).
         let off = sub(centre, s.axes[1].origin);
@@ -98,8 +115,15 @@ fn the_drawing_of_a_trunnion_table_is_its_closed_form_geometry() {
             1e-9,
             "C's line through the table centre",
         );
-        for (i, want) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].iter().enumerate() {
-            close3(s.axes[2 + i].direction, *want, &format!("{} direction", names[2 + i]));
+        for (i, want) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            .iter()
+            .enumerate()
+        {
+            close3(
+                s.axes[2 + i].direction,
+                *want,
+                &format!("{} direction", names[2 + i]),
+            );
         }
         // The scale: the largest distance from the table centre or the tool tip to any drawn
         // point, at least 100 mm. Here the nose is farthest from the centre: standoff + tool.
@@ -110,7 +134,12 @@ fn the_drawing_of_a_trunnion_table_is_its_closed_form_geometry() {
         "kind": "table-table", "type": "CAZ",
         "geometry": { "tableHeight": 10, "toolLength": 20 },
     }));
-    close(schematic(&small, 0.0, 0.0, 5.0).unwrap().scale, 100.0, 0.0, "minimum scale");
+    close(
+        schematic(&small, 0.0, 0.0, 5.0).unwrap().scale,
+        100.0,
+        0.0,
+        "minimum scale",
+    );
 }
 
 /// Head-head: the workpiece does not move, the table centre is `h` above the origin whatever
@@ -132,10 +161,23 @@ fn the_drawing_of_a_fork_head_fits_the_head() {
         close(s.tool_direction[2], a.cos(), 1e-9, "tool direction z");
         close(norm(s.tool_direction), 1.0, 1e-12, "tool direction unit");
         let tip = sub(s.tool_tip, s.table_centre);
-        close3(tip, s.tool_direction.map(|v| v * standoff), "tip from the centre");
+        close3(
+            tip,
+            s.tool_direction.map(|v| v * standoff),
+            "tip from the centre",
+        );
         let nose = sub(s.spindle_nose, s.tool_tip);
-        close3(nose, s.tool_direction.map(|v| v * tool), "nose from the tip");
-        close(s.scale, standoff + tool + pivot, 1e-9, "scale: centre to pivot");
+        close3(
+            nose,
+            s.tool_direction.map(|v| v * tool),
+            "nose from the tip",
+        );
+        close(
+            s.scale,
+            standoff + tool + pivot,
+            1e-9,
+            "scale: centre to pivot",
+        );
     }
 }
 
@@ -194,7 +236,12 @@ fn the_axes_of_a_head_table_machine_each_carry_their_branchs_end() {
     let want = [
         ("Y", "table", "", "Y: linear axis, moves the table"),
         ("X", "table", "", "X: linear axis, moves the table"),
-        ("C", "table", "K", "C (K): table axis, carries the workpiece"),
+        (
+            "C",
+            "table",
+            "K",
+            "C (K): table axis, carries the workpiece",
+        ),
         ("Z", "spindle", "", "Z: linear axis, moves the spindle"),
         ("B", "spindle", "M", "B (M): head axis, carries the spindle"),
     ];
@@ -203,4 +250,53 @@ fn the_axes_of_a_head_table_machine_each_carry_their_branchs_end() {
         .map(|(n, s, r, d)| (n.to_string(), *s, *r, d.to_string()))
         .collect();
     assert_eq!(got, want);
+}
+
+/// Table-table CAZ, X Y Z on the spindle (module docs, "MachineGeometry"): with every axis at
+/// zero the spindle nose is at the machine origin, the tool tip `toolLength` from it along −Z
+/// and the table surface (the workpiece origin) `tableHeight` above it. So the nominal tip on
+/// the workpiece at `X, Y, Z` (spindle moves by +q) is `(X, Y, Z − tableHeight − toolLength)`
+/// turned with the table: C turns the table by −C (ISO 841), which turns what is fixed to the
+/// machine by +C about Z as the workpiece sees it; the height stays.
+#[test]
+fn the_tool_tip_of_a_trunnion_lies_the_tool_length_below_the_spindle_nose() {
+    let (h, tool) = (40.0, 120.0);
+    let m = machine(json!({
+        "kind": "table-table", "type": "CAZ",
+        "geometry": { "tableHeight": h, "toolLength": tool },
+    }));
+    let chain = m.nominal_chain();
+    close3(
+        chain.tool_tip.into(),
+        [0.0, 0.0, -tool],
+        "tool tip in the spindle frame",
+    );
+    close3(chain.work_origin.into(), [0.0, 0.0, h], "table surface");
+    for (c, [x, y, z]) in [
+        (0.0_f64, [0.0, 0.0, 0.0]),
+        (0.0, [15.0, -30.0, 200.0]),
+        (0.8, [25.0, 10.0, 90.0]),
+    ] {
+        // Chain order: A, C, X, Y, Z.
+        let pose = chain
+            .tool_pose(&[0.0, c, x, y, z], false, &Setup::None)
+            .unwrap();
+        let (s, k) = c.sin_cos();
+        close3(
+            pose.tip.into(),
+            [k * x - s * y, s * x + k * y, z - h - tool],
+            "tool tip on the workpiece",
+        );
+        let built = m
+            .build()
+            .unwrap()
+            .chain
+            .tool_pose(&[0.0, c, x, y, z], true, &Setup::None)
+            .unwrap();
+        close3(
+            built.tip.into(),
+            pose.tip.into(),
+            "the built machine without errors",
+        );
+    }
 }
