@@ -4,6 +4,11 @@
 //
 //   node scripts/mutants-ledger.mjs merge <scope dir>      add <scope dir>/mutants.out/outcomes.json
 //   node scripts/mutants-ledger.mjs summary <scope dir> <scope> <equivalents file>
+//   node scripts/mutants-ledger.mjs list <scope dir> done|survivors <equivalents file>
+//
+// `list done` prints the mutants whose outcome is settled (caught, unviable, timed out, or
+// missed but listed as equivalent), `list survivors` the missed ones not listed: the mutants a
+// resumed first pass leaves out, and those a second pass runs again.
 //
 // `summary` prints the scope's counts and each survivor that mutants-equivalent.txt does not
 // explain, and exits 1 when there is one. A timeout (the mutant made a test run past
@@ -13,10 +18,26 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 
 const [cmd, dir, scope, equivalentsFile] = process.argv.slice(2);
+// `list` takes (dir, which, equivalents): `scope` holds `which` there.
 const ledgerPath = join(dir, 'ledger.json');
 const ledger = existsSync(ledgerPath) ? JSON.parse(readFileSync(ledgerPath, 'utf8')) : {};
 
-if (cmd === 'merge') {
+const explainedIn = (file) =>
+  new Set(
+    (file && existsSync(file) ? readFileSync(file, 'utf8') : '')
+      .split('\n')
+      .filter((l) => /^[a-z]/.test(l) && l.includes(' # '))
+      .map((l) => l.slice(0, l.indexOf(' # '))),
+  );
+
+if (cmd === 'list') {
+  const explained = explainedIn(equivalentsFile);
+  const want = scope; // `done` or `survivors`
+  for (const [name, summary] of Object.entries(ledger)) {
+    const survivor = summary === 'MissedMutant' && !explained.has(name);
+    if ((want === 'survivors') === survivor) console.log(name);
+  }
+} else if (cmd === 'merge') {
   const outcomes = join(dir, 'mutants.out', 'outcomes.json');
   if (existsSync(outcomes)) {
     for (const o of JSON.parse(readFileSync(outcomes, 'utf8')).outcomes) {
@@ -26,12 +47,7 @@ if (cmd === 'merge') {
     writeFileSync(ledgerPath, JSON.stringify(ledger, null, 1));
   }
 } else if (cmd === 'summary') {
-  const explained = new Set(
-    (existsSync(equivalentsFile) ? readFileSync(equivalentsFile, 'utf8') : '')
-      .split('\n')
-      .filter((l) => l.includes(' # '))
-      .map((l) => l.slice(0, l.indexOf(' # '))),
-  );
+  const explained = explainedIn(equivalentsFile);
   const by = { CaughtMutant: 0, MissedMutant: 0, Unviable: 0, Timeout: 0 };
   const unexplained = [];
   let equivalent = 0;
@@ -48,6 +64,6 @@ if (cmd === 'merge') {
   );
   process.exit(unexplained.length === 0 ? 0 : 1);
 } else {
-  console.error('usage: mutants-ledger.mjs merge <dir> | summary <dir> <scope> <equivalents>');
+  console.error('usage: mutants-ledger.mjs merge <dir> | summary <dir> <scope> <equivalents> | list <dir> done|survivors <equivalents>');
   process.exit(2);
 }

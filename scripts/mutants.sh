@@ -93,12 +93,11 @@ every() {
   done
   echo
 }
-# The mutants listed as equivalent, as cargo-mutants --exclude-re patterns: the second pass
-# does not run them again.
-listed() {
-  [ -f "$equivalents" ] || return 0
-  sed -n '/^[a-z]/s/ # .*//p' "$equivalents" | while IFS= read -r m; do
-    printf -- '--exclude-re\n^%s$\n' "$(printf '%s' "$m" | sed 's/[][\\.^$*+?(){}|]/\\&/g')"
+# cargo-mutants options naming mutants of the ledger exactly: `regexes --exclude-re done`
+# leaves out the settled ones, `regexes --re survivors` selects the unexplained survivors.
+regexes() {
+  node scripts/mutants-ledger.mjs list "$out" "$2" "$equivalents" | while IFS= read -r m; do
+    printf -- '%s\n^%s$\n' "$1" "$(printf '%s' "$m" | sed 's/[][\\.^$*+?(){}|]/\\&/g')"
   done
 }
 package() { [ "$1" = binding ] && echo fiveaxis-wasm || echo fiveaxis; }
@@ -135,8 +134,8 @@ for s in "${scopes[@]}"; do
   read -r -a fl <<<"$(filters "$s")"
   resumed=()
   if [ "$resume" = 1 ] && [ -f "$out/ledger.json" ]; then
-    resumed=(--iterate)
-    say "scope $s: resuming (the mutants caught or unviable before are skipped)"
+    mapfile -t resumed < <(regexes --exclude-re done)
+    say "scope $s: resuming ($(($(printf '%s\n' "${resumed[@]}" | grep -c '^\^' || true))) mutants settled before are left out)"
   else
     rm -f "$out/ledger.json"
   fi
@@ -145,16 +144,14 @@ for s in "${scopes[@]}"; do
     read -r -a tb <<<"$($pass "$s")"
     targs=()
     for t in "${tb[@]}"; do targs+=("--cargo-arg=$t"); done
-    more=("${resumed[@]}")
+    more=("${resumed[@]}" "${fl[@]}")
     if [ $pass = every ]; then
-      [ -s "$out/mutants.out/missed.txt" ] || break
-      say "scope $s: second pass, $(grep -c . "$out/mutants.out/missed.txt") survivors against every test"
-      more=(--iterate)
-      mapfile -t skip < <(listed)
-      more+=("${skip[@]}")
+      mapfile -t more < <(regexes --re survivors)
+      [ "${#more[@]}" -gt 0 ] || break
+      say "scope $s: second pass, $((${#more[@]} / 2)) survivors against every test"
     fi
     set +e
-    nice -n 10 cargo mutants "${args[@]}" "${targs[@]}" "${more[@]}" "${fl[@]}" "${extra[@]}"
+    nice -n 10 cargo mutants "${args[@]}" "${targs[@]}" "${more[@]}" "${extra[@]}"
     rc=$?
     set -e
     node scripts/mutants-ledger.mjs merge "$out"
