@@ -510,3 +510,16 @@ fn the_singular_values_are_relative_to_the_largest() {
     close_to(f.singular_values[1], 0.5, 1e-12, "ratio");
     assert_eq!(f.dof, 1, "3 readings, rank 2");
 }
+
+/// Far in the tail: with one degree of freedom `P(|T| ≥ t) = 1 − 2·atan(t)/π`, so the
+/// two-sided quantile of p is `cot(π·p/2)`; for p = 1e-11 that is 6.366e10, found by doubling the
+/// bracket from 1 (36 doublings), then Newton.
+#[test]
+fn a_far_tail_quantile_is_cot_pi_p_over_2_with_one_degree_of_freedom() {
+    use fiveaxis::identify::stats::t_quantile_two_sided;
+    for p in [1e-11, 1e-9, 1e-6, 0.05] {
+        let want = 1.0 / (std::f64::consts::PI * p / 2.0).tan();
+        let got = t_quantile_two_sided(p, 1.0);
+        close_to(got / want, 1.0, 1e-9, &format!("p = {p}"));
+    }
+}
