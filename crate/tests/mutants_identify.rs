@@ -523,3 +523,21 @@ fn a_far_tail_quantile_is_cot_pi_p_over_2_with_one_degree_of_freedom() {
         close_to(got / want, 1.0, 1e-9, &format!("p = {p}"));
     }
 }
+
+/// The χ² upper tail where its continued fraction is used (x/2 ≥ k/2 + 1), against the closed
+/// forms for even degrees of freedom: `Q(k/2, y) = e^(−y)·Σ_{n<k/2} yⁿ/n!`, y = x/2.
+#[test]
+fn the_chi2_tail_far_out_is_its_closed_form_for_even_degrees_of_freedom() {
+    use fiveaxis::identify::stats::chi2_upper;
+    for x in [0.5, 3.0, 10.0, 30.0, 80.0] {
+        let y: f64 = x / 2.0;
+        for (k, poly) in [
+            (2.0, 1.0),
+            (4.0, 1.0 + y),
+            (6.0, 1.0 + y + y * y / 2.0),
+        ] {
+            let want = (-y).exp() * poly;
+            close_to(chi2_upper(x, k) / want, 1.0, 1e-10, &format!("x {x}, k {k}"));
+        }
+    }
+}
