@@ -531,13 +531,45 @@ fn the_chi2_tail_far_out_is_its_closed_form_for_even_degrees_of_freedom() {
     use fiveaxis::identify::stats::chi2_upper;
     for x in [0.5, 3.0, 10.0, 30.0, 80.0] {
         let y: f64 = x / 2.0;
-        for (k, poly) in [
-            (2.0, 1.0),
-            (4.0, 1.0 + y),
-            (6.0, 1.0 + y + y * y / 2.0),
-        ] {
+        for (k, poly) in [(2.0, 1.0), (4.0, 1.0 + y), (6.0, 1.0 + y + y * y / 2.0)] {
             let want = (-y).exp() * poly;
-            close_to(chi2_upper(x, k) / want, 1.0, 1e-10, &format!("x {x}, k {k}"));
+            close_to(
+                chi2_upper(x, k) / want,
+                1.0,
+                1e-10,
+                &format!("x {x}, k {k}"),
+            );
         }
     }
+}
+
+/// An error found but below the tolerance is still said in the summary, with why it does not
+/// matter; one not distinguishable from zero is not.
+#[test]
+fn the_summary_names_an_error_below_the_tolerance_and_not_a_zero_one() {
+    let a = DMatrix::from_row_slice(
+        6,
+        2,
+        &[1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0],
+    );
+    let p = [
+        Param::error("E_X0B").unwrap(),
+        Param::error("E_Y0B").unwrap(),
+    ];
+    // E_X0B: 11 µm, clearly present, below a 20 µm tolerance; E_Y0B: 0 ± noise.
+    let d = [0.010, 0.014, 0.009, 0.0004, -0.0006, 0.0002];
+    let o = Options {
+        tolerance: Some(0.020),
+        ..Options::default()
+    };
+    let j = identify(&a, &p, &d, 1e-9, &o).unwrap();
+    assert_eq!(j.decisions[0].verdict, Verdict::BelowTolerance);
+    assert_eq!(j.decisions[1].verdict, Verdict::NotDistinguishable);
+    assert!(j.summary.contains(&j.decisions[0].words), "{:?}", j.summary);
+    assert!(j.decisions[0].words.contains("below the tolerance"));
+    assert!(
+        !j.summary.contains(&j.decisions[1].words),
+        "{:?}",
+        j.summary
+    );
 }
