@@ -288,9 +288,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       // Each map's name is in its own x-axis title, which stays under its map when a phone
       // stacks the two (no "left"/"right" in the title).
       draw(target, `Overcut on surface ${s.id}: eq 6 and the exact gouge<br>paper: ${show('errLength', s.id === 'A' ? o.paper.a : o.paper.b)} by eq 6`, data, {
-        xaxis: axis(`eq 6, max ${show('errLength', s.maxEq6)}: u along the S (0 at y = −95.5 mm)`, { domain: [0, 0.45], range: [0, 1] }),
+        xaxis: axis(`eq 6 (max ${show('errLength', s.maxEq6)})<br>u along the S (0 at y = −95.5)`, { domain: [0, 0.45], range: [0, 1] }),
         yaxis: axis('z (mm)', { range: [0, 30] }),
-        xaxis2: axis(`exact gouge, max ${show('errLength', s.maxGouge)}: u along the S`, { domain: [0.55, 1], range: [0, 1] }),
+        xaxis2: axis(`exact gouge (max ${show('errLength', s.maxGouge)})<br>u along the S`, { domain: [0.55, 1], range: [0, 1] }),
         yaxis2: axis('z (mm)', { anchor: 'x2', range: [0, 30] }),
         coloraxis: { colorscale: 'Viridis', cmin: 0, colorbar: { title: { text: titled('overcut', 'errLength') } } },
       } as Partial<Layout>, `sshape-overcut-${s.id}`);
