@@ -557,3 +557,29 @@ fn fit_keeps_the_angle_in_zero_to_a_turn_at_either_travel_limit() {
         close(got, 0.0, 1e-12, "written as 0");
     }
 }
+
+/// A measured table of a rotary axis that does not start at 0: from −1 rad over one turn to
+/// 2π − 1. A position past its end is brought back by whole turns (6 rad is 6 − 2π ≈ −0.2832
+/// rad) and interpolated linearly between −1 rad (0) and 0 rad (1 µm): 0.7168 µm. A linear
+/// axis's table is never wrapped.
+#[test]
+fn a_rotary_table_that_starts_below_zero_wraps_by_whole_turns() {
+    use fiveaxis::machine::motions::ErrorFunction;
+    use std::f64::consts::TAU;
+    let f = ErrorFunction::Table {
+        position: vec![-1.0, 0.0, 2.0, 5.0, TAU - 1.0],
+        value: vec![0.0, 1e-3, 2e-3, 3e-3, 0.0],
+    };
+    let want = 1e-3 * (6.0 - TAU + 1.0);
+    close(f.at(6.0, "E_CC", true).unwrap(), want, 1e-15, "6 rad");
+    close(
+        f.at(6.0 - TAU, "E_CC", true).unwrap(),
+        want,
+        1e-15,
+        "the same, within the table",
+    );
+    assert!(
+        f.at(6.0, "E_XX", false).is_err(),
+        "a linear axis's table is not wrapped"
+    );
+}
