@@ -583,3 +583,19 @@ fn a_rotary_table_that_starts_below_zero_wraps_by_whole_turns() {
         "a linear axis's table is not wrapped"
     );
 }
+
+/// Error motions set by ISO name are kept under that name (the X axis then lists its
+/// positioning error E_XX with its value); an unknown name is refused and nothing is set.
+#[test]
+fn error_motions_are_set_by_iso_name_and_unknown_names_refused() {
+    use fiveaxis::machine::motions::{ErrorFunction, ErrorMotions};
+    let mut m = ErrorMotions::default();
+    assert!(m.of_axis('X').is_none(), "nothing set yet");
+    m.set("E_XX", ErrorFunction::Constant(0.002)).unwrap();
+    let list = m.of_axis('X').unwrap();
+    assert_eq!(list.len(), 1);
+    assert_eq!(list[0].1, "E_XX");
+    assert_eq!(list[0].2, ErrorFunction::Constant(0.002));
+    assert!(m.set("E_QX", ErrorFunction::Constant(0.001)).is_err());
+    assert!(m.of_axis('Y').is_none(), "the refused name set nothing");
+}
