@@ -59,8 +59,8 @@ filters() {
   esac
 }
 # Two passes per scope. The first runs every mutant against the scope's quick test binaries
-# (a few seconds a mutant: most of it is the rebuild). The second (`--iterate`) runs the first
-# pass's survivors again, except those listed as equivalent, against every test binary of the
+# (a few seconds a mutant: most of it is the rebuild). The second (`--re`, by name from the
+# ledger) runs the first pass's survivors again, except those listed as equivalent, against every test binary of the
 # crate: a mutant survives only when no test kills it. The slow binaries run in the second pass
 # of the scopes whose code they reach: reversal_fit (≈ 30 s) for reversal, nonlinear_fast_peak
 # and nonlinear_paper (≈ 7 s and 5 s, the rotary-axis types and the chain) for nonlinear,

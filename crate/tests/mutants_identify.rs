@@ -4,6 +4,9 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
+mod common;
+
+use common::close;
 use fiveaxis::identify::{
     check_options, fit, identify, meaning, DecisionInput, Options, Param, Verdict,
 };
@@ -120,7 +123,7 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
     let dec = &first.decisions[0];
     // t = value / standard error; the mean 0.011 of the readings over s/√3, s their deviation.
     let s = ((0.001f64.powi(2) + 0.003f64.powi(2) + 0.002f64.powi(2)) / 2.0).sqrt();
-    close_to(dec.t.unwrap(), 0.011 / (s / 3f64.sqrt()), 1e-9, "t");
+    close(dec.t.unwrap(), 0.011 / (s / 3f64.sqrt()), 1e-9, "t");
     let at_alpha = Options {
         alpha: p_adj,
         ..Options::default()
@@ -128,7 +131,7 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
     let j = identify(&a, &p, &d, 1e-9, &at_alpha).unwrap();
     assert_eq!(j.found(), vec!["E_X0B"], "p = α is significant");
     let effect = first.decisions[0].effect;
-    close_to(
+    close(
         effect,
         0.011,
         1e-12,
@@ -144,10 +147,6 @@ fn a_p_value_at_alpha_is_significant_and_an_effect_at_the_tolerance_reaches_it()
         Verdict::Present,
         "effect = tolerance reaches it"
     );
-}
-
-fn close_to(a: f64, b: f64, tol: f64, what: &str) {
-    assert!((a - b).abs() <= tol, "{what}: {a} vs {b}");
 }
 
 /// Two pairs of errors the test cannot tell apart (each pair's columns are equal): only each
@@ -185,15 +184,15 @@ fn each_measurable_combination_gets_its_own_interval_and_verdict() {
     let se = (ssr / 4.0).sqrt() / 3f64.sqrt();
     let half = 2.776_445_105_197_793 * se;
     for (c, mean) in j.combinations.iter().zip([0.011, m2]) {
-        close_to(
+        close(
             c.combination.value,
             mean,
             1e-12,
             "the sum is the mean reading",
         );
-        close_to(c.combination.std_error, se, 1e-12, "standard error");
-        close_to(c.interval[0], mean - half, 1e-9, "interval low");
-        close_to(c.interval[1], mean + half, 1e-9, "interval high");
+        close(c.combination.std_error, se, 1e-12, "standard error");
+        close(c.interval[0], mean - half, 1e-9, "interval low");
+        close(c.interval[1], mean + half, 1e-9, "interval high");
     }
     assert_eq!(j.combinations[0].verdict, Verdict::Present);
     assert_eq!(j.combinations[1].verdict, Verdict::NotDistinguishable);
@@ -381,7 +380,7 @@ fn the_fit_refuses_shapes_that_do_not_match_and_solves_the_smallest_one() {
     );
     let two = DMatrix::from_row_slice(2, 1, &[1.0, 1.0]);
     let f = fit(&two, &names(1), &[0.1, 0.3], 1e-9).unwrap();
-    close_to(
+    close(
         f.estimates[0].value.unwrap(),
         0.2,
         1e-12,
@@ -415,7 +414,7 @@ fn a_column_at_most_1e_12_of_the_largest_is_no_effect() {
             "{big}, {small}: b alone, not combined with a"
         );
         assert!(b.combinations.is_empty());
-        close_to(f.estimates[0].value.unwrap(), 0.1 / big, 1e-15, "a");
+        close(f.estimates[0].value.unwrap(), 0.1 / big, 1e-15, "a");
     }
 }
 
@@ -459,11 +458,11 @@ fn a_combination_leads_with_its_first_term_even_when_its_effect_is_small() {
         let f = fit(&a, &names, &[0.010, 0.014, 0.009], 1e-9).unwrap();
         let c = &f.groups[0].combinations[0];
         assert_eq!(c.terms[0].0, "a");
-        close_to(c.terms[0].1, 1.0, 1e-12, "first coefficient");
+        close(c.terms[0].1, 1.0, 1e-12, "first coefficient");
         assert_eq!(c.terms[1].0, "b");
         let want = kb / ka;
-        close_to(c.terms[1].1 / want, 1.0, 1e-9, "second coefficient");
-        close_to(c.value / (0.011 / ka), 1.0, 1e-9, "value");
+        close(c.terms[1].1 / want, 1.0, 1e-9, "second coefficient");
+        close(c.value / (0.011 / ka), 1.0, 1e-9, "value");
     }
 }
 
@@ -506,8 +505,8 @@ fn the_singular_values_are_relative_to_the_largest() {
     let a = DMatrix::from_row_slice(3, 2, &[1.0, 0.6, 0.0, 0.8, 0.0, 0.0]);
     let names = ["a", "b"].map(String::from);
     let f = fit(&a, &names, &[0.1, 0.2, 0.0], 1e-9).unwrap();
-    close_to(f.singular_values[0], 1.0, 1e-15, "largest");
-    close_to(f.singular_values[1], 0.5, 1e-12, "ratio");
+    close(f.singular_values[0], 1.0, 1e-15, "largest");
+    close(f.singular_values[1], 0.5, 1e-12, "ratio");
     assert_eq!(f.dof, 1, "3 readings, rank 2");
 }
 
@@ -520,7 +519,7 @@ fn a_far_tail_quantile_is_cot_pi_p_over_2_with_one_degree_of_freedom() {
     for p in [1e-11, 1e-9, 1e-6, 0.05] {
         let want = 1.0 / (std::f64::consts::PI * p / 2.0).tan();
         let got = t_quantile_two_sided(p, 1.0);
-        close_to(got / want, 1.0, 1e-9, &format!("p = {p}"));
+        close(got / want, 1.0, 1e-9, &format!("p = {p}"));
     }
 }
 
@@ -533,7 +532,7 @@ fn the_chi2_tail_far_out_is_its_closed_form_for_even_degrees_of_freedom() {
         let y: f64 = x / 2.0;
         for (k, poly) in [(2.0, 1.0), (4.0, 1.0 + y), (6.0, 1.0 + y + y * y / 2.0)] {
             let want = (-y).exp() * poly;
-            close_to(
+            close(
                 chi2_upper(x, k) / want,
                 1.0,
                 1e-10,
