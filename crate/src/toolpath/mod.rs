@@ -234,7 +234,7 @@ pub struct Summary {
     pub segments: usize,
     /// Largest δ, mm.
     pub max: f64,
-    /// Index of the segment with the largest δ.
+    /// Index of the segment with the largest δ (the first of equals).
     pub max_segment: usize,
     /// Mean δ, mm.
     pub mean: f64,
