@@ -322,3 +322,57 @@ fn other_machines_are_refused_by_the_paper_model_with_the_preset_named() {
     let e = volumetric::compare(&m, [0.0; 3], 0.0, 0.0).unwrap_err();
     assert!(e.message.contains("Tan & Lim"), "{e}");
 }
+
+/// `compare` reads the machine's ISO errors into the paper's symbols itself: with one small
+/// error entered by its ISO name (1 µm or 1 µrad; squareness left out, see above), the paper's
+/// printed first-order form at rotary axes zero is the machine's deviation along its axes (zero
+/// for the yaw of Y, whose tool sits on Y's line), and
+/// the symbols listed hold that one value (in the paper's sign) and zeros.
+#[test]
+fn an_iso_error_entered_reaches_the_paper_model_as_its_symbol() {
+    let p = [120.0, -80.0, 60.0];
+    for (s, symbol) in SYMBOLS.iter().enumerate() {
+        if SQUARENESS.contains(symbol) {
+            continue;
+        }
+        let (def, sign) = iso_of(symbol);
+        let c = volumetric::compare(&with_error(def, 1e-6), p, 0.0, 0.0).unwrap();
+        let (printed, machine) = (
+            Vector3::from(c.paper_printed),
+            Vector3::from(c.machine_axes),
+        );
+        assert!(
+            (printed - machine).norm() < 1e-6 * machine.norm() + 1e-15,
+            "{symbol} ({}): paper {printed:?}, machine {machine:?}",
+            def.name
+        );
+        for (t, (name, v)) in c.symbols.iter().enumerate() {
+            assert_eq!(name, SYMBOLS[t]);
+            let want = if t == s { 1e-6 * sign } else { 0.0 };
+            assert_eq!(*v, want, "{symbol}: slot {name}");
+        }
+    }
+}
+
+/// Which errors the paper's loop leaves out: location errors of the rotary axes that are entered
+/// (non-zero); a squareness error (the paper's α) and the errors left at zero are not listed.
+#[test]
+fn errors_the_paper_has_no_symbol_for_are_named() {
+    let mut m = tan_lim();
+    m.errors.set("E_Y0A", 0.01).unwrap();
+    m.errors.set(iso_of("α").0.name, 1e-5).unwrap();
+    let c = volumetric::compare(&m, [0.0; 3], 0.0, 0.0).unwrap();
+    assert_eq!(c.not_in_paper, ["E_Y0A"]);
+    let c = volumetric::compare(&tan_lim(), [0.0; 3], 0.0, 0.0).unwrap();
+    assert!(c.not_in_paper.is_empty());
+}
+
+/// Each symbol's unit: the paper's δ (straightness, positioning) and ∂ (location) are lengths,
+/// its E, α, β, φ, λ, γ angles.
+#[test]
+fn a_symbol_is_an_angle_unless_it_is_a_delta_or_a_partial() {
+    for (s, symbol) in SYMBOLS.iter().enumerate() {
+        let length = symbol.starts_with('δ') || symbol.starts_with('∂');
+        assert_eq!(paper::is_angle(s), !length, "{symbol}");
+    }
+}

@@ -209,7 +209,7 @@ pub struct Contribution {
     pub max: f64,
 }
 
-/// The worst point of the map.
+/// The worst point of the map (of equal ones, the first in the grid's row order).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
