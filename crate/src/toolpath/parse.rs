@@ -1107,7 +1107,7 @@ fn push_num(out: &mut String, x: f64, decimals: usize, keep_point: bool) {
 /// (`X10.0`: some controls read `X10` in their least increment). A point with a coordinate,
 /// axis component or angle that is not finite is an error.
 /// * CSV: a `#` comment, the header `x,y,z,i,j,k`, one line a point.
-/// * APT: a `$$` comment, `PARTNO TOOLPATH`, `MULTAX/ON`, a `GOTO/x,y,z,i,j,k` a point
+/// * APT: two `$$` comment lines, `PARTNO TOOLPATH`, `MULTAX/ON`, a `GOTO/x,y,z,i,j,k` a point
 ///   (continued with `$` after z when longer than 72 characters), `FINI`.
 /// * NC: `%`, comments, `G90 G21`, then `X Y Z` and the two rotary words `letters` (K then M)
 ///   from each point's `angles`, `M30`, `%`. It needs the letters and every point's angles (the
@@ -1160,8 +1160,8 @@ pub fn write(format: Format, points: &[Point], letters: Option<[char; 2]>) -> Re
         }
         Format::Apt => {
             s.push_str(
-                "$$ five-axis toolpath, workpiece coordinates: GOTO/x,y,z,i,j,k, tool tip in mm, \
-                 tool axis from the tip towards the spindle\nPARTNO TOOLPATH\nMULTAX/ON\n",
+                "$$ five-axis toolpath, workpiece coordinates: GOTO/x,y,z,i,j,k,\n$$ tool tip \
+                 in mm, tool axis from the tip towards the spindle\nPARTNO TOOLPATH\nMULTAX/ON\n",
             );
             let mut xyz = String::new();
             let mut ijk = String::new();
