@@ -7,35 +7,12 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
+mod common;
+
+use common::toolpath::{at, caz_head, error};
 use fiveaxis::machine::Machine;
-use fiveaxis::schema::Inputs;
 use fiveaxis::toolpath::parse::{parse, write, Format, Parser, Point, MAX_LINE};
 use nalgebra::Vector3;
-use serde_json::json;
-
-/// A C-A fork head (head-head CAZ): NC letters C (K) and A (M).
-fn caz_head() -> Machine {
-    Machine::from_value(&json!({ "kind": "head-head", "type": "CAZ" }), "machine").unwrap()
-}
-
-/// The message of the error parsing `text` gives.
-fn error(text: &str, format: Format, machine: Option<&Machine>) -> String {
-    match parse(text, format, machine) {
-        Ok(p) => panic!("{text:?} parsed as {} points", p.len()),
-        Err(e) => e.message,
-    }
-}
-
-/// Asserts the message starts with `line L, column C:` and contains `part`.
-#[track_caller]
-fn at(message: &str, line: u32, column: usize, part: &str) {
-    let head = format!("line {line}, column {column}: ");
-    assert!(
-        message.starts_with(&head),
-        "expected {head:?} at the start of {message:?}"
-    );
-    assert!(message.contains(part), "expected {part:?} in {message:?}");
-}
 
 /// The tips of the points of `text`.
 fn tips(text: &str, format: Format, machine: Option<&Machine>) -> Vec<Vector3<f64>> {

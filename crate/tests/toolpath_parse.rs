@@ -6,6 +6,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 mod common;
 
+use common::toolpath::{at, caz_head, error};
 use common::{close, Rng};
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
@@ -15,11 +16,6 @@ use serde_json::json;
 
 fn machine(v: serde_json::Value) -> Machine {
     Machine::from_value(&v, "machine").unwrap()
-}
-
-/// A C-A fork head (head-head CAZ), ISO 841 senses.
-fn caz_head() -> Machine {
-    machine(json!({ "kind": "head-head", "type": "CAZ" }))
 }
 
 fn close_vec(a: &Vector3<f64>, b: &Vector3<f64>, tol: f64, what: &str) {
@@ -32,28 +28,6 @@ fn close_vec(a: &Vector3<f64>, b: &Vector3<f64>, tol: f64, what: &str) {
 
 fn unit(x: f64, y: f64, z: f64) -> Vector3<f64> {
     Vector3::new(x, y, z).normalize()
-}
-
-/// The message of the error parsing `text` gives.
-fn error(text: &str, format: Format, machine: Option<&Machine>) -> String {
-    match parse(text, format, machine) {
-        Ok(p) => panic!("{text:?} parsed as {} points", p.len()),
-        Err(e) => {
-            assert_eq!(e.field, "toolpath", "{e}");
-            e.message
-        }
-    }
-}
-
-/// Asserts the message starts with `line L, column C:` and contains `part`.
-#[track_caller]
-fn at(message: &str, line: u32, column: usize, part: &str) {
-    let head = format!("line {line}, column {column}: ");
-    assert!(
-        message.starts_with(&head),
-        "expected {head:?} at the start of {message:?}"
-    );
-    assert!(message.contains(part), "expected {part:?} in {message:?}");
 }
 
 // ---------------------------------------------------------------------------------------------

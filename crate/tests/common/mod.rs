@@ -3,6 +3,7 @@
 
 pub mod chanal;
 pub mod li;
+pub mod toolpath;
 
 /// The B/C tilting-rotary table of the cubic-test paper (Li et al. 2021) as a bare chain: B about
 /// Y on the bed, C about Z on B, both through the origin; X, Y, Z carry the tool. Chain order:
