@@ -187,3 +187,26 @@ fn the_paper_comparison_refuses_a_machine_that_differs_in_any_one_way() {
         assert!(e.message.contains("Tan & Lim"), "{change}: {e}");
     }
 }
+
+/// A measured table that does not reach the whole region: the error names the first pose of the
+/// grid outside it, its coordinates rounded to 6 decimals (a micrometre's thousandth). X runs
+/// −50, −50/3, 50/3, 50 over four steps; a table of E_XX over −100 … 10 mm stops at the third
+/// column, X = 16.666667 on the first row, Y = −50.
+#[test]
+fn a_table_short_of_the_region_names_the_pose_rounded() {
+    let input = VolumetricInput::read(&json!({
+        "machine": {
+            "kind": "table-table", "type": "CAZ", "linear": "table-x",
+            "geometry": { "rotaryOffset": 0, "tableHeight": 0, "toolLength": 100 },
+            "motions": { "E_XX": { "position": [-100, 10], "value": [0.001, 0.002] } },
+        },
+        "region": { "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "steps": 4 },
+    }))
+    .unwrap();
+    let e = map(&input).unwrap_err();
+    assert!(
+        e.message.ends_with("(at X 16.666667, Y -50, Z 0 mm)"),
+        "{}",
+        e.message
+    );
+}
