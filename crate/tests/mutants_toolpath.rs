@@ -4,6 +4,9 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
+mod common;
+
+use common::toolpath::tilted;
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
@@ -69,12 +72,6 @@ fn model(machine: serde_json::Value, name: &str) -> fiveaxis::machine::Model {
     machine_of_type(&m, RotaryType::parse(name).unwrap())
         .build()
         .unwrap()
-}
-
-/// Tool axis with tilt `t` from +Z and azimuth `c` (degrees).
-fn tilted(t: f64, c: f64) -> Vector3<f64> {
-    let (t, c) = (t.to_radians(), c.to_radians());
-    Vector3::new(t.sin() * c.cos(), t.sin() * c.sin(), t.cos())
 }
 
 /// Angle between unit vectors, accurate near 0 and π (atan2 of the cross and dot products).

@@ -10,7 +10,12 @@ use serde_json::{json, Value};
 /// A three-axis C/A double turntable on an X table (as in `volumetric_map.rs`), tool on the
 /// axes' lines, with the given error motions and map region.
 fn map_of(motions: Value, region: Value) -> VolumetricMap {
-    let input = VolumetricInput::read(&json!({
+    map(&input_of(motions, region)).unwrap()
+}
+
+/// The input of [`map_of`].
+fn input_of(motions: Value, region: Value) -> VolumetricInput {
+    VolumetricInput::read(&json!({
         "machine": {
             "kind": "table-table", "type": "CAZ", "linear": "table-x",
             "geometry": { "rotaryOffset": 0, "tableHeight": 0, "toolLength": 100 },
@@ -18,8 +23,7 @@ fn map_of(motions: Value, region: Value) -> VolumetricMap {
         },
         "region": region,
     }))
-    .unwrap();
-    map(&input).unwrap()
+    .unwrap()
 }
 
 /// `E_XX = 1e-5·X` and `E_YY = 1e-5·Y`: |Δ| = 1e-5·√(X² + Y²) (each positioning error moves
@@ -194,15 +198,10 @@ fn the_paper_comparison_refuses_a_machine_that_differs_in_any_one_way() {
 /// column, X = 16.666667 on the first row, Y = −50.
 #[test]
 fn a_table_short_of_the_region_names_the_pose_rounded() {
-    let input = VolumetricInput::read(&json!({
-        "machine": {
-            "kind": "table-table", "type": "CAZ", "linear": "table-x",
-            "geometry": { "rotaryOffset": 0, "tableHeight": 0, "toolLength": 100 },
-            "motions": { "E_XX": { "position": [-100, 10], "value": [0.001, 0.002] } },
-        },
-        "region": { "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "steps": 4 },
-    }))
-    .unwrap();
+    let input = input_of(
+        json!({ "E_XX": { "position": [-100, 10], "value": [0.001, 0.002] } }),
+        json!({ "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "steps": 4 }),
+    );
     let e = map(&input).unwrap_err();
     assert!(
         e.message.ends_with("(at X 16.666667, Y -50, Z 0 mm)"),

@@ -4,6 +4,9 @@
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 
+mod common;
+
+use common::toolpath::tilted;
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
@@ -17,12 +20,6 @@ fn machine(value: serde_json::Value) -> Machine {
 
 fn rtype(name: &str) -> RotaryType {
     RotaryType::parse(name).unwrap()
-}
-
-/// Tool axis with tilt `t` from +Z and azimuth `c` (degrees).
-fn tilted(t: f64, c: f64) -> Vector3<f64> {
-    let (t, c) = (t.to_radians(), c.to_radians());
-    Vector3::new(t.sin() * c.cos(), t.sin() * c.sin(), t.cos())
 }
 
 /// δ of the linear interpolation of the commands from `(k0, m0)` to `(k1, m1)` (rad) on `t`,

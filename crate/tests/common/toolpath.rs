@@ -1,9 +1,10 @@
-//! Helpers of the toolpath parser's tests: the machine NC blocks are read for, and errors with
-//! their line and column.
+//! Helpers of the toolpath tests: tool axes by tilt and azimuth, the machine NC blocks are read
+//! for, and parser errors with their line and column.
 
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
 use fiveaxis::toolpath::parse::{parse, Format};
+use nalgebra::Vector3;
 
 /// A C-A fork head (head-head CAZ), ISO 841 senses: NC letters C (K) and A (M).
 #[allow(clippy::unwrap_used)]
@@ -36,4 +37,10 @@ pub fn at(message: &str, line: u32, column: usize, part: &str) {
         "expected {head:?} at the start of {message:?}"
     );
     assert!(message.contains(part), "expected {part:?} in {message:?}");
+}
+
+/// Tool axis with tilt `t` from +Z and azimuth `c` (degrees).
+pub fn tilted(t: f64, c: f64) -> Vector3<f64> {
+    let (t, c) = (t.to_radians(), c.to_radians());
+    Vector3::new(t.sin() * c.cos(), t.sin() * c.sin(), t.cos())
 }
