@@ -1,0 +1,366 @@
+//! Tests written for mutants of `crate/src/cubic/mod.rs` that a mutation run let survive
+//! (`npm run mutants -- cubic`): the zone planes' arithmetic, the three references, the first
+//! order's slopes, and what the test says it can and cannot see ([`Visibility`]), each against
+//! its documented meaning and a sensitivity table of central differences of the exact heights
+//! computed here (each error alone, ±h), not the engine's own table.
+
+#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+mod common;
+
+use common::{close, machine_preset};
+use fiveaxis::cubic::identify::parse_measurements;
+use fiveaxis::cubic::{analyze, Analysis, CubicInput, CubicReference, Options, ZonePlane};
+use fiveaxis::machine::Machine;
+use fiveaxis::schema::{Inputs, Quantity};
+use nalgebra::DMatrix;
+use serde_json::json;
+
+fn machine(prefix: &str) -> Machine {
+    Machine::from_value(&machine_preset(prefix), "machine").unwrap()
+}
+
+fn default_piece() -> fiveaxis::cubic::CubicPiece {
+    CubicInput::read(&json!({})).unwrap().setup
+}
+
+/// The six machine presets the page offers (their names' beginnings).
+const PRESETS: [&str; 6] = [
+    "B/C tilting table",
+    "B swivel head, C rotary table",
+    "C/A double turntable",
+    "A/C trunnion table",
+    "A/C fork head",
+    "B swivel head with C table",
+];
+
+#[test]
+fn a_zone_plane_is_its_height_plus_its_slopes_times_the_offset_from_its_centre() {
+    // h = 1 mm, ∂h/∂x = 0.5, ∂h/∂y = −0.25 about the centre (10, 20): at (14, 16) the plane is
+    // 1 + 0.5·4 + (−0.25)·(−4) = 4 mm; at the centre itself 1 mm.
+    let p = ZonePlane {
+        height: 1.0,
+        slope_x: 0.5,
+        slope_y: -0.25,
+    };
+    assert_eq!(p.at((10.0, 20.0), 14.0, 16.0), 4.0);
+    assert_eq!(p.at((10.0, 20.0), 10.0, 20.0), 1.0);
+    assert_eq!(p.at((10.0, 20.0), 10.0, 24.0), 0.0);
+}
+
+#[test]
+fn the_options_are_the_inputs_transform_and_reference() {
+    for (transform, key, reference) in [
+        (false, "zone1-plane", CubicReference::ZoneIPlane),
+        (true, "zone1-height", CubicReference::ZoneIHeight),
+        (false, "workpiece", CubicReference::Workpiece),
+    ] {
+        let input = CubicInput::read(&json!({ "transform": transform, "reference": key })).unwrap();
+        assert_eq!(
+            input.options(),
+            Options {
+                transform,
+                reference
+            },
+            "{key}"
+        );
+    }
+}
+
+/// A trunnion with errors of both axes (angles up to `3e-4·scale` rad, offsets up to
+/// `0.02·scale` mm) that move and tilt ZONE I without the workpiece set at zero.
+fn erroneous_trunnion(scale: f64) -> Machine {
+    let mut m = machine("A/C trunnion table");
+    for (name, v) in [
+        ("E_Y0A", 0.02),
+        ("E_Z0A", -0.015),
+        ("E_B0A", 3e-4),
+        ("E_A0C", -2e-4),
+        ("E_B0C", 1.5e-4),
+        ("E_A0A", 1e-4),
+    ] {
+        m.errors.set(name, v * scale).unwrap();
+    }
+    m
+}
+
+#[test]
+fn heights_from_zone_i_are_the_workpiece_heights_less_zone_is_height_or_plane() {
+    // Module docs: "zone1-height" subtracts ZONE I's height from every zone and keeps the
+    // slopes; "zone1-plane" subtracts ZONE I's plane, extended to each zone's centre, and its
+    // slopes. Checked on the exact planes and on every error's sensitivity.
+    let m = erroneous_trunnion(1.0);
+    let piece = default_piece();
+    let run = |reference| {
+        analyze(
+            &m,
+            &piece,
+            &Options {
+                transform: false,
+                reference,
+            },
+        )
+        .unwrap()
+    };
+    let w = run(CubicReference::Workpiece);
+    let zh = run(CubicReference::ZoneIHeight);
+    let zp = run(CubicReference::ZoneIPlane);
+    let z1 = w.zones[0].exact;
+    let c1 = (w.zones[0].centre[0], w.zones[0].centre[1]);
+    // ZONE I must be off its nominal height and tilted both ways, or the checks below see
+    // nothing.
+    assert!(z1.height.abs() > 1e-3, "{z1:?}");
+    assert!(z1.slope_x.abs() > 1e-5 && z1.slope_y.abs() > 1e-5, "{z1:?}");
+    for (z, zone) in w.zones.iter().enumerate() {
+        let (x, y) = (zone.centre[0], zone.centre[1]);
+        let what = zone.zone.name;
+        let p = zone.exact;
+        let under = z1.height + z1.slope_x * (x - c1.0) + z1.slope_y * (y - c1.1);
+        close(zh.zones[z].exact.height, p.height - z1.height, 1e-12, what);
+        close(zh.zones[z].exact.slope_x, p.slope_x, 1e-15, what);
+        close(zh.zones[z].exact.slope_y, p.slope_y, 1e-15, what);
+        close(zp.zones[z].exact.height, p.height - under, 1e-12, what);
+        close(
+            zp.zones[z].exact.slope_x,
+            p.slope_x - z1.slope_x,
+            1e-15,
+            what,
+        );
+        close(
+            zp.zones[z].exact.slope_y,
+            p.slope_y - z1.slope_y,
+            1e-15,
+            what,
+        );
+        for e in 0..w.errors.len() {
+            let (k, k1) = (w.sensitivity[z][e], w.sensitivity[0][e]);
+            let what = format!("{what} {}", w.errors[e].name);
+            let under = k1.height + k1.slope_x * (x - c1.0) + k1.slope_y * (y - c1.1);
+            close(
+                zh.sensitivity[z][e].height,
+                k.height - k1.height,
+                1e-9,
+                &what,
+            );
+            close(zp.sensitivity[z][e].height, k.height - under, 1e-9, &what);
+            close(
+                zp.sensitivity[z][e].slope_x,
+                k.slope_x - k1.slope_x,
+                1e-12,
+                &what,
+            );
+            close(
+                zp.sensitivity[z][e].slope_y,
+                k.slope_y - k1.slope_y,
+                1e-12,
+                &what,
+            );
+        }
+    }
+}
+
+#[test]
+fn the_first_order_slopes_follow_the_exact_slopes_of_several_errors_together() {
+    // `linear` is Σ k·ε over the errors (height and both slopes); with angles up to 3·10⁻⁵ rad
+    // the exact planes differ from it by second-order terms: below 10⁻⁸ in a slope (ε² ≈ 10⁻⁹
+    // per pair of errors) and L·ε² ≈ 200 mm · 10⁻⁹ per pair in a height, while the slopes
+    // themselves are of order ε.
+    let m = erroneous_trunnion(0.1);
+    let a = analyze(&m, &default_piece(), &Options::default()).unwrap();
+    let mut tilted = (0.0f64, 0.0f64);
+    for z in &a.zones {
+        let what = z.zone.name;
+        close(z.linear.slope_x, z.exact.slope_x, 1e-8, what);
+        close(z.linear.slope_y, z.exact.slope_y, 1e-8, what);
+        close(z.linear.height, z.exact.height, 5e-6, what);
+        tilted.0 = tilted.0.max(z.exact.slope_x.abs());
+        tilted.1 = tilted.1.max(z.exact.slope_y.abs());
+    }
+    assert!(tilted.0 > 1e-6 && tilted.1 > 1e-6, "{tilted:?}");
+}
+
+/// Central differences of the exact zone planes, each error alone at ±h (10⁻⁶ rad or
+/// 10⁻⁴ mm), per mm or per rad: `[zone][error]`.
+fn sensitivity_by_differences(m: &Machine, errors: &[&str]) -> Vec<Vec<ZonePlane>> {
+    let piece = default_piece();
+    let at = |name: &str, v: f64| -> Analysis {
+        let mut m = m.clone();
+        m.errors.set(name, v).unwrap();
+        analyze(&m, &piece, &Options::default()).unwrap()
+    };
+    let mut k = vec![vec![ZonePlane::default(); errors.len()]; 9];
+    for (e, name) in errors.iter().enumerate() {
+        let angle = m
+            .error_defs()
+            .iter()
+            .any(|d| d.name == *name && d.quantity == Quantity::SmallAngle);
+        let h = if angle { 1e-6 } else { 1e-4 };
+        let (p, q) = (at(name, h), at(name, -h));
+        for (z, row) in k.iter_mut().enumerate() {
+            let d = |f: fn(&ZonePlane) -> f64| {
+                (f(&p.zones[z].exact) - f(&q.zones[z].exact)) / (2.0 * h)
+            };
+            row[e] = ZonePlane {
+                height: d(|p| p.height),
+                slope_x: d(|p| p.slope_x),
+                slope_y: d(|p| p.slope_y),
+            };
+        }
+    }
+    k
+}
+
+#[test]
+fn the_test_reports_what_it_cannot_see_and_what_it_cannot_tell_apart_on_every_preset() {
+    // Against central differences of the exact heights (each error alone), in the errors' own
+    // units; an angle's column is compared per zone size (a height change over the zone), as
+    // the module docs say, so that both kinds are dimensionless.
+    let mut seen_tilt_only = 0;
+    let mut seen_groups = 0;
+    for preset in PRESETS {
+        let m = machine(preset);
+        let zone = default_piece().zone_size;
+        let a = analyze(&m, &default_piece(), &Options::default()).unwrap();
+        let names: Vec<&str> = a.errors.iter().map(|d| d.name).collect();
+        let k = sensitivity_by_differences(&m, &names);
+        let n = names.len();
+        let per = |e: usize| {
+            if a.errors[e].quantity == Quantity::SmallAngle {
+                zone
+            } else {
+                1.0
+            }
+        };
+        let col = |e: usize| -> Vec<f64> { (0..9).map(|z| k[z][e].height / per(e)).collect() };
+        let norm = |c: &[f64]| c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // Differences carry ~1e-9 of rounding: a column is zero below 1e-7, non-zero above
+        // 1e-3 (every preset's columns are one or the other).
+        let zero: Vec<bool> = (0..n)
+            .map(|e| {
+                let s = norm(&col(e));
+                assert!(!(1e-7..1e-3).contains(&s), "{preset} {}: {s}", names[e]);
+                s < 1e-7
+            })
+            .collect();
+        let invisible: Vec<&str> = (0..n).filter(|&e| zero[e]).map(|e| names[e]).collect();
+        assert_eq!(a.visibility.invisible, invisible, "{preset}");
+        // Tilt-only: invisible, yet some zone's slope moves (per rad, of order 1).
+        let tilts = |e: usize| (0..9).any(|z| k[z][e].slope_x.abs() + k[z][e].slope_y.abs() > 1e-4);
+        let tilt_only: Vec<&str> = (0..n)
+            .filter(|&e| zero[e] && tilts(e))
+            .map(|e| names[e])
+            .collect();
+        assert_eq!(a.visibility.tilt_only, tilt_only, "{preset}");
+        seen_tilt_only += tilt_only.len();
+
+        // Alike: visible errors whose height columns are parallel, each group listed once with
+        // at least two members, the first one's factor 1 and every member k = factor · k_first.
+        let parallel = |a: usize, b: usize| {
+            let (ca, cb) = (col(a), col(b));
+            let dot: f64 = ca.iter().zip(&cb).map(|(x, y)| x * y).sum();
+            let cos = dot.abs() / (norm(&ca) * norm(&cb));
+            // Parallel to rounding (1 − cos below 10⁻⁸) or clearly not (above 10⁻⁶).
+            assert!(
+                !(1e-8..1e-6).contains(&(1.0 - cos)),
+                "{preset} {} {}: cos {cos}",
+                names[a],
+                names[b]
+            );
+            1.0 - cos < 1e-8
+        };
+        let mut listed = vec![0; n];
+        for group in &a.visibility.alike {
+            assert!(group.len() >= 2, "{preset}: {group:?}");
+            assert_eq!(group[0].1, 1.0, "{preset}: {group:?}");
+            let first = names.iter().position(|d| *d == group[0].0).unwrap();
+            for &(member, factor) in group {
+                let e = names.iter().position(|d| *d == member).unwrap();
+                listed[e] += 1;
+                assert!(!zero[e], "{preset}: {member} is invisible yet in {group:?}");
+                let scale = norm(&col(first)) * per(first);
+                for (z, row) in k.iter().enumerate() {
+                    let what = format!("{preset} {member} zone {z}");
+                    close(
+                        row[e].height,
+                        factor * row[first].height,
+                        1e-6 * scale,
+                        &what,
+                    );
+                }
+            }
+            seen_groups += 1;
+        }
+        for a_ in 0..n {
+            assert!(listed[a_] <= 1, "{preset}: {} in two groups", names[a_]);
+            for b in a_ + 1..n {
+                if !zero[a_] && !zero[b] && parallel(a_, b) {
+                    let together = a.visibility.alike.iter().any(|g| {
+                        g.iter().any(|m| m.0 == names[a_]) && g.iter().any(|m| m.0 == names[b])
+                    });
+                    assert!(
+                        together,
+                        "{preset}: {} and {} act alike",
+                        names[a_], names[b]
+                    );
+                }
+            }
+        }
+        // Rank of the 9 × n height table (singular values above 10⁻⁶ of the largest).
+        let table = DMatrix::from_fn(9, n, |z, e| col(e)[z]);
+        let sv = table.svd(false, false).singular_values;
+        let top = sv.max();
+        let rank = sv.iter().filter(|s| **s > 1e-6 * top).count();
+        assert!(
+            sv.iter().all(|s| *s > 1e-4 * top || *s < 1e-8 * top),
+            "{preset}: {sv}"
+        );
+        assert_eq!(a.visibility.rank, rank, "{preset}");
+        assert!(rank > 0);
+    }
+    // The presets between them have tilt-only errors and groups, or the checks above saw none.
+    assert!(seen_tilt_only >= 2 && seen_groups >= 6);
+}
+
+#[test]
+fn a_table_axis_offset_across_it_and_along_the_spindle_act_alike_by_tan_15_degrees() {
+    // Li et al.'s B/C table, axes intersecting: an offset t of B moves a workpiece point by
+    // t − Qᵀt with Qᵀ = R_Z(c)·R_Y(b) (module docs of cubic_any_machine), so a zone cut at B = b
+    // rises by −(R_Y(b)e_x)_z = sin b per mm along X and 1 − cos b per mm along Z. Every outer
+    // zone is cut at |b| = 30° (ZONE I at 0: both zero), so E_Z0B = tan 15° · E_X0B in every zone,
+    // the sign that of b: the pair is one group of factor ± (1 − cos 30°)/sin 30°.
+    let m = machine("B/C tilting table");
+    let a = analyze(&m, &default_piece(), &Options::default()).unwrap();
+    let group = a
+        .visibility
+        .alike
+        .iter()
+        .find(|g| g[0].0 == "E_X0B")
+        .unwrap();
+    assert_eq!(group.len(), 2, "{group:?}");
+    assert_eq!(group[1].0, "E_Z0B");
+    let t15 = (1.0 - 30f64.to_radians().cos()) / 30f64.to_radians().sin();
+    close(group[1].1.abs(), t15, 1e-12, "|factor|");
+    close(t15, 15f64.to_radians().tan(), 1e-15, "tan 15°");
+}
+
+#[test]
+fn a_measured_zone_without_piece_x_is_on_the_pieces_own_place_and_slopes_in_um_per_mm_are_thousandths(
+) {
+    // Module docs of `cubic::identify`: `piece_x_mm` is the set-up of a zone (the piece moved
+    // along the face's first axis); left empty, the zone is on the piece's `workpieceX`.
+    // `slope_x_um_per_mm` is in µm per mm: 5 µm/mm is 0.005 mm/mm.
+    let piece = CubicInput::read(&json!({ "setup": { "workpieceX": 12.5 } }))
+        .unwrap()
+        .setup;
+    let csv = "zone,piece_x_mm,height_um,slope_x_um_per_mm,slope_y\n\
+               I,,1.5,5,0.002\n\
+               II-1,-40,-2,-7.5,\n";
+    let zones = parse_measurements(csv, &piece).unwrap();
+    assert_eq!(zones.len(), 2);
+    assert_eq!(zones[0].zone.1, 12.5);
+    assert_eq!(zones[1].zone.1, -40.0);
+    close(zones[0].height, 0.0015, 1e-15, "1.5 µm");
+    close(zones[0].slope_x.unwrap(), 0.005, 1e-15, "5 µm/mm");
+    close(zones[1].slope_x.unwrap(), -0.0075, 1e-15, "−7.5 µm/mm");
+    assert_eq!(zones[0].slope_y, Some(0.002));
+    assert_eq!(zones[1].slope_y, None);
+}
