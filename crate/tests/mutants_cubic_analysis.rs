@@ -8,10 +8,10 @@
 mod common;
 
 use common::{close, machine_preset};
-use fiveaxis::cubic::identify::parse_measurements;
+use fiveaxis::cubic::identify::{identify_zones, parse_measurements, CubicIdentifyInput};
 use fiveaxis::cubic::{analyze, Analysis, CubicInput, CubicReference, Options, ZonePlane};
 use fiveaxis::machine::Machine;
-use fiveaxis::schema::{Inputs, Quantity};
+use fiveaxis::schema::{read_split, Inputs, Quantity};
 use nalgebra::DMatrix;
 use serde_json::json;
 
@@ -363,4 +363,16 @@ fn a_measured_zone_without_piece_x_is_on_the_pieces_own_place_and_slopes_in_um_p
     close(zones[1].slope_x.unwrap(), -0.0075, 1e-15, "−7.5 µm/mm");
     assert_eq!(zones[0].slope_y, Some(0.002));
     assert_eq!(zones[1].slope_y, None);
+}
+
+#[test]
+fn a_file_too_short_to_fit_is_the_files_fault() {
+    // One zone's height cannot be fitted (the fit needs two measurements at least): the error
+    // points at the file the user gave (`csv`), not at the engine's internal fit.
+    let m = machine_preset("B/C tilting table");
+    let v = json!({ "machine": m, "csv": "zone,height_um\nII-1,3\n" });
+    let (input, own): (CubicInput, CubicIdentifyInput) = read_split(&v, "").unwrap();
+    let e = identify_zones(&input, &own).unwrap_err();
+    assert_eq!(e.field, "csv", "{e}");
+    assert!(e.message.contains("nothing to fit"), "{e}");
 }
