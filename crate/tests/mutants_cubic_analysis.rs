@@ -9,7 +9,10 @@ mod common;
 
 use common::{close, machine_preset};
 use fiveaxis::cubic::identify::{identify_zones, parse_measurements, CubicIdentifyInput};
-use fiveaxis::cubic::{analyze, Analysis, CubicInput, CubicReference, Options, ZonePlane};
+use fiveaxis::cubic::{
+    analyze, height_map, Analysis, CubicGrid, CubicInput, CubicReference, Options, ZonePlane,
+    MAX_GRID_POINTS,
+};
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::{read_split, Inputs, Quantity};
 use nalgebra::DMatrix;
@@ -375,4 +378,28 @@ fn a_file_too_short_to_fit_is_the_files_fault() {
     let e = identify_zones(&input, &own).unwrap_err();
     assert_eq!(e.field, "csv", "{e}");
     assert!(e.message.contains("nothing to fit"), "{e}");
+}
+
+#[test]
+fn a_height_map_of_more_than_four_million_points_is_refused_before_anything_is_cut() {
+    // A trunnion whose A stops at 20° cannot cut ZONE II-1 (A = 30°): a grid within the limit
+    // gets as far as the machine and fails there; one point past it fails on the grid first.
+    let mut v = machine_preset("A/C trunnion table");
+    v["rotary"]["mFrom"] = json!(0);
+    v["rotary"]["mTo"] = json!(20);
+    let m = Machine::from_value(&v, "machine").unwrap();
+    let run = |nx: usize, ny: usize| {
+        let grid = CubicGrid::from_value(&json!({ "nx": nx, "ny": ny }), "").unwrap();
+        height_map(&m, &default_piece(), &Options::default(), &grid).unwrap_err()
+    };
+    assert_eq!(MAX_GRID_POINTS, 4_000_000);
+    for (nx, ny) in [(2000, 2000), (1000, 4000), (4000, 1000)] {
+        let e = run(nx, ny);
+        assert_eq!(e.field, "machine", "{nx} × {ny}: {e}");
+    }
+    for (nx, ny) in [(2000, 2001), (2001, 2000), (4001, 4001)] {
+        let e = run(nx, ny);
+        assert_eq!(e.field, "nx", "{nx} × {ny}: {e}");
+        assert!(e.message.contains("at most 4000000"), "{e}");
+    }
 }

@@ -320,3 +320,143 @@ pub fn height_map(
         evaluations,
     })
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    //! The private pieces of the simulation against their definitions: the swept ball's lower
+    //! surface against the lowest of many balls along the segment, the index range against a
+    //! scan of the coordinates, the cut against both.
+    use super::*;
+
+    /// The swept ball's lowest point above `(x, y)` by brute force: the lowest of the balls
+    /// centred at `n + 1` equally spaced points of the segment (+∞ where none reaches).
+    fn lowest_ball(a: Vector3<f64>, b: Vector3<f64>, x: f64, y: f64, r: f64, n: usize) -> f64 {
+        let mut lowest = f64::INFINITY;
+        for i in 0..=n {
+            let s = i as f64 / n as f64;
+            let (cx, cy, cz) = (
+                a.x + (b.x - a.x) * s,
+                a.y + (b.y - a.y) * s,
+                a.z + (b.z - a.z) * s,
+            );
+            let d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+            if d2 <= r * r {
+                lowest = lowest.min(cz - (r * r - d2).sqrt());
+            }
+        }
+        lowest
+    }
+
+    #[test]
+    fn a_pass_cuts_as_deep_as_the_lowest_ball_along_it() {
+        let r = 3.0;
+        // Level, rising along X, diagonal and steep, nearly vertical, and a point.
+        let segments = [
+            (Vector3::new(-8.0, 0.5, 2.0), Vector3::new(8.0, 0.5, 2.0)),
+            (Vector3::new(-8.0, 0.0, 1.0), Vector3::new(8.0, 0.0, 3.0)),
+            (Vector3::new(-5.0, -4.0, 4.0), Vector3::new(6.0, 3.0, -2.0)),
+            (Vector3::new(0.0, 0.0, 0.0), Vector3::new(0.5, 0.2, 9.0)),
+            (Vector3::new(1.0, 1.0, 1.0), Vector3::new(1.0, 1.0, 1.0)),
+        ];
+        for (a, b) in segments {
+            let p = Pass::new(a, b);
+            for i in 0..=12 {
+                for j in 0..=8 {
+                    let (x, y) = (-12.0 + 2.0 * i as f64, -8.0 + 2.0 * j as f64);
+                    let want = lowest_ball(a, b, x, y, r, 20_000);
+                    let got = p.bottom(x, y, r);
+                    if want.is_infinite() {
+                        assert!(got.is_infinite(), "{a} {b} ({x}, {y}): {got}");
+                    } else {
+                        // The sampled lowest is never below the true one, and above it by at
+                        // most the height change over half a sample step (< 1 µm here).
+                        assert!(
+                            got <= want + 1e-12 && got >= want - 1e-3,
+                            "{a} {b} ({x}, {y}): {got} vs {want}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_span_is_every_index_whose_coordinate_lies_in_the_closed_interval() {
+        let v: Vec<f64> = (0..11).map(|i| -5.0 + i as f64).collect();
+        let scan = |lo: f64, hi: f64| -> Vec<usize> {
+            (0..v.len()).filter(|&i| lo <= v[i] && v[i] <= hi).collect()
+        };
+        for (lo, hi) in [
+            (-2.5, 1.5),
+            (-2.0, 1.0),
+            (-9.0, -3.0),
+            (3.0, 9.0),
+            (-9.0, 9.0),
+            (-9.0, -6.0),
+            (6.0, 9.0),
+            (-9.0, -5.0),
+            (5.0, 9.0),
+            (0.2, 0.8),
+            (2.0, 2.0),
+            (1.0, -1.0),
+        ] {
+            let got: Vec<usize> = Face::span(&v, lo, hi).collect();
+            assert_eq!(got, scan(lo, hi), "[{lo}, {hi}]");
+        }
+    }
+
+    #[test]
+    fn a_cut_lowers_the_grid_near_the_pass_to_the_ball_and_counts_the_points_it_tried() {
+        let (r, w) = (3.0, 1.5);
+        let (a, b) = (Vector3::new(-4.0, 0.5, 0.5), Vector3::new(4.0, 1.0, 1.5));
+        let p = Pass::new(a, b);
+        let x: Vec<f64> = (0..41).map(|i| -10.0 + 0.5 * i as f64).collect();
+        let y: Vec<f64> = (0..21).map(|i| -5.0 + 0.5 * i as f64).collect();
+        let stock = 1.0;
+        let mut face = Face {
+            x: x.clone(),
+            y: y.clone(),
+            h: vec![stock; x.len() * y.len()],
+        };
+        let n = face.cut(&p, w, r);
+        // Within w of the segment's extent along X and Y: x in [−5.5, 5.5] (23 points), y in
+        // [−1, 2.5] (8 points).
+        assert_eq!(n, 23 * 8);
+        let mut lowered = 0;
+        for (iy, &yy) in y.iter().enumerate() {
+            for (ix, &xx) in x.iter().enumerate() {
+                let h = face.h[iy * x.len() + ix];
+                let near = (-5.5..=5.5).contains(&xx) && (-1.0..=2.5).contains(&yy);
+                let want = if near {
+                    stock.min(p.bottom(xx, yy, r))
+                } else {
+                    stock
+                };
+                assert_eq!(h, want, "({xx}, {yy})");
+                lowered += usize::from(h < stock);
+            }
+        }
+        assert!(lowered > 20, "{lowered}");
+    }
+
+    fn piece(zone: f64, pick: f64) -> CubicPiece {
+        use crate::schema::Inputs;
+        CubicPiece::from_value(&serde_json::json!({ "zoneSize": zone, "pick": pick }), "").unwrap()
+    }
+
+    #[test]
+    fn the_automatic_grid_has_four_rows_per_pass_step_within_the_limits() {
+        // Three zones of 16 mm with passes every 2 mm: 48 mm in steps of 0.5 mm, 97 rows.
+        assert_eq!(auto_rows(&piece(16.0, 2.0), 193), 97);
+        // A pick that does not divide the zone: ⌈20/3⌉ = 7 steps of 20/7 mm, 84 + 1 rows.
+        assert_eq!(auto_rows(&piece(20.0, 3.0), 193), 85);
+        // One step per zone (pick = zone): 12 + 1 rows.
+        assert_eq!(auto_rows(&piece(16.0, 16.0), 4), 13);
+        // 2000 steps per zone would need 24 001 rows: at most 4001 …
+        assert_eq!(auto_rows(&piece(200.0, 0.1), 500), MAX_GRID_SIDE);
+        // … and at most 4 000 000 points in all: 4000 rows of 1000, 2000 of 2000.
+        assert_eq!(auto_rows(&piece(200.0, 0.1), 1000), 4000);
+        assert_eq!(auto_rows(&piece(200.0, 0.1), 2000), 2000);
+    }
+}
