@@ -459,4 +459,77 @@ mod tests {
         assert_eq!(auto_rows(&piece(200.0, 0.1), 1000), 4000);
         assert_eq!(auto_rows(&piece(200.0, 0.1), 2000), 2000);
     }
+
+    #[test]
+    fn the_face_is_the_lowest_of_every_pass_and_the_stock() {
+        // Module docs: the face is the lowest of all passes and the stock, whatever the order;
+        // the two sweeps only skip passes that cannot reach. Here against every pass at every
+        // grid point. A 10 mm ball with 1 mm steps and errors large enough (0.3 mm, 0.3°) that
+        // neighbouring zones differ by more than 0.05 mm: then some points are cut lowest by a
+        // pass of the lower zone more than a step away, which only the second sweep tries.
+        use crate::machine::Machine;
+        use crate::schema::Inputs;
+        let m = Machine::from_value(
+            &serde_json::json!({
+                "kind": "table-table", "type": "CAZ", "linear": "table-xy",
+                "geometry": { "tableHeight": 65, "toolLength": 120 },
+                "rotary": { "mFrom": -120, "mTo": 30 },
+                "errors": { "E_Y0A": 0.3, "E_B0A": 0.3, "E_A0C": -0.2, "E_Z0C": 0.04 }
+            }),
+            "machine",
+        )
+        .unwrap();
+        let setup = CubicPiece::from_value(&serde_json::json!({ "pick": 1, "toolRadius": 10 }), "")
+            .unwrap();
+        let options = Options {
+            transform: false,
+            reference: CubicReference::Workpiece,
+        };
+        let grid = CubicGrid::from_value(&serde_json::json!({ "nx": 61, "ny": 49 }), "").unwrap();
+        let map = height_map(&m, &setup, &options, &grid).unwrap();
+        let test = Test::new(&m, &setup, &options).unwrap();
+        let (half, step, r) = (0.5 * setup.zone_size, setup.step(), setup.tool_radius);
+        let mut passes = Vec::new();
+        for zone in &test.zones {
+            let (xc, yc) = zone.centre;
+            for k in 0..setup.passes_per_zone() {
+                let y = yc - half + k as f64 * step;
+                let a = test.centre(zone, xc - half, y).unwrap();
+                let b = test.centre(zone, xc + half, y).unwrap();
+                passes.push((a, b, Pass::new(a, b)));
+            }
+        }
+        assert_eq!(map.passes, passes.len());
+        let mut far = 0;
+        for (iy, &y) in map.y.iter().enumerate() {
+            for (ix, &x) in map.x.iter().enumerate() {
+                let (mut lowest, mut by) = (setup.stock, None);
+                for (a, b, p) in &passes {
+                    let z = p.bottom(x, y, r);
+                    if z < lowest {
+                        (lowest, by) = (z, Some((a, b)));
+                    }
+                }
+                assert_eq!(map.height[iy * map.nx + ix], lowest, "({x}, {y})");
+                if let Some((a, b)) = by {
+                    let dx = (a.x.min(b.x) - x).max(x - a.x.max(b.x)).max(0.0);
+                    let dy = (a.y.min(b.y) - y).max(y - a.y.max(b.y)).max(0.0);
+                    far += usize::from(dx > step || dy > step);
+                }
+            }
+        }
+        assert!(
+            far > 0,
+            "no point is cut lowest by a pass more than a step away"
+        );
+        // Every point is tried at least once (the first sweep covers the face), and no pass
+        // tries a point more than twice.
+        let points = map.nx * map.ny;
+        assert!(map.evaluations >= points, "{}", map.evaluations);
+        assert!(
+            map.evaluations <= 2 * passes.len() * points,
+            "{}",
+            map.evaluations
+        );
+    }
 }
