@@ -28,7 +28,7 @@
 //!
 //! # The search
 //! On the layout's Gram matrix `SᵀS` (the sum of each zone's share), whose eigenvalues are the
-//! squared singular values. Coordinate ascent from the paper's layout (or 30° towards the centre): for each zone in turn
+//! squared singular values. Coordinate ascent from the paper's layout (the candidate nearest 30° towards the centre, or maxTilt when smaller): for each zone in turn
 //! every candidate tool vector at its position is tried and the best kept, by (rank, then the
 //! `r`-th singular value, or the sum of the logarithms of the singular values while the rank is
 //! short), until a sweep improves nothing (at most 8 sweeps). Deterministic.
