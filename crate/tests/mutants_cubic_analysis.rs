@@ -403,3 +403,113 @@ fn a_height_map_of_more_than_four_million_points_is_refused_before_anything_is_c
         assert!(e.message.contains("at most 4000000"), "{e}");
     }
 }
+
+/// Trapezoidal weights of the grid coordinates `v` over `[c − half, c + half]`: 1 inside, ½ on
+/// the ends (a grid point on a zone border counts half for each zone).
+fn trapezoid(v: &[f64], c: f64, half: f64) -> Vec<(usize, f64)> {
+    v.iter()
+        .enumerate()
+        .filter_map(|(i, &t)| {
+            let d = (t - c).abs();
+            if (d - half).abs() < 1e-9 {
+                Some((i, 0.5))
+            } else if d < half {
+                Some((i, 1.0))
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn the_height_map_averages_each_zone_by_the_trapezoid_rule_and_levels_on_zone_is_centre() {
+    // Module docs of `height_map`: zone averages by the trapezoidal rule (borders count half);
+    // "zone1-height" subtracts the average, "zone1-plane" the least-squares plane, of ZONE I's
+    // central square, inset from its borders by r, at most a quarter of the zone side. A 5 mm
+    // ball on 16 mm zones: the inset is 4 mm (a quarter), so the square is |x|, |y| ≤ 4 mm.
+    // Checked against the workpiece-frame map of the same cut, with a plane fitted here by
+    // the normal equations of all three unknowns at once.
+    let m = erroneous_trunnion(1.0);
+    let input = CubicInput::read(&json!({
+        "setup": { "zoneSize": 16, "toolRadius": 5, "pick": 2 }
+    }))
+    .unwrap();
+    let grid = CubicGrid::from_value(&json!({ "nx": 49, "ny": 97 }), "").unwrap();
+    let map = |reference| {
+        let options = Options {
+            transform: false,
+            reference,
+        };
+        height_map(&m, &input.setup, &options, &grid).unwrap()
+    };
+    let w = map(CubicReference::Workpiece);
+    let (nx, z) = (w.nx, 16.0);
+    let square = |xc: f64, yc: f64, half: f64| -> Vec<(usize, f64)> {
+        let wx = trapezoid(&w.x, xc, half);
+        trapezoid(&w.y, yc, half)
+            .into_iter()
+            .flat_map(|(iy, wy)| wx.iter().map(move |&(ix, wx)| (iy * nx + ix, wx * wy)))
+            .collect()
+    };
+    let mean = |h: &[f64], idx: &[(usize, f64)]| {
+        idx.iter().map(|&(i, wi)| wi * h[i]).sum::<f64>() / idx.iter().map(|p| p.1).sum::<f64>()
+    };
+    // Grid steps 1 mm along X and 0.5 mm along Y: zone borders (±8 mm, ±24 mm) and the
+    // square's (±4 mm) fall on grid points in both directions.
+    for (k, zone) in fiveaxis::cubic::ZONES.iter().enumerate() {
+        let idx = square(zone.col as f64 * z, zone.row as f64 * z, z / 2.0);
+        assert_eq!(
+            idx.iter().filter(|p| p.1 == 0.25).count(),
+            4,
+            "{}",
+            zone.name
+        );
+        close(w.zone_average[k], mean(&w.height, &idx), 1e-12, zone.name);
+    }
+    let centre = square(0.0, 0.0, 4.0);
+    let level = mean(&w.height, &centre);
+    let h = map(CubicReference::ZoneIHeight);
+    for (a, b) in h.height.iter().zip(&w.height) {
+        close(*a, b - level, 1e-12, "zone1-height");
+    }
+    // Weighted least squares h ≈ a + b·x + c·y over the square.
+    let (mut n, mut rhs) = (nalgebra::Matrix3::zeros(), nalgebra::Vector3::zeros());
+    for &(i, wi) in &centre {
+        let v = nalgebra::Vector3::new(1.0, w.x[i % nx], w.y[i / nx]);
+        n += wi * v * v.transpose();
+        rhs += wi * w.height[i] * v;
+    }
+    let plane = n.lu().solve(&rhs).unwrap();
+    assert!(plane[1].abs() > 1e-5 && plane[2].abs() > 1e-5, "{plane}");
+    let p = map(CubicReference::ZoneIPlane);
+    for iy in 0..p.ny {
+        for ix in 0..nx {
+            let under = plane[0] + plane[1] * w.x[ix] + plane[2] * w.y[iy];
+            let k = iy * nx + ix;
+            close(p.height[k], w.height[k] - under, 1e-12, "zone1-plane");
+        }
+    }
+}
+
+#[test]
+fn a_coarse_map_levelled_on_one_column_of_zone_i_stays_finite() {
+    // 5 × 5 points over three 16 mm zones (12 mm apart): ZONE I's central square (inset by the
+    // 3 mm ball: |x|, |y| ≤ 5 mm) holds the centre alone, so no slope can be fitted there; levelling on ZONE I's plane
+    // is then levelling on its height, never a 0/0.
+    let m = erroneous_trunnion(1.0);
+    let grid = CubicGrid::from_value(&json!({ "nx": 5, "ny": 5 }), "").unwrap();
+    let run = |reference| {
+        let options = Options {
+            transform: false,
+            reference,
+        };
+        height_map(&m, &default_piece(), &options, &grid).unwrap()
+    };
+    let plane = run(CubicReference::ZoneIPlane);
+    let height = run(CubicReference::ZoneIHeight);
+    for (a, b) in plane.height.iter().zip(&height.height) {
+        assert!(a.is_finite(), "{a}");
+        close(*a, *b, 1e-12, "one point: plane = height");
+    }
+}

@@ -522,14 +522,38 @@ mod tests {
             far > 0,
             "no point is cut lowest by a pass more than a step away"
         );
-        // Every point is tried at least once (the first sweep covers the face), and no pass
-        // tries a point more than twice.
-        let points = map.nx * map.ny;
-        assert!(map.evaluations >= points, "{}", map.evaluations);
-        assert!(
-            map.evaluations <= 2 * passes.len() * points,
-            "{}",
-            map.evaluations
-        );
+        // The work, as the docs describe the two sweeps: every pass tries the grid points within
+        // one step of its extent; then, with M the highest point of the face after that first
+        // sweep (an upper bound of the final face), a pass whose
+        // centres are `gap = zmin − M` above it and gap < r tries those within its reach
+        // √(r² − gap²) (r where gap ≤ 0), widened by a hair (10⁻¹² relative and absolute) for
+        // rounding.
+        let tried = |p: &Pass, w: f64| {
+            let b = p.a + p.e * p.len;
+            let xs = Face::span(&map.x, p.a.x.min(b.x) - w, p.a.x.max(b.x) + w);
+            let ys = Face::span(&map.y, p.a.y.min(b.y) - w, p.a.y.max(b.y) + w);
+            xs.len() * ys.len()
+        };
+        let mut first = Face {
+            x: map.x.clone(),
+            y: map.y.clone(),
+            h: vec![setup.stock; map.nx * map.ny],
+        };
+        for (_, _, p) in &passes {
+            first.cut(p, step, r);
+        }
+        let top = first.h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(top > map.height.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+        let mut work = 0;
+        for (_, _, p) in &passes {
+            work += tried(p, step);
+            let gap = p.zmin - top;
+            if gap < r {
+                let reach = (r * r - gap.max(0.0).powi(2)).sqrt();
+                work += tried(p, reach * (1.0 + 1e-12) + 1e-12);
+            }
+        }
+        assert_eq!(map.evaluations, work);
+        assert!(work > map.nx * map.ny);
     }
 }
