@@ -513,3 +513,50 @@ fn a_coarse_map_levelled_on_one_column_of_zone_i_stays_finite() {
         close(*a, *b, 1e-12, "one point: plane = height");
     }
 }
+
+/// Li et al.'s B/C table with one error motion of the spindle's X slide (tool side), `E_ZX`.
+fn li_with_e_zx(e_zx: serde_json::Value) -> Machine {
+    let mut v = machine_preset("B/C tilting table");
+    v["motions"] = json!({ "E_ZX": e_zx });
+    Machine::from_value(&v, "machine").unwrap()
+}
+
+#[test]
+fn a_curved_straightness_gives_the_slope_of_the_secant_over_half_a_zone() {
+    // Module docs: the tilt comes from three actual centres, the zone centre and zoneSize/2
+    // along u and v. With X's straightness E_ZX = c·X² (the tool c·X² higher along Z at X) the
+    // surface is curved; ZONE I (B = C = 0, X = x on the face) gets the secant's slope
+    // c·((z/2)² − 0)/(z/2) = c·z/2 along x and none along y. Its centre is cut at the nominal
+    // height (c·0² = 0), but the ball (r = 3 mm) touches a plane of slope s a little lower,
+    // by r·(√(1 + s²) − 1). c = 10⁻⁵ /mm, z = 16 mm: s = 8·10⁻⁵.
+    let c = 1e-5;
+    let m = li_with_e_zx(json!({ "poly": [0, 0, c] }));
+    let a = analyze(&m, &default_piece(), &Options::default()).unwrap();
+    let z1 = a.zones[0].exact;
+    let s = c * 16.0 / 2.0;
+    close(z1.slope_x, s, 1e-12, "slope along x");
+    close(z1.slope_y, 0.0, 1e-12, "slope along y");
+    close(
+        z1.height,
+        -3.0 * ((1.0 + s * s).sqrt() - 1.0),
+        1e-14,
+        "height",
+    );
+}
+
+#[test]
+fn errors_that_tilt_a_zone_by_more_than_60_degrees_are_refused() {
+    // E_ZX rising 4 mm over X from 0 to 1 mm: on 2 mm zones ZONE I's secant over 1 mm rises
+    // 4 mm, a tilt of atan 4 = 76° (> 60°); 1.5 mm (56°) is accepted.
+    let piece = CubicInput::read(&json!({ "setup": { "zoneSize": 2, "pick": 1 } }))
+        .unwrap()
+        .setup;
+    let table = |rise: f64| {
+        li_with_e_zx(json!({ "position": [-100, 0, 1, 100], "value": [0, 0, rise, rise] }))
+    };
+    let e = analyze(&table(4.0), &piece, &Options::default()).unwrap_err();
+    assert_eq!(e.field, "machine.errors");
+    assert!(e.message.contains("more than 60°"), "{e}");
+    let a = analyze(&table(1.5), &piece, &Options::default()).unwrap();
+    close(a.zones[0].exact.slope_x, 1.5, 1e-9, "56°");
+}
