@@ -24,3 +24,87 @@ fn four_points_make_the_bezier_cubic_and_fewer_are_refused() {
     assert!(BSpline::clamped_uniform(3, p[..3].to_vec()).is_err());
     assert!(BSpline::clamped_uniform(3, p[..2].to_vec()).is_err());
 }
+
+/// Curves off the unit domain with repeated interior knots (degree, knots, points).
+fn odd_curves() -> Vec<BSpline> {
+    let pts = |n: usize| -> Vec<Vector3<f64>> {
+        (0..n)
+            .map(|i| {
+                let t = i as f64;
+                Vector3::new(t, (1.3 * t).sin() * 4.0, 0.2 * t * t - t)
+            })
+            .collect()
+    };
+    vec![
+        // Cubic on [2, 5], a double knot at 3.5.
+        BSpline::new(
+            3,
+            vec![2.0, 2.0, 2.0, 2.0, 2.5, 3.5, 3.5, 4.0, 5.0, 5.0, 5.0, 5.0],
+            pts(8),
+        )
+        .unwrap(),
+        // Quadratic on [−1, 3]: knots before the domain are not all equal.
+        BSpline::new(
+            2,
+            vec![-3.0, -2.0, -1.0, 0.0, 0.0, 1.5, 3.0, 4.0, 6.0],
+            pts(6),
+        )
+        .unwrap(),
+        // Quadratic whose last interior knot reaches the domain's end (knots[n] = knots[n + 1]):
+        // the last non-empty span is the one before.
+        BSpline::new(2, vec![0.0, 0.0, 0.0, 1.0, 3.0, 3.0, 3.0, 3.0], pts(5)).unwrap(),
+    ]
+}
+
+/// `N_(i,a)(u)` by the module docs' recursion on the domain's intervals `[u_i, u_(i+1))`,
+/// `p ≤ i ≤ n` (`span` = `[p, n]`), the last non-empty one (`last`) closed at its right end.
+fn cox_de_boor(t: &[f64], i: usize, a: usize, u: f64, span: (usize, usize), last: usize) -> f64 {
+    if a == 0 {
+        let inside = (span.0..=span.1).contains(&i);
+        return f64::from(inside && t[i] <= u && (u < t[i + 1] || (i == last && u == t[i + 1])));
+    }
+    let f = |num: f64, den: f64| if den == 0.0 { 0.0 } else { num / den };
+    f(u - t[i], t[i + a] - t[i]) * cox_de_boor(t, i, a - 1, u, span, last)
+        + f(t[i + a + 1] - u, t[i + a + 1] - t[i + 1]) * cox_de_boor(t, i + 1, a - 1, u, span, last)
+}
+
+#[test]
+fn the_domain_the_span_and_the_point_follow_their_definitions_on_any_knot_vector() {
+    for c in odd_curves() {
+        let (p, t, n) = (c.degree(), c.knots(), c.points().len() - 1);
+        // Domain [u_p, u_(n+1)].
+        assert_eq!(c.domain(), (t[p], t[n + 1]));
+        let (a, b) = (t[p], t[n + 1]);
+        // The last non-empty span of the domain.
+        let last = (p..=n).rev().find(|&s| t[s] < t[s + 1]).unwrap();
+        for k in 0..=400 {
+            let u = a - 0.5 + (b - a + 1.0) * k as f64 / 400.0;
+            let uc = u.clamp(a, b);
+            let s = c.span(u);
+            assert!((p..=n).contains(&s), "{t:?} u {u}: span {s}");
+            if uc < b {
+                assert!(t[s] <= uc && uc < t[s + 1], "{t:?} u {u}: span {s}");
+            } else {
+                assert_eq!(s, last, "{t:?} at the end");
+            }
+            // Every knot itself, too (a knot starts its span).
+            let want: Vector3<f64> = (0..=n)
+                .map(|i| c.points()[i] * cox_de_boor(t, i, p, uc, (p, n), last))
+                .sum();
+            assert!(
+                (c.point(u) - want).norm() < 1e-12,
+                "{t:?} u {u}: {} vs {want}",
+                c.point(u)
+            );
+        }
+        for &k in t {
+            if (a..b).contains(&k) {
+                let s = c.span(k);
+                assert!(t[s] <= k && k < t[s + 1], "{t:?} knot {k}: span {s}");
+            }
+        }
+        assert_eq!(c.span(b), last);
+        assert_eq!(c.span(b + 10.0), last);
+        assert_eq!(c.span(a - 10.0), c.span(a));
+    }
+}
