@@ -165,3 +165,24 @@ fn the_derivatives_are_those_of_the_cox_de_boor_sum() {
         assert!(checked > 100, "{t:?}");
     }
 }
+
+#[test]
+fn a_missing_point_is_named_on_its_own_curve() {
+    // Module docs of `sshape::identify`: 50 points on each curve, a missing point is named.
+    // Every point but top 30 (surface B of the top curve) and bottom 1.
+    let mut text = String::from("curve,point,deviation_mm\n");
+    for curve in ["top", "bottom"] {
+        for point in 1..=50 {
+            if (curve, point) != ("top", 30) && (curve, point) != ("bottom", 1) {
+                text.push_str(&format!("{curve},{point},0.001\n"));
+            }
+        }
+    }
+    let e = fiveaxis::sshape::identify::parse_measurements(&text).unwrap_err();
+    assert_eq!(e.field, "csv");
+    assert!(
+        e.message
+            .ends_with("2 of the 100 points are missing: top 30, bottom 1"),
+        "{e}"
+    );
+}
