@@ -1,9 +1,14 @@
 //! Tests written for mutants of `crate/src/sshape/` that a sampled mutation run let survive
-//! (`npm run mutants -- sshape`): the smallest clamped uniform B-spline.
+//! (`npm run mutants -- sshape`): the B-spline, the measurement file, eq 6 and the overcut map,
+//! the exact gouge's search window, and the machine poses carried along the path.
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+mod common;
 
 use fiveaxis::sshape::bspline::BSpline;
+use fiveaxis::sshape::machine::{poses_along, PathBranch};
+use fiveaxis::sshape::overcut::{eq6_max, overcut_map, Basis, OvercutMap, ToolPath};
+use fiveaxis::sshape::part::{Part, Surface, SurfaceId};
 use nalgebra::Vector3;
 
 /// A clamped cubic needs p + 1 = 4 points. With exactly 4 it is the Bézier curve (knots
@@ -185,4 +190,261 @@ fn a_missing_point_is_named_on_its_own_curve() {
             .ends_with("2 of the 100 points are missing: top 30, bottom 1"),
         "{e}"
     );
+}
+
+/// Eq 6 from the module docs of `sshape::overcut`, by a second route: the tool tip of eq 2,
+/// `E(u) = C1 + R_tool·N(u, 1) − L_tool·R(u)`, and the axis `R = (C1 − C0)/‖C1 − C0‖` from the
+/// surface's points alone, their u-derivatives by central differences, `a = dE/du + h·dR/du`
+/// with `h = L_tool − (1 − v)·‖C1 − C0‖`, `T = dC1/du` normalised (the paper's basis) or its
+/// part perpendicular to `R` (the orthonormal one), `N ∥ S_u × S_v` at `v = 1`, and
+/// `overcut = R_tool·(1 − |a·T|/√((a·T)² + (a·N)²))`. (N's sign does not matter there.)
+fn eq6_by_hand(path: &ToolPath, s: &Surface, u: f64, v: f64, basis: Basis) -> f64 {
+    let c1 = |u: f64| s.point(u, 1.0);
+    let c0 = |u: f64| s.point(u, 0.0);
+    let d = 1e-6;
+    let du = |f: &dyn Fn(f64) -> Vector3<f64>| (f(u + d) - f(u - d)) / (2.0 * d);
+    let ruling = |u: f64| (c1(u) - c0(u)).normalize();
+    let normal = |u: f64| {
+        let su = (c1(u + d) - c1(u - d)) / (2.0 * d);
+        let n = su.cross(&(c1(u) - c0(u))).normalize();
+        // outward as the surface's own normal says (the tip sits outside the part)
+        if n.dot(&s.frame(u, 1.0).normal) < 0.0 {
+            -n
+        } else {
+            n
+        }
+    };
+    let tip = |u: f64| c1(u) + normal(u) * path.r_tool - ruling(u) * path.l_tool;
+    let h = path.l_tool - (1.0 - v) * (c1(u) - c0(u)).norm();
+    let a = du(&tip) + du(&ruling) * h;
+    let t = du(&c1).normalize();
+    let t = match basis {
+        Basis::Paper => t,
+        Basis::Orthonormal => (t - ruling(u) * t.dot(&ruling(u))).normalize(),
+    };
+    let (at, an) = (a.dot(&t), a.dot(&normal(u)));
+    path.r_tool * (1.0 - at.abs() / at.hypot(an))
+}
+
+fn on_grid(i: usize, n: usize) -> f64 {
+    i as f64 / (n - 1) as f64
+}
+
+#[test]
+fn eq6_is_the_tool_radius_times_one_less_sin_theta() {
+    let part = Part::standard().unwrap();
+    for path in [ToolPath::paper(), ToolPath::new(6.0, 50.0).unwrap()] {
+        for id in SurfaceId::BOTH {
+            let s = part.surface(id);
+            let mut largest: f64 = 0.0;
+            for iu in 1..40 {
+                let u = iu as f64 / 40.0 + 0.003;
+                for v in [0.0, 0.4, 1.0] {
+                    for basis in [Basis::Paper, Basis::Orthonormal] {
+                        let want = eq6_by_hand(&path, s, u, v, basis);
+                        let got = path.overcut_eq6(s, u, v, basis);
+                        assert!(
+                            (got - want).abs() < 1e-6,
+                            "{id:?} u {u} v {v} {basis:?}: {got} vs {want}"
+                        );
+                        largest = largest.max(want);
+                    }
+                }
+            }
+            assert!(largest > 0.01, "{id:?}: eq 6 reaches {largest} mm");
+        }
+    }
+}
+
+#[test]
+fn the_largest_eq6_is_taken_over_the_whole_grid_corners_included() {
+    // `eq6_max` over nu × nv points u = i/(nu − 1), v = j/(nv − 1): the largest of eq 6 there.
+    let part = Part::standard().unwrap();
+    let path = ToolPath::paper();
+    for id in SurfaceId::BOTH {
+        let s = part.surface(id);
+        for (nu, nv) in [(2, 2), (3, 2), (5, 3), (9, 4)] {
+            for basis in [Basis::Paper, Basis::Orthonormal] {
+                let mut want = f64::NEG_INFINITY;
+                for iu in 0..nu {
+                    for iv in 0..nv {
+                        let (u, v) = (on_grid(iu, nu), on_grid(iv, nv));
+                        // at u = 0 and 1 the central difference would leave the domain: use
+                        // the engine's eq 6, checked against the hand route inside
+                        want = want.max(path.overcut_eq6(s, u, v, basis));
+                    }
+                }
+                let got = eq6_max(&path, s, nu, nv, basis).unwrap();
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "{id:?} {nu}×{nv} {basis:?}: {got} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_overcut_map_holds_eq6_and_the_gouge_at_each_grid_point_row_major() {
+    let part = Part::standard().unwrap();
+    let path = ToolPath::paper();
+    let s = part.surface(SurfaceId::A);
+    let (nu, nv) = (7, 3);
+    let map = overcut_map(&path, s, nu, nv).unwrap();
+    let u: Vec<f64> = (0..nu).map(|i| on_grid(i, nu)).collect();
+    let v: Vec<f64> = (0..nv).map(|i| on_grid(i, nv)).collect();
+    assert_eq!(map.u, u);
+    assert_eq!(map.v, v);
+    let z: Vec<f64> = v.iter().map(|v| 30.0 * v).collect();
+    assert_eq!(map.z(), z);
+    assert_eq!(map.eq6.len(), nu * nv);
+    for (iv, &vv) in v.iter().enumerate() {
+        for (iu, &uu) in u.iter().enumerate() {
+            let k = iv * nu + iu;
+            for (field, basis) in [
+                (&map.eq6, Basis::Orthonormal),
+                (&map.eq6_paper, Basis::Paper),
+            ] {
+                let want = path.overcut_eq6(s, uu, vv, basis);
+                assert!((field[k] - want).abs() < 1e-12, "{basis:?} u {uu} v {vv}");
+            }
+            assert_eq!(map.exact[k], path.deviation(s, uu, vv), "u {uu} v {vv}");
+        }
+    }
+    // the inner points against the hand route of eq 6
+    for (iu, &uu) in u.iter().enumerate().take(nu - 1).skip(1) {
+        let want = eq6_by_hand(&path, s, uu, 0.5, Basis::Orthonormal);
+        assert!((map.eq6[nu + iu] - want).abs() < 1e-6);
+    }
+}
+
+/// A map written by hand: u = 0, ½, 1 and v = 0, ½, 1 (z = 0, 15, 30 mm).
+fn hand_map(eq6: Vec<f64>, exact: Vec<f64>) -> OvercutMap {
+    OvercutMap {
+        u: vec![0.0, 0.5, 1.0],
+        v: vec![0.0, 0.5, 1.0],
+        eq6_paper: eq6.iter().map(|x| 2.0 * x).collect(),
+        eq6,
+        exact,
+    }
+}
+
+#[test]
+fn the_peaks_are_the_largest_values_where_they_are_the_first_of_ties() {
+    // `max_of`: the largest value of a row-major field [iv·nu + iu] and its (u[iu], v[iv]).
+    let map = hand_map(vec![0.0; 9], vec![0.0; 9]);
+    for k in 0..9 {
+        let mut field = vec![0.25; 9];
+        field[k] = 0.75;
+        assert_eq!(
+            map.max_of(&field),
+            (0.75, map.u[k % 3], map.v[k / 3]),
+            "k {k}"
+        );
+    }
+    // ties: the first in row-major order
+    assert_eq!(
+        map.max_of(&[0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 3.0, 3.0]),
+        (3.0, 1.0, 0.5)
+    );
+    // peaks: eq 6 largest at (u ½, z 30), the gouge −δ largest at (u 1, z 15)
+    let mut eq6 = vec![0.1; 9];
+    eq6[7] = 0.4;
+    let mut exact = vec![-0.001; 9];
+    exact[5] = -0.02;
+    let p = hand_map(eq6, exact).peaks();
+    assert_eq!(p.eq6, 0.4);
+    assert_eq!(p.eq6_paper, 0.8);
+    assert_eq!(p.at_eq6, [0.5, 30.0]);
+    assert_eq!(p.gouge, 0.02);
+    assert_eq!(p.at_gouge, [1.0, 15.0]);
+    // nowhere gouged: the gouge is 0, not the smallest undercut
+    let p = hand_map(vec![0.1; 9], vec![0.003; 9]).peaks();
+    assert_eq!(p.gouge, 0.0);
+}
+
+#[test]
+fn the_exact_deviation_is_searched_inside_its_window_only() {
+    // `deviation_in(p, lo, hi)`: the smallest clearance of p from the tool at u' ∈ [lo, hi],
+    // and that u'. A point cut at u ≈ 0.7, searched over [0.3, 0.5]: the answer lies in the
+    // window, at the smallest of a dense scan of it.
+    let part = Part::standard().unwrap();
+    let path = ToolPath::paper();
+    for id in SurfaceId::BOTH {
+        let s = part.surface(id);
+        for (u, lo, hi) in [(0.7, 0.3, 0.5), (0.2, 0.35, 0.6), (0.55, 0.5, 0.6)] {
+            let p = s.point(u, 0.5);
+            let (d, at) = path.deviation_in(s, &p, lo, hi, 40);
+            assert!(at >= lo && at <= hi, "{id:?} [{lo}, {hi}]: u' = {at}");
+            let scan = (0..=4000)
+                .map(|i| {
+                    let x = lo + (hi - lo) * i as f64 / 4000.0;
+                    path.clearance(&path.at(s, x), &p)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d <= scan + 1e-12 && d > scan - 1e-4,
+                "{id:?}: {d} vs {scan}"
+            );
+            assert!((path.clearance(&path.at(s, at), &p) - d).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn the_poses_do_not_depend_on_which_parameters_are_asked_for() {
+    // `poses_along` follows the path from u = 0 in small steps whatever `us` holds, so the pose
+    // at a parameter is the same asked alone or among 1301 others (C is carried through the
+    // vertical middle of the S, where the tool axis alone does not fix it).
+    let on = common::chanal::on(common::chanal::PAPER_L0);
+    let part = Part::standard().unwrap();
+    let path = ToolPath::paper();
+    let dense: Vec<f64> = (0..=1300).map(|i| i as f64 / 1300.0).collect();
+    for id in SurfaceId::BOTH {
+        let s = part.surface(id);
+        for branch in [PathBranch::Paper, PathBranch::Continuous] {
+            let all = poses_along(&on, &path, s, &dense, branch).unwrap();
+            let few = poses_along(&on, &path, s, &[1.0, 0.5, 0.25, 0.7], branch).unwrap();
+            for (pose, i) in few.iter().zip([1300, 650, 325, 910]) {
+                for (a, b) in pose.q.iter().zip(&all[i].q) {
+                    assert!(
+                        (a - b).abs() < 1e-6,
+                        "{id:?} {branch:?} u {}: {a} vs {b}",
+                        dense[i]
+                    );
+                }
+                assert_eq!(pose.singular, all[i].singular);
+            }
+        }
+    }
+}
+
+#[test]
+fn eq6_is_largest_at_the_bottom_of_every_ruling() {
+    // Eq 6 is zero at v = 1, where the tool's section at h = L_tool touches the top curve
+    // (a·N = 0 there, sin θ = 1), and grows down the ruling: along every ruling of the
+    // standard's surfaces it is largest at the bottom, v = 0. (This makes the mutants of
+    // `eq6_max`'s v grid that keep v = 0 on it equivalent: see mutants-equivalent.txt.)
+    let part = Part::standard().unwrap();
+    for path in [ToolPath::paper(), ToolPath::new(6.0, 50.0).unwrap()] {
+        for id in SurfaceId::BOTH {
+            let s = part.surface(id);
+            for iu in 0..=400 {
+                let u = iu as f64 / 400.0;
+                for basis in [Basis::Paper, Basis::Orthonormal] {
+                    let top = path.overcut_eq6(s, u, 1.0, basis);
+                    assert!(top.abs() < 1e-9, "{id:?} u {u} {basis:?}: {top} at the top");
+                    let bottom = path.overcut_eq6(s, u, 0.0, basis);
+                    for iv in 1..=60 {
+                        let v = iv as f64 / 60.0;
+                        let e = path.overcut_eq6(s, u, v, basis);
+                        assert!(
+                            e <= bottom + 1e-12,
+                            "{id:?} u {u} v {v} {basis:?}: {e} > {bottom}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }

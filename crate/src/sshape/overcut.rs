@@ -247,7 +247,7 @@ impl OvercutMap {
         }
     }
 
-    /// Largest value of a row-major field and its `(u, v)`.
+    /// Largest value of a row-major field and its `(u, v)`; of equal largest values, the first.
     pub fn max_of(&self, field: &[f64]) -> (f64, f64, f64) {
         let nu = self.u.len();
         let mut best = (f64::NEG_INFINITY, 0.0, 0.0);
