@@ -448,3 +448,72 @@ fn eq6_is_largest_at_the_bottom_of_every_ruling() {
         }
     }
 }
+
+#[test]
+fn the_surfaces_are_named_a_and_b() {
+    assert_eq!(SurfaceId::A.name(), "A");
+    assert_eq!(SurfaceId::B.name(), "B");
+}
+
+#[test]
+fn the_mesh_is_the_surface_at_an_even_grid_row_major() {
+    // `mesh(nu, nv)`: S(iu/(nu − 1), iv/(nv − 1)) at [iv·nu + iu], x, y and z apart.
+    let part = Part::standard().unwrap();
+    let s = part.surface(SurfaceId::B);
+    for (nu, nv) in [(2, 2), (5, 3), (4, 7)] {
+        let [x, y, z] = s.mesh(nu, nv);
+        assert_eq!(x.len(), nu * nv);
+        for iv in 0..nv {
+            for iu in 0..nu {
+                let p = s.point(on_grid(iu, nu), on_grid(iv, nv));
+                let k = iv * nu + iu;
+                assert_eq!(
+                    [x[k], y[k], z[k]],
+                    [p.x, p.y, p.z],
+                    "{nu}×{nv} ({iu}, {iv})"
+                );
+            }
+        }
+    }
+}
+
+/// Arc length of the iso-curve `v` from u = 0 to `u`, as the length of a polyline of 4000
+/// chords and 2000 chords combined by Richardson's rule (the chord's error is O(h²)).
+fn polyline_length(s: &Surface, v: f64, u: f64) -> f64 {
+    let chords = |n: usize| -> f64 {
+        (0..n)
+            .map(|i| {
+                let a = u * i as f64 / n as f64;
+                let b = u * (i + 1) as f64 / n as f64;
+                (s.point(b, v) - s.point(a, v)).norm()
+            })
+            .sum()
+    };
+    let (coarse, fine) = (chords(2_000), chords(4_000));
+    (4.0 * fine - coarse) / 3.0
+}
+
+#[test]
+fn the_parameter_at_an_arc_length_is_where_the_curve_is_that_long() {
+    // `u_at_arc_length(v, s)`: the u at which the iso-curve v has length s from u = 0, s clamped
+    // to [0, the curve's length]; `curve_length(v)` is the whole length.
+    let part = Part::standard().unwrap();
+    for id in SurfaceId::BOTH {
+        let s = part.surface(id);
+        for v in [0.0, 0.35, 1.0] {
+            let total = polyline_length(s, v, 1.0);
+            assert!((s.curve_length(v) - total).abs() < 1e-6, "{id:?} v {v}");
+            for f in [0.013, 0.1, 0.25, 0.4, 0.5, 0.61, 0.77, 0.9, 0.999] {
+                let want = f * total;
+                let u = s.u_at_arc_length(v, want);
+                let got = polyline_length(s, v, u);
+                assert!(
+                    (got - want).abs() < 1e-8,
+                    "{id:?} v {v} s {want}: u {u} is {got} along"
+                );
+            }
+            assert!(s.u_at_arc_length(v, -5.0).abs() < 1e-12);
+            assert!((s.u_at_arc_length(v, total + 5.0) - 1.0).abs() < 1e-12);
+        }
+    }
+}
