@@ -5,10 +5,14 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
 mod common;
 
+use fiveaxis::machine::Machine;
+use fiveaxis::schema::Inputs;
 use fiveaxis::sshape::bspline::BSpline;
 use fiveaxis::sshape::machine::{poses_along, PathBranch};
+use fiveaxis::sshape::machine::{DefectPoint, DefectReference};
 use fiveaxis::sshape::overcut::{eq6_max, overcut_map, Basis, OvercutMap, ToolPath};
 use fiveaxis::sshape::part::{Part, Surface, SurfaceId};
+use fiveaxis::sshape::study::{Design, SShapeModel, SShapeTool};
 use nalgebra::Vector3;
 
 /// A clamped cubic needs p + 1 = 4 points. With exactly 4 it is the Bézier curve (knots
@@ -515,5 +519,118 @@ fn the_parameter_at_an_arc_length_is_where_the_curve_is_that_long() {
             assert!(s.u_at_arc_length(v, -5.0).abs() < 1e-12);
             assert!((s.u_at_arc_length(v, total + 5.0) - 1.0).abs() < 1e-12);
         }
+    }
+}
+
+#[test]
+fn the_four_curve_lengths_are_top_a_top_b_bottom_a_bottom_b() {
+    // `curve_lengths`: the measurement curves at z = 25 mm (top) and 11 mm (bottom), v = z/30.
+    let part = Part::standard().unwrap();
+    let mut want = Vec::new();
+    for z in [25.0, 11.0] {
+        for id in SurfaceId::BOTH {
+            want.push(polyline_length(part.surface(id), z / 30.0, 1.0));
+        }
+    }
+    let got = part.curve_lengths();
+    assert_eq!(got.len(), 4);
+    for (g, w) in got.iter().zip(&want) {
+        assert!((g - w).abs() < 1e-6, "{got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn a_point_is_labelled_by_its_curve_and_number() {
+    let points = Part::standard_points().unwrap();
+    assert_eq!(points[6].label(), "top 7");
+    assert_eq!(points[50].label(), "bottom 1");
+    assert_eq!(points[99].label(), "bottom 50");
+}
+
+/// The S-shape design on an A/C trunnion table (E_Z0C moves C along its own axis: no effect).
+fn trunnion_design() -> Design {
+    let m = Machine::from_value(
+        &serde_json::json!({ "kind": "table-table", "type": "CAZ", "linear": "table-xy",
+            "geometry": { "tableHeight": 80, "rotaryOffset": 15 } }),
+        "machine",
+    )
+    .unwrap();
+    let model = SShapeModel {
+        branch: PathBranch::Paper,
+        reference: DefectReference::WorkOrigin,
+        point: DefectPoint::Tip,
+    };
+    Design::new(
+        &m,
+        &SShapeTool {
+            r_tool: 10.0,
+            l_tool: 35.0,
+        },
+        &model,
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_column_cosine_and_the_alike_pairs_follow_the_sensitivity_columns() {
+    // `column_cosine(a, b)`: a·b/(‖a‖·‖b‖) of the two errors' columns of `rows`, None for a name
+    // the machine does not have or a column of zeros; `alike_pairs(min)`: every pair (in the
+    // errors' order) with |cos| ≥ min, the largest |cos| first.
+    let d = trunnion_design();
+    let names: Vec<&str> = d.errors().iter().map(|e| e.name).collect();
+    let col = |k: usize| -> Vec<f64> { d.rows.iter().map(|r| r[k]).collect() };
+    let norm = |c: &[f64]| c.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let mut zero = 0;
+    let mut want_pairs = Vec::new();
+    for (i, a) in names.iter().enumerate() {
+        for (j, b) in names.iter().enumerate() {
+            let (ca, cb) = (col(i), col(j));
+            let (na, nb) = (norm(&ca), norm(&cb));
+            let got = d.column_cosine(a, b);
+            if na == 0.0 || nb == 0.0 {
+                assert_eq!(got, None, "{a} {b}");
+                zero += usize::from(i == j);
+                continue;
+            }
+            let want = ca.iter().zip(&cb).map(|(x, y)| x * y).sum::<f64>() / (na * nb);
+            assert!(
+                (got.unwrap() - want).abs() < 1e-12,
+                "{a} {b}: {got:?} vs {want}"
+            );
+            if i == j {
+                assert!((want - 1.0).abs() < 1e-12);
+            }
+            if i < j && want.abs() >= 0.99 {
+                want_pairs.push((*a, *b, want));
+            }
+        }
+    }
+    assert_eq!(zero, 1, "E_Z0C alone has no effect");
+    assert_eq!(d.column_cosine("E_Z0C", "E_X0C"), None);
+    assert_eq!(d.column_cosine("E_X0Q", "E_X0C"), None);
+    assert_eq!(d.column_cosine("E_X0C", "E_X0Q"), None);
+    let pairs = d.alike_pairs(0.99);
+    assert!(pairs.len() >= 3, "{pairs:?}");
+    assert!(
+        pairs.windows(2).all(|w| w[0].2.abs() >= w[1].2.abs()),
+        "{pairs:?}"
+    );
+    let key = |p: &(&str, &str, f64)| (p.0.to_string(), p.1.to_string());
+    let mut got: Vec<_> = pairs.iter().map(key).collect();
+    let mut want: Vec<_> = want_pairs.iter().map(key).collect();
+    got.sort();
+    want.sort();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn the_design_points_are_the_standard_points_in_list_order() {
+    let d = trunnion_design();
+    let points = Part::standard_points().unwrap();
+    let got = d.points();
+    assert_eq!(got.len(), 100);
+    for (g, p) in got.iter().zip(points) {
+        assert_eq!(g.label(), p.label());
+        assert_eq!((g.surface, g.u), (p.surface, p.u));
     }
 }
