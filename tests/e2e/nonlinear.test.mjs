@@ -47,6 +47,11 @@ test('nonlinear panel: machine and move changes replot, eq 26 at the pole, bad i
     assert.ok(fig4.every((v) => Math.abs(v - fig4[0]) < 1e-9 * Math.max(1, fig4[0])));
     // The 12-type comparison has 12 bars, and the machine's own type is among them.
     assert.equal((await traceY(page, 'nl-compare')).length, 12);
+    // The angle between the start and end tool, in degrees: on a CBZ table the tool makes θm
+    // with Z and turns by θk about it, so cos γ = sin θm0·sin θm1·cos Δθk + cos θm0·cos θm1
+    // (spherical law of cosines): 17.041° for (0°, 10°) → (30°, 25°).
+    const gamma = Math.acos(Math.sin(rad(10)) * Math.sin(rad(25)) * Math.cos(rad(30)) + Math.cos(rad(10)) * Math.cos(rad(25)));
+    assert.equal(await page.textContent('#nl-summary #nl-sweep'), `${((gamma * 180) / Math.PI).toPrecision(5)}°`);
 
     // Change the machine's type in the Machine section: the curve changes.
     let n = await waitPlotted(page, 'nl-curve');
