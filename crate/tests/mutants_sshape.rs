@@ -634,3 +634,29 @@ fn the_design_points_are_the_standard_points_in_list_order() {
         assert_eq!((g.surface, g.u), (p.surface, p.u));
     }
 }
+
+#[test]
+fn surface_b_with_the_papers_sign_of_n_gives_the_papers_overcut() {
+    // Chanal et al. print 0.0125 mm for surface B's eq 6 maximum, with N = R × T on both
+    // surfaces, which puts the tool on B's inner side (facing A): `b_paper_side` is eq 6 over B
+    // with its normal reversed, and the paper's number within 5 % (the grid's and the paper's
+    // rounding); B's own (outward) side is another number.
+    let path = ToolPath::paper();
+    let o = fiveaxis::sshape::study::overcut(&path, 261, 4).unwrap();
+    let (paper_t, perp_t) = o.b_paper_side;
+    assert!((paper_t / 0.0125 - 1.0).abs() < 0.05, "{paper_t}");
+    let part = Part::standard().unwrap();
+    let mut inner = part.surface(SurfaceId::B).clone();
+    inner.outward = -inner.outward;
+    let want = eq6_max(&path, &inner, 261, 4, Basis::Orthonormal).unwrap();
+    assert!((perp_t - want).abs() < 1e-15, "{perp_t} vs {want}");
+    let outward =
+        o.b.eq6_paper
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        (outward / 0.0125 - 1.0).abs() > 0.05,
+        "B's outward side: {outward}"
+    );
+}
