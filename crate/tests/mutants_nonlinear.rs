@@ -1,0 +1,139 @@
+//! Tests written for mutants of `crate/src/nonlinear/` that a mutation run let survive
+//! (`npm run mutants -- nonlinear`): the deviation function of a move against its definition in
+//! the module docs (eqs 9, 10, 19–21 and the coincident-ends chord), its maximum against a brute
+//! force, and the documented evaluation counts of the three ways to the maximum.
+
+#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+mod common;
+
+use common::{close, Rng};
+use fiveaxis::nonlinear::{Deviation, Move, Reference};
+use fiveaxis::rotary::{Pose, RotaryType};
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+
+/// `P(u)` by eq 10's linear interpolation of the angles and eq 9's orientation.
+fn p_at(mv: &Move, u: f64) -> Vector3<f64> {
+    let pose = Pose::new(
+        mv.start.k + u * (mv.end.k - mv.start.k),
+        mv.start.m + u * (mv.end.m - mv.start.m),
+    );
+    mv.rtype.tool_vector(pose)
+}
+
+/// The largest of `f` at 20 001 equal steps of u, and where.
+fn brute_max(f: impl Fn(f64) -> f64) -> (f64, f64) {
+    (0..=20_000)
+        .map(|i| i as f64 / 20_000.0)
+        .map(|u| (f(u), u))
+        .fold(
+            (f64::NEG_INFINITY, 0.0),
+            |a, b| if b.0 > a.0 { b } else { a },
+        )
+}
+
+fn random_move(rng: &mut Rng, t: RotaryType, span: f64) -> Move {
+    let start = Pose::new(rng.range(-3.0, 3.0), rng.range(-1.4, 1.4));
+    let end = Pose::new(
+        start.k + rng.range(-span, span),
+        start.m + rng.range(-span, span),
+    );
+    Move::new(t, start, end)
+}
+
+#[test]
+fn the_deviation_is_the_distance_from_the_plane_of_the_ends() {
+    // δ(u)/L = |P(u)·n|, n = V0 × V1/|V0 × V1|; plane_sine = |V0 × V1|; the maximum is the
+    // largest of δ(u) over [0, 1] (a brute force of 20 001 samples: within its step's O(h²)).
+    let mut rng = Rng::new(915);
+    let mut checked = 0;
+    for t in RotaryType::ALL {
+        for _ in 0..12 {
+            let mv = random_move(&mut rng, t, 1.2);
+            let (v0, v1) = (p_at(&mv, 0.0), p_at(&mv, 1.0));
+            let cross = v0.cross(&v1);
+            let d = Deviation::new(mv);
+            close(d.plane_sine(), cross.norm(), 1e-12, "plane sine");
+            if cross.norm() < 1e-3 {
+                continue;
+            }
+            assert_eq!(d.reference(), Reference::Plane);
+            let n = cross / cross.norm();
+            for u in [0.0, 0.1, 0.37, 0.5, 0.9, 1.0] {
+                close(d.at(u), p_at(&mv, u).dot(&n).abs(), 1e-12, "δ(u)/L");
+            }
+            let (max, _) = brute_max(|u| p_at(&mv, u).dot(&n).abs());
+            let peak = d.peak();
+            assert!(
+                peak.value >= max - 1e-12 && peak.value <= max + 1e-6,
+                "{t:?} {mv:?}: {} vs {max}",
+                peak.value
+            );
+            close(
+                d.at(peak.u),
+                peak.value,
+                1e-12,
+                "the peak's value is δ at its u",
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}
+
+#[test]
+fn coincident_ends_give_the_chord_from_the_start() {
+    // A full turn of K (θm fixed off the pole) brings the tool back: V0 = V1, and δ(u)/L is the
+    // chord |P(u) − V0|. The tool turns about K's axis, so the chord is 2·sin α·|sin(πu)| with
+    // α the angle of V0 from that axis: largest, 2·sin α, at u = ½.
+    for t in RotaryType::ALL {
+        for (k0, m) in [(0.0, 0.4), (0.7, -1.1)] {
+            let mv = Move::new(t, Pose::new(k0, m), Pose::new(k0 + 2.0 * PI, m));
+            let d = Deviation::new(mv);
+            assert_eq!(d.reference(), Reference::Coincident, "{t:?}");
+            let v0 = p_at(&mv, 0.0);
+            for u in [0.1, 0.25, 0.5, 0.8] {
+                close(d.at(u), (p_at(&mv, u) - v0).norm(), 1e-12, "chord");
+            }
+            // sin α from the chord at u = ½ (P(½) is V0 turned by π: |P(½) − V0| = 2 sin α).
+            let two_sin_alpha = (p_at(&mv, 0.5) - v0).norm();
+            assert!(two_sin_alpha > 0.1);
+            close(
+                d.at(0.25),
+                two_sin_alpha * (PI / 4.0).sin(),
+                1e-12,
+                "2 sin α sin(π/4)",
+            );
+            let peak = d.peak();
+            close(peak.value, two_sin_alpha, 1e-12, "largest chord");
+            close(peak.u, 0.5, 1e-6, "at u = ½");
+        }
+    }
+}
+
+#[test]
+fn the_evaluations_counted_are_those_the_docs_state() {
+    // Module docs, "Exact maximum": a move of one axis takes one evaluation; the dense method at
+    // least 17 (16 + 4·(|Δθk| + |Δθm|) steps and the refinement); a short move of both axes
+    // close to a great circle "a handful" (2 to 5 on average).
+    let mut rng = Rng::new(77);
+    for t in RotaryType::ALL {
+        for _ in 0..5 {
+            let start = Pose::new(rng.range(-3.0, 3.0), rng.range(0.3, 1.2));
+            let k_only = Move::new(t, start, Pose::new(start.k + 0.5, start.m));
+            let m_only = Move::new(t, start, Pose::new(start.k, start.m - 0.4));
+            for mv in [k_only, m_only] {
+                let d = Deviation::new(mv);
+                if d.reference() == Reference::Plane {
+                    let (peak, n) = d.peak_counted();
+                    assert_eq!(n, 1, "{t:?} {mv:?}");
+                    close(peak.value, d.peak_dense().value, 1e-12, "one-axis peak");
+                }
+            }
+        }
+        // A full turn: coincident ends, the dense method.
+        let full = Move::new(t, Pose::new(0.0, 0.5), Pose::new(2.0 * PI, 0.5));
+        let (_, n) = Deviation::new(full).peak_counted();
+        assert!((17 + 4 * 6..400).contains(&n), "{t:?}: {n}");
+    }
+}
