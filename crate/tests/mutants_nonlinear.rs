@@ -122,12 +122,24 @@ fn the_evaluations_counted_are_those_the_docs_state() {
             let start = Pose::new(rng.range(-3.0, 3.0), rng.range(0.3, 1.2));
             let k_only = Move::new(t, start, Pose::new(start.k + 0.5, start.m));
             let m_only = Move::new(t, start, Pose::new(start.k, start.m - 0.4));
-            for mv in [k_only, m_only] {
+            // Past two turns (the tool passes its extremes more than once; by symmetry u = ½ is
+            // an extremum, here the one on the short arc between V0 and V1, and the largest |g|
+            // is at u = ½ ± π/Δθ, on the long arc).
+            let k_long = Move::new(t, start, Pose::new(start.k - 4.0 * PI - 1.0, start.m));
+            let m_long = Move::new(t, start, Pose::new(start.k, start.m + 4.0 * PI + 0.7));
+            for mv in [k_only, m_only, k_long, m_long] {
                 let d = Deviation::new(mv);
                 if d.reference() == Reference::Plane {
                     let (peak, n) = d.peak_counted();
                     assert_eq!(n, 1, "{t:?} {mv:?}");
                     close(peak.value, d.peak_dense().value, 1e-12, "one-axis peak");
+                    let (v0, v1) = (p_at(&mv, 0.0), p_at(&mv, 1.0));
+                    let n = v0.cross(&v1).normalize();
+                    let (max, _) = brute_max(|u| p_at(&mv, u).dot(&n).abs());
+                    assert!(
+                        peak.value >= max - 1e-12 && peak.value <= max + 1e-6,
+                        "{t:?}"
+                    );
                 }
             }
         }
