@@ -163,3 +163,55 @@ fn the_evaluations_counted_are_those_the_docs_state() {
         assert!((17 + 4 * 6..400).contains(&n), "{t:?}: {n}");
     }
 }
+
+#[test]
+fn the_dense_method_finds_the_largest_deviation_of_any_move() {
+    // `peak_dense`, the reference method for every move: its maximum is that of δ over [0, 1],
+    // against 20 001 samples, whose own shortfall is at most max|g''|·h²/8 ≤ S²·h²/8 (module
+    // docs: |g⁽ⁿ⁾| ≤ Sⁿ, S = |Δθk| + |Δθm|); its u is where δ has that value. Moves up to two
+    // turns of both axes (several maxima), planes, coincident and opposite ends.
+    let mut rng = Rng::new(4242);
+    for t in RotaryType::ALL {
+        let mut moves: Vec<Move> = (0..4).map(|_| random_move(&mut rng, t, 13.0)).collect();
+        moves.push(random_move(&mut rng, t, 0.3));
+        moves.push(Move::new(
+            t,
+            Pose::new(0.3, 0.6),
+            Pose::new(0.3 + 6.0 * PI, 0.6),
+        ));
+        for mv in moves {
+            let d = Deviation::new(mv);
+            let peak = d.peak_dense();
+            let (max, _) = brute_max(|u| d.at(u));
+            let s = (mv.end.k - mv.start.k).abs() + (mv.end.m - mv.start.m).abs();
+            let slack = s * s * (1.0 / 20_000.0_f64).powi(2) / 8.0 + 1e-13;
+            assert!(
+                peak.value >= max - 1e-13 && peak.value <= max + slack,
+                "{t:?} {mv:?}: {} vs {max}",
+                peak.value
+            );
+            close(d.at(peak.u), peak.value, 1e-13, "δ at the dense peak's u");
+        }
+    }
+}
+
+#[test]
+fn the_dense_method_samples_16_plus_4_s_steps() {
+    // Module docs: g is sampled at 16 + 4·S steps (S in radians), then each local maximum is
+    // refined. Three full turns of K bring the tool back (coincident ends: the dense method):
+    // S = 6π, so at least 16 + ⌈24π⌉ + 1 = 93 evaluations.
+    for t in RotaryType::ALL {
+        let mv = Move::new(t, Pose::new(0.2, 0.5), Pose::new(0.2 + 6.0 * PI, 0.5));
+        let d = Deviation::new(mv);
+        assert_eq!(d.reference(), Reference::Coincident);
+        let (peak, n) = d.peak_counted();
+        assert!((93..93 + 3 * 70).contains(&n), "{t:?}: {n}");
+        // the chord of a full turn, three times over: largest at u = 1/6, ½ or 5/6
+        assert!(
+            [1.0 / 6.0, 0.5, 5.0 / 6.0]
+                .iter()
+                .any(|u| (peak.u - u).abs() < 1e-6),
+            "{t:?}: {peak:?}"
+        );
+    }
+}
