@@ -7,8 +7,8 @@
 mod common;
 
 use common::{close, Rng};
-use fiveaxis::nonlinear::{Deviation, Move, Reference};
-use fiveaxis::rotary::{Pose, RotaryType};
+use fiveaxis::nonlinear::{approx_group1, approx_group2, Deviation, Move, Reference};
+use fiveaxis::rotary::{Group, Pose, RotaryType};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
@@ -214,4 +214,74 @@ fn the_dense_method_samples_16_plus_4_s_steps() {
             "{t:?}: {peak:?}"
         );
     }
+}
+
+#[test]
+fn eqs_25_and_30_are_the_deviation_at_mid_move() {
+    // Eq 25 (Group I) and eq 30 (Group II) give δ(½)/L in closed form from θm0, Δθm, Δθk: the
+    // same number as |P(½)·n| from the vectors, for every type of the group; `None` where
+    // |V0 × V1| vanishes (no move).
+    let mut rng = Rng::new(2530);
+    for t in RotaryType::ALL {
+        let eq = |m: f64, dm: f64, dk: f64| match t.group() {
+            Group::I => approx_group1(m, dm, dk),
+            Group::II => approx_group2(m, dm, dk),
+        };
+        for _ in 0..20 {
+            let mv = random_move(&mut rng, t, 1.5);
+            let (dk, dm) = (mv.end.k - mv.start.k, mv.end.m - mv.start.m);
+            let d = Deviation::new(mv);
+            if d.plane_sine() < 1e-6 {
+                continue;
+            }
+            close(eq(mv.start.m, dm, dk).unwrap(), d.at(0.5), 1e-12, "δ(½)/L");
+        }
+        assert_eq!(eq(0.4, 0.0, 0.0), None, "{t:?}: no move");
+    }
+}
+
+#[test]
+fn opposite_ends_take_the_least_squares_plane_of_the_path() {
+    // V1 = −V0 (module docs): the reference plane through ±V0 fitted to the path sampled at
+    // 257 equal steps of u, i.e. the unit n ⊥ V0 that minimises Σ (P(u_i)·n)². A full turn of K
+    // with a half turn of M (home ⊥ M's axis, so that M's half turn reverses the tool).
+    let mut seen = 0;
+    for t in RotaryType::ALL {
+        for (k0, m0) in [(0.3, 0.4), (-1.0, 1.1)] {
+            let mv = Move::new(t, Pose::new(k0, m0), Pose::new(k0 + 2.0 * PI, m0 + PI));
+            let d = Deviation::new(mv);
+            if d.reference() != Reference::Opposite {
+                continue;
+            }
+            seen += 1;
+            let v0 = p_at(&mv, 0.0);
+            let n = d.normal();
+            close(n.norm(), 1.0, 1e-12, "unit normal");
+            close(n.dot(&v0), 0.0, 1e-12, "n ⊥ V0");
+            let samples: Vec<Vector3<f64>> =
+                (0..257).map(|i| p_at(&mv, i as f64 / 256.0)).collect();
+            let sum = |n: &Vector3<f64>| samples.iter().map(|p| p.dot(n).powi(2)).sum::<f64>();
+            // every unit n ⊥ V0, in a basis of our own
+            let e1 = v0.cross(&Vector3::new(0.3, -0.5, 0.8)).normalize();
+            let e2 = v0.cross(&e1);
+            let least = (0..3_000)
+                .map(|i| {
+                    let phi = PI * i as f64 / 3_000.0;
+                    sum(&(e1 * phi.cos() + e2 * phi.sin()))
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                sum(&n) <= least + 1e-9 * (1.0 + least),
+                "{t:?}: {} vs {least}",
+                sum(&n)
+            );
+            close(
+                d.at(0.37),
+                p_at(&mv, 0.37).dot(&n).abs(),
+                1e-12,
+                "δ(u) from that plane",
+            );
+        }
+    }
+    assert!(seen >= 12, "{seen} moves with opposite ends");
 }
