@@ -21,17 +21,6 @@ fn p_at(mv: &Move, u: f64) -> Vector3<f64> {
     mv.rtype.tool_vector(pose)
 }
 
-/// The largest of `f` at 20 001 equal steps of u, and where.
-fn brute_max(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    (0..=20_000)
-        .map(|i| i as f64 / 20_000.0)
-        .map(|u| (f(u), u))
-        .fold(
-            (f64::NEG_INFINITY, 0.0),
-            |a, b| if b.0 > a.0 { b } else { a },
-        )
-}
-
 fn random_move(rng: &mut Rng, t: RotaryType, span: f64) -> Move {
     let start = Pose::new(rng.range(-3.0, 3.0), rng.range(-1.4, 1.4));
     let end = Pose::new(
@@ -62,7 +51,7 @@ fn the_deviation_is_the_distance_from_the_plane_of_the_ends() {
             for u in [0.0, 0.1, 0.37, 0.5, 0.9, 1.0] {
                 close(d.at(u), p_at(&mv, u).dot(&n).abs(), 1e-12, "δ(u)/L");
             }
-            let (max, _) = brute_max(|u| p_at(&mv, u).dot(&n).abs());
+            let (_, max) = common::sampled_max(20_000, |u| p_at(&mv, u).dot(&n).abs());
             let peak = d.peak();
             assert!(
                 peak.value >= max - 1e-12 && peak.value <= max + 1e-6,
@@ -142,7 +131,7 @@ fn the_evaluations_counted_are_those_the_docs_state() {
                     close(peak.value, d.peak_dense().value, 1e-12, "one-axis peak");
                     let (v0, v1) = (p_at(&mv, 0.0), p_at(&mv, 1.0));
                     let n = v0.cross(&v1).normalize();
-                    let (max, _) = brute_max(|u| p_at(&mv, u).dot(&n).abs());
+                    let (_, max) = common::sampled_max(20_000, |u| p_at(&mv, u).dot(&n).abs());
                     assert!(
                         peak.value >= max - 1e-12 && peak.value <= max + 1e-6,
                         "{t:?}"
@@ -182,7 +171,7 @@ fn the_dense_method_finds_the_largest_deviation_of_any_move() {
         for mv in moves {
             let d = Deviation::new(mv);
             let peak = d.peak_dense();
-            let (max, _) = brute_max(|u| d.at(u));
+            let (_, max) = common::sampled_max(20_000, |u| d.at(u));
             let s = (mv.end.k - mv.start.k).abs() + (mv.end.m - mv.start.m).abs();
             let slack = s * s * (1.0 / 20_000.0_f64).powi(2) / 8.0 + 1e-13;
             assert!(

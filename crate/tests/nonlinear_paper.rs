@@ -15,19 +15,10 @@ fn group(g: Group) -> impl Iterator<Item = RotaryType> {
     RotaryType::ALL.into_iter().filter(move |t| t.group() == g)
 }
 
-/// Maximum of f on [0, 1] by brute force: 100 001 samples, then a local golden refinement.
-/// Used as the independent reference for the engine's Newton refinement.
+/// Maximum of f on [0, 1] by brute force: 100 001 samples. Used as the independent reference
+/// for the engine's Newton refinement.
 fn dense_max(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let n = 100_000;
-    let mut best = (0.0, f(0.0));
-    for i in 1..=n {
-        let u = i as f64 / n as f64;
-        let v = f(u);
-        if v > best.1 {
-            best = (u, v);
-        }
-    }
-    best
+    common::sampled_max(100_000, f)
 }
 
 #[test]

@@ -61,6 +61,20 @@ pub fn deg(x: f64) -> f64 {
     x.to_radians()
 }
 
+/// The largest of `f` over `n + 1` equal steps of [0, 1] and where, `(u, value)` (the first
+/// of equal values): a brute-force reference for the engine's maximisers.
+pub fn sampled_max(n: usize, f: impl Fn(f64) -> f64) -> (f64, f64) {
+    let mut best = (0.0, f(0.0));
+    for i in 1..=n {
+        let u = i as f64 / n as f64;
+        let v = f(u);
+        if v > best.1 {
+            best = (u, v);
+        }
+    }
+    best
+}
+
 /// Asserts |a - b| <= tol, with a message.
 #[track_caller]
 pub fn close(a: f64, b: f64, tol: f64, what: &str) {
