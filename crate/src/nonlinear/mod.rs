@@ -945,7 +945,7 @@ pub struct TypeComparison {
     pub unreachable: Option<String>,
 }
 
-/// `n ≥ 2` equally spaced values from `a` to `b` inclusive.
+/// `n ≥ 2` equally spaced values from `a` to `b` inclusive (`[a]` when `n < 2`).
 pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     if n < 2 {
         return vec![a];
