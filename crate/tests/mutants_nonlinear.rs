@@ -274,3 +274,56 @@ fn opposite_ends_take_the_least_squares_plane_of_the_path() {
     }
     assert!(seen >= 12, "{seen} moves with opposite ends");
 }
+
+/// `g(u) = P(u)·n` of a plane move and its second and third derivatives at u = ½, by central
+/// differences of eq 10's path (steps 1e-3 and 4e-3: errors about 1e-7·S⁴ and 1e-5·S⁵, far
+/// inside the test's factor-of-two margins).
+fn g_jet_by_differences(mv: &Move) -> (f64, f64) {
+    let n = p_at(mv, 0.0).cross(&p_at(mv, 1.0)).normalize();
+    let g = |u: f64| p_at(mv, u).dot(&n);
+    let h = 1e-3;
+    let g2 = (g(0.5 + h) - 2.0 * g(0.5) + g(0.5 - h)) / (h * h);
+    let h = 4e-3;
+    let g3 = (g(0.5 + 2.0 * h) - 2.0 * g(0.5 + h) + 2.0 * g(0.5 - h) - g(0.5 - 2.0 * h))
+        / (2.0 * h * h * h);
+    (g2, g3)
+}
+
+#[test]
+fn the_fast_path_answers_exactly_where_the_docs_prove_g_has_one_bend() {
+    // Module docs, "Exact maximum": with S = |Δθk| + |Δθm|, g'' keeps its sign on [0, 1] (and the
+    // fast path answers, with a handful of evaluations) when |g''(½)| exceeds
+    // min(S³/2, |g'''(½)|/2 + S⁴/8); otherwise the dense method answers (at least 17). Checked
+    // with g'' and g''' by differences, on moves clearly on either side (a factor of two).
+    let mut rng = Rng::new(4242);
+    let (mut fast, mut dense) = (0, 0);
+    for t in RotaryType::ALL {
+        for _ in 0..1000 {
+            let span = [0.05, 0.3, 1.0, 2.5][rng.next_u64() as usize % 4];
+            let mv = random_move(&mut rng, t, span);
+            let (dk, dm) = (mv.end.k - mv.start.k, mv.end.m - mv.start.m);
+            let d = Deviation::new(mv);
+            if d.reference() != Reference::Plane || d.plane_sine() < 1e-3 {
+                continue;
+            }
+            let s = dk.abs() + dm.abs();
+            let (g2, g3) = g_jet_by_differences(&mv);
+            let bound = (0.5 * s.powi(3)).min(0.5 * g3.abs() + 0.125 * s.powi(4));
+            let (peak, evaluations) = d.peak_counted();
+            if g2.abs() > 2.0 * bound {
+                fast += 1;
+                assert!(evaluations <= 8, "{t:?} {mv:?}: {evaluations} evaluations");
+            } else if g2.abs() < 0.5 * bound {
+                dense += 1;
+                assert!(evaluations >= 17, "{t:?} {mv:?}: {evaluations} evaluations");
+            }
+            close(
+                peak.value,
+                d.peak_dense().value,
+                1e-12,
+                "either way the maximum",
+            );
+        }
+    }
+    assert!(fast > 1000 && dense > 1000, "fast {fast}, dense {dense}");
+}
