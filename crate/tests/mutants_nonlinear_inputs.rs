@@ -2,7 +2,9 @@
 //! the study's inputs as the page and Node send them (commands in degrees, the machine's senses
 //! of rotation, `L` given or the machine's), read natively, each export's numbers against the
 //! same move built by hand in the study's angles (θ = −command on a reversed axis, module docs
-//! of `fiveaxis::machine`). The maximum of one move (`Deviation::peak`) is checked against brute
+//! of `fiveaxis::machine`). A reversed sense mirrors the path and leaves its errors as they are
+//! (the last test), so the sweeps are checked on all four senses for their ranges and keys; the
+//! senses themselves show in `angles` and `compare_types`. The maximum of one move (`Deviation::peak`) is checked against brute
 //! force in `mutants_nonlinear.rs`; here it is the reference for what the inputs feed it.
 
 #![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
@@ -270,4 +272,31 @@ fn linspace_is_equal_steps_with_both_ends() {
     assert_eq!(linspace(2.0, 7.0, 2), vec![2.0, 7.0]);
     assert_eq!(linspace(2.0, 7.0, 1), vec![2.0]);
     assert_eq!(linspace(2.0, 7.0, 0), vec![2.0]);
+}
+
+/// A reversed axis mirrors the path: turning K, M or both the other way gives a path congruent
+/// to the first (R_K(−θ) = S·R_K(θ)·S with S the reflection that fixes K's axis and e_H), so
+/// every error and its u are the same on all four senses. The senses therefore show only in the
+/// commands (`angles`, `compare_types`), never in the sweeps' numbers.
+#[test]
+fn a_reversed_sense_mirrors_the_path_and_leaves_every_error() {
+    let mut rng = common::Rng::new(31);
+    for t in RotaryType::ALL {
+        for _ in 0..50 {
+            let (k0, m0) = (rng.range(-3.0, 3.0), rng.range(-1.5, 1.5));
+            let (k1, m1) = (k0 + rng.range(-2.0, 2.0), m0 + rng.range(-2.0, 2.0));
+            let peak = |sk: f64, sm: f64| {
+                let mv = Move::new(t, Pose::new(sk * k0, sm * m0), Pose::new(sk * k1, sm * m1));
+                Deviation::new(mv).peak()
+            };
+            let p = peak(1.0, 1.0);
+            for (sk, sm) in [(-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+                let q = peak(sk, sm);
+                close(q.value, p.value, 1e-12, &format!("{t:?} senses {sk} {sm}"));
+                if p.value > 1e-6 {
+                    close(q.u, p.u, 1e-6, "u of the maximum");
+                }
+            }
+        }
+    }
 }
