@@ -7,7 +7,10 @@
 mod common;
 
 use common::{close, Rng};
-use fiveaxis::nonlinear::{approx_group1, approx_group2, Deviation, Move, Reference};
+use fiveaxis::nonlinear::{
+    analyze, approx_group1, approx_group2, approx_half, closed_form_pole, max_errors, split_within,
+    starts_at_pole, sweep_increments, sweep_start_m, Deviation, Move, Reference,
+};
 use fiveaxis::rotary::{Group, Pose, RotaryType};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -326,4 +329,196 @@ fn the_fast_path_answers_exactly_where_the_docs_prove_g_has_one_bend() {
         }
     }
     assert!(fast > 1000 && dense > 1000, "fast {fast}, dense {dense}");
+}
+
+/// The pole of each group (eq 31): θm0 = 0 (mod π) for Group I, π/2 (mod π) for Group II.
+fn pole(g: Group) -> f64 {
+    match g {
+        Group::I => 0.0,
+        Group::II => PI / 2.0,
+    }
+}
+
+#[test]
+fn a_move_starts_at_the_pole_within_1e_12_of_its_group_s_angles() {
+    for g in [Group::I, Group::II] {
+        for turns in [-2.0, -1.0, 0.0, 1.0, 3.0] {
+            let at = pole(g) + turns * PI;
+            for off in [0.0, 5e-13, -5e-13] {
+                assert!(starts_at_pole(g, at + off), "{g:?} {at} {off}");
+            }
+            for off in [3e-12, -3e-12, 0.2, PI / 2.0] {
+                assert!(!starts_at_pole(g, at + off), "{g:?} {at} {off}");
+            }
+        }
+    }
+}
+
+#[test]
+fn at_the_pole_the_error_is_eq_26_at_half_and_its_product_form_along_the_move() {
+    // Module docs of closed_form_pole: from the pole the tool's error is
+    // |sin(u·Δθm)·sin((1 − u)·Δθk)|, |sin(Δθm/2)·sin(Δθk/2)| at u = ½ (eq 26); `analyze` reports
+    // eq 26 (times L) there and nothing off the pole.
+    let mut rng = Rng::new(26);
+    let l = 250.0;
+    for t in RotaryType::ALL {
+        for _ in 0..6 {
+            let (dk, dm) = (rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
+            let k0 = rng.range(-3.0, 3.0);
+            let m0 = pole(t.group()) + PI * (rng.next_u64() % 3) as f64 - PI;
+            let mv = Move::new(t, Pose::new(k0, m0), Pose::new(k0 + dk, m0 + dm));
+            let d = Deviation::new(mv);
+            for u in [0.1, 0.3, 0.5, 0.8] {
+                let want = ((u * dm).sin() * ((1.0 - u) * dk).sin()).abs();
+                close(d.at(u), want, 1e-12, "the product form at the pole");
+            }
+            let eq26 = ((0.5 * dm).sin() * (0.5 * dk).sin()).abs();
+            close(closed_form_pole(dm, dk), eq26, 1e-15, "eq 26");
+            let a = analyze(mv, l, 3).unwrap();
+            close(a.closed_form.unwrap(), eq26 * l, 1e-12, "eq 26 × L");
+            let off = Move::new(
+                t,
+                Pose::new(k0, m0 + 0.3),
+                Pose::new(k0 + dk, m0 + 0.3 + dm),
+            );
+            assert_eq!(analyze(off, l, 3).unwrap().closed_form, None);
+        }
+    }
+}
+
+#[test]
+fn analyze_gives_every_length_in_mm_and_the_curve_at_even_steps_of_u() {
+    // Each length is the fraction of L from the deviation's definition times L (= 250 mm); the
+    // curve's u are i/(n − 1); eq 25/30 (times L) equals δ(½); a move with no error (M alone on
+    // a great circle) has no shortfall (0/0).
+    let mut rng = Rng::new(661);
+    let l = 250.0;
+    for t in RotaryType::ALL {
+        for _ in 0..8 {
+            let mv = random_move(&mut rng, t, 1.0);
+            let a = analyze(mv, l, 5).unwrap();
+            let d = Deviation::new(mv);
+            assert_eq!(a.u, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+            for (u, delta) in a.u.iter().zip(&a.delta) {
+                close(*delta, d.at(*u) * l, 1e-12, "δ(u) in mm");
+            }
+            let peak = common::sampled_max(20_000, |u| d.at(u));
+            assert!(
+                a.max >= peak.1 * l - 1e-9 && a.max <= peak.1 * l + 1e-4,
+                "max in mm"
+            );
+            close(
+                d.at(a.u_at_max) * l,
+                a.max,
+                1e-9,
+                "δ at u_at_max is the max",
+            );
+            close(a.at_half, d.at(0.5) * l, 1e-12, "δ(½) in mm");
+            let (dk, dm) = (mv.end.k - mv.start.k, mv.end.m - mv.start.m);
+            match d.reference() {
+                Reference::Plane if d.plane_sine() > 1e-6 => {
+                    let approx = a.approx.unwrap();
+                    close(approx, d.at(0.5) * l, 1e-9, "eq 25/30 is δ(½)");
+                    let eq = approx_half(t.group(), mv.start.m, dm, dk).unwrap();
+                    close(approx, eq * l, 1e-12, "eq 25/30 × L");
+                    close(
+                        a.approx_shortfall.unwrap(),
+                        (a.max - approx) / a.max,
+                        1e-12,
+                        "",
+                    );
+                }
+                Reference::Plane => {}
+                _ => assert_eq!(a.approx, None),
+            }
+        }
+    }
+    let t = RotaryType::parse("CBZ").unwrap();
+    let m_alone = Move::new(t, Pose::new(0.4, 0.2), Pose::new(0.4, 0.9));
+    let a = analyze(m_alone, l, 3).unwrap();
+    assert!(a.max < 1e-12 && a.approx.is_some(), "{a:?}");
+    assert_eq!(a.approx_shortfall, None);
+}
+
+#[test]
+fn bulk_maxima_and_the_fig_7_approximation_are_each_moves_own() {
+    let mut rng = Rng::new(781);
+    for t in RotaryType::ALL {
+        let moves: Vec<[f64; 4]> = (0..5)
+            .map(|_| {
+                let mv = random_move(&mut rng, t, 1.0);
+                [mv.start.k, mv.start.m, mv.end.k, mv.end.m]
+            })
+            .collect();
+        let got = max_errors(t, &moves);
+        assert_eq!(got.len(), 5);
+        for (m, e) in moves.iter().zip(&got) {
+            let mv = Move::new(t, Pose::new(m[0], m[1]), Pose::new(m[2], m[3]));
+            let d = Deviation::new(mv);
+            let (_, brute) = common::sampled_max(20_000, |u| d.at(u));
+            assert!(
+                *e >= brute - 1e-12 && *e <= brute + 1e-6,
+                "{t:?} {e} vs {brute}"
+            );
+        }
+        // Fig 7: the approximation of each point is δ(½) of its move (0, θm) → (ratio·ΔM, θm + ΔM),
+        // times L; the exact one its maximum.
+        let (l, dm) = (120.0, 0.4);
+        let curves = sweep_start_m(t, l, dm, &[0.5, -3.0], (-0.6, 0.9), 4).unwrap();
+        for c in &curves {
+            for (j, (e, a)) in c.exact.iter().zip(&c.approx).enumerate() {
+                let m = -0.6 + 0.5 * j as f64;
+                let mv = Move::new(t, Pose::new(0.0, m), Pose::new(c.ratio * dm, m + dm));
+                let d = Deviation::new(mv);
+                close(*e, d.peak().value * l, 1e-12, "exact × L");
+                if d.reference() == Reference::Plane && d.plane_sine() > 1e-6 {
+                    close(a.unwrap(), d.at(0.5) * l, 1e-9, "approximation = δ(½) × L");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_split_move_of_both_axes_steps_each_axis_by_its_share() {
+    // n equal steps of a move of both axes: each axis steps |Δθ|/n, and the n pieces' largest
+    // δ (from their own planes) is what the split reports, within the tolerance.
+    let t = RotaryType::parse("CBZ").unwrap();
+    let mv = Move::new(t, Pose::new(0.2, 0.3), Pose::new(1.4, 0.9));
+    let s = split_within(mv, 100.0, 0.01).unwrap();
+    let n = s.steps.unwrap();
+    assert!(n > 2, "{n}");
+    close(s.step_k, 1.2 / n as f64, 1e-15, "step of K");
+    close(s.step_m, 0.6 / n as f64, 1e-15, "step of M");
+    let piece = |i: usize| {
+        let at = |u: f64| Pose::new(0.2 + 1.2 * u, 0.3 + 0.6 * u);
+        let p = Move::new(t, at(i as f64 / n as f64), at((i + 1) as f64 / n as f64));
+        Deviation::new(p).peak().value * 100.0
+    };
+    let worst = (0..n).map(piece).fold(0.0, f64::max);
+    close(s.max, worst, 1e-12, "the largest piece");
+    assert!(s.max <= 0.01);
+}
+
+#[test]
+fn the_increment_grid_gives_u_of_the_maximum_where_there_is_an_error() {
+    let t = RotaryType::parse("CBZ").unwrap();
+    let g = sweep_increments(t, 100.0, 0.4, (-0.5, 0.5), (0.0, 0.6), 3, 3).unwrap();
+    for iy in 0..3 {
+        for ix in 0..3 {
+            let (dk, dm) = (-0.5 + 0.5 * ix as f64, 0.3 * iy as f64);
+            let mv = Move::new(t, Pose::new(0.0, 0.4), Pose::new(dk, 0.4 + dm));
+            let peak = Deviation::new(mv).peak();
+            let (e, u) = (g.max[iy * 3 + ix], g.u_at_max[iy * 3 + ix]);
+            close(e, peak.value * 100.0, 1e-12, "cell");
+            if dk == 0.0 {
+                // No move, or M alone (on CBZ the tool then tilts along a great circle through
+                // the spindle's home axis): no error, so no u. K alone at a tilt sweeps a cone.
+                assert!(e < 1e-10 && u.is_none(), "{dk} {dm}: {e} {u:?}");
+            } else {
+                assert!(e > 1e-3, "{dk} {dm}: {e}");
+                assert_eq!(u, Some(peak.u));
+            }
+        }
+    }
 }
