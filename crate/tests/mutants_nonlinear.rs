@@ -236,46 +236,56 @@ fn eqs_25_and_30_are_the_deviation_at_mid_move() {
 fn opposite_ends_take_the_least_squares_plane_of_the_path() {
     // V1 = −V0 (module docs): the reference plane through ±V0 fitted to the path sampled at
     // 257 equal steps of u, i.e. the unit n ⊥ V0 that minimises Σ (P(u_i)·n)². A full turn of K
-    // with a half turn of M (home ⊥ M's axis, so that M's half turn reverses the tool).
+    // with a half turn of M (home ⊥ M's axis, so that M's half turn reverses the tool), and half
+    // a turn of K with M from m0 to π − m0 (which reverses the tool on Group I), from general
+    // starts and from the home pose (V0 along x, y or z).
     let mut seen = 0;
     for t in RotaryType::ALL {
-        for (k0, m0) in [(0.3, 0.4), (-1.0, 1.1)] {
-            let mv = Move::new(t, Pose::new(k0, m0), Pose::new(k0 + 2.0 * PI, m0 + PI));
-            let d = Deviation::new(mv);
-            if d.reference() != Reference::Opposite {
-                continue;
+        for (k0, m0) in [(0.3, 0.4), (-1.0, 1.1), (0.0, 0.0), (0.7, 0.3)] {
+            let moves = [
+                Move::new(t, Pose::new(k0, m0), Pose::new(k0 + 2.0 * PI, m0 + PI)),
+                Move::new(t, Pose::new(k0, m0), Pose::new(k0 + PI, PI - m0)),
+            ];
+            for mv in moves {
+                if Deviation::new(mv).reference() == Reference::Opposite {
+                    seen += 1;
+                    assert_least_squares_plane(&mv);
+                }
             }
-            seen += 1;
-            let v0 = p_at(&mv, 0.0);
-            let n = d.normal();
-            close(n.norm(), 1.0, 1e-12, "unit normal");
-            close(n.dot(&v0), 0.0, 1e-12, "n ⊥ V0");
-            let samples: Vec<Vector3<f64>> =
-                (0..257).map(|i| p_at(&mv, i as f64 / 256.0)).collect();
-            let sum = |n: &Vector3<f64>| samples.iter().map(|p| p.dot(n).powi(2)).sum::<f64>();
-            // every unit n ⊥ V0, in a basis of our own
-            let e1 = v0.cross(&Vector3::new(0.3, -0.5, 0.8)).normalize();
-            let e2 = v0.cross(&e1);
-            let least = (0..3_000)
-                .map(|i| {
-                    let phi = PI * i as f64 / 3_000.0;
-                    sum(&(e1 * phi.cos() + e2 * phi.sin()))
-                })
-                .fold(f64::INFINITY, f64::min);
-            assert!(
-                sum(&n) <= least + 1e-9 * (1.0 + least),
-                "{t:?}: {} vs {least}",
-                sum(&n)
-            );
-            close(
-                d.at(0.37),
-                p_at(&mv, 0.37).dot(&n).abs(),
-                1e-12,
-                "δ(u) from that plane",
-            );
         }
     }
-    assert!(seen >= 12, "{seen} moves with opposite ends");
+    assert!(seen >= 30, "{seen} moves with opposite ends");
+}
+
+/// The move's reference normal is the unit n ⊥ V0 that minimises Σ (P(u_i)·n)² over 257 equal
+/// steps of u (against a scan of every such n in a basis of the test's own), and δ(u) is |P·n|.
+fn assert_least_squares_plane(mv: &Move) {
+    let d = Deviation::new(*mv);
+    let v0 = p_at(mv, 0.0);
+    let n = d.normal();
+    close(n.norm(), 1.0, 1e-12, "unit normal");
+    close(n.dot(&v0), 0.0, 1e-12, "n ⊥ V0");
+    let samples: Vec<Vector3<f64>> = (0..257).map(|i| p_at(mv, i as f64 / 256.0)).collect();
+    let sum = |n: &Vector3<f64>| samples.iter().map(|p| p.dot(n).powi(2)).sum::<f64>();
+    let e1 = v0.cross(&Vector3::new(0.3, -0.5, 0.8)).normalize();
+    let e2 = v0.cross(&e1);
+    let least = (0..3_000)
+        .map(|i| {
+            let phi = PI * i as f64 / 3_000.0;
+            sum(&(e1 * phi.cos() + e2 * phi.sin()))
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        sum(&n) <= least + 1e-9 * (1.0 + least),
+        "{mv:?}: {} vs {least}",
+        sum(&n)
+    );
+    close(
+        d.at(0.37),
+        p_at(mv, 0.37).dot(&n).abs(),
+        1e-12,
+        "δ(u) from that plane",
+    );
 }
 
 /// `g(u) = P(u)·n` of a plane move and its second and third derivatives at u = ½, by central
