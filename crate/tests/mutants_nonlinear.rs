@@ -284,6 +284,21 @@ fn assert_least_squares_plane(mv: &Move) {
         1e-12 * (1.0 + a + c),
         "the least sum of squares",
     );
+    // Where the two eigenvalues stand apart, the normal is its eigenvector (up to sign).
+    let gap = 2.0 * (0.25 * (a - c).powi(2) + b * b).sqrt();
+    if gap > 1e-3 * (a + c) {
+        let (x, y) = if (least - a).abs() > (least - c).abs() {
+            (b, least - a)
+        } else {
+            (least - c, b)
+        };
+        let want = (e1 * x + e2 * y).normalize();
+        let off = (n - want).norm().min((n + want).norm());
+        assert!(
+            off < 1e-9,
+            "{mv:?}: the normal is {off:e} off the eigenvector"
+        );
+    }
     close(
         d.at(0.37),
         p_at(mv, 0.37).dot(&n).abs(),
