@@ -1,0 +1,450 @@
+//! Tests written for the reversal study's surviving mutants (`npm run mutants -- reversal`): the
+//! drives' gains from their labels, the trace's sampling and each recorded quantity against a
+//! second method (finite differences of the positions, the chain at the recorded axes), the
+//! friction's direction memory against the velocity's sign changes, the dent's measures on
+//! traces whose dent is known in closed form, the direction checks' velocities against finite
+//! differences of the command, and the step check's relative figure.
+
+#![allow(clippy::unwrap_used)]
+
+use fiveaxis::reversal::{
+    dent, direction_checks, simulate, simulate_with_step, step_check, ReversalCase, Trace,
+};
+use serde_json::{json, Value};
+use std::f64::consts::TAU;
+
+fn case(v: Value) -> ReversalCase {
+    ReversalCase::read(&v).unwrap()
+}
+
+#[test]
+fn the_drives_gains_are_what_their_labels_say() {
+    // "K_v = mass · 2π · bandwidth", "K_i = K_v / integral time" (ms), slope 1/mm → 1/m.
+    let c = case(json!({
+        "linear": {"mass": 300, "velocityBandwidth": 50, "integralTime": 8, "positionGain": 25,
+                   "damping": 700, "forceLimit": 9000, "friction": 40, "frictionSlope": 80},
+        "c": {"inertia": 3, "velocityBandwidth": 20, "integralTime": 12, "positionGain": 35,
+              "damping": 4, "torqueLimit": 300, "friction": 7, "frictionSlope": 600},
+        "feedForward": "velocity"
+    }));
+    let (lin, rot) = c.drives();
+    let kv = 300.0 * TAU * 50.0;
+    for d in lin {
+        assert!((d.kv - kv).abs() < 1e-9 * kv, "{d:?}");
+        assert!((d.ki - kv / 0.008).abs() < 1e-9 * kv / 0.008, "{d:?}");
+        assert_eq!(
+            (d.inertia, d.kp, d.damping, d.limit, d.fc),
+            (300.0, 25.0, 700.0, 9000.0, 40.0)
+        );
+        assert!((d.slope - 80_000.0).abs() < 1e-9, "{d:?}");
+        assert!(d.ff_velocity && !d.ff_torque);
+    }
+    let kv = 3.0 * TAU * 20.0;
+    assert!((rot.kv - kv).abs() < 1e-9 * kv, "{rot:?}");
+    assert!((rot.ki - kv / 0.012).abs() < 1e-9 * kv / 0.012, "{rot:?}");
+    assert_eq!(
+        (rot.inertia, rot.kp, rot.damping, rot.limit),
+        (3.0, 35.0, 4.0, 300.0)
+    );
+    assert_eq!((rot.fc, rot.slope), (7.0, 600.0));
+}
+
+#[test]
+fn the_trace_has_at_most_samples_plus_one_points_from_rest_to_the_end() {
+    let c = case(json!({}));
+    let (m, tr) = simulate(&c).unwrap();
+    let h = c.step * 1e-3;
+    // The run: the motion and 0.1 s of settling, in whole steps.
+    assert_eq!(tr.steps, ((m.duration + 0.1) / h).ceil() as usize);
+    // Half the steps, less one or two: the record must take every third step, not every second.
+    let samples = (tr.steps - 1) / 2;
+    for n in [c.samples, samples, 100] {
+        let c = case(json!({ "samples": n }));
+        let tr = simulate_with_step(&c, &m, h).unwrap();
+        let len = tr.time.len();
+        assert!(
+            len <= n + 1 && len >= n / 2,
+            "{n} samples asked, {len} recorded"
+        );
+        assert_eq!(tr.time[0], 0.0);
+        // The last point is the end of the run, whatever the stride.
+        let end = tr.steps as f64 * h;
+        assert!(
+            (tr.time[len - 1] - end).abs() < 1e-9,
+            "ends at {} not {end}",
+            tr.time[len - 1]
+        );
+        // Evenly spaced but for the last interval.
+        let dt = tr.time[1] - tr.time[0];
+        for w in tr.time[..len - 1].windows(2) {
+            assert!((w[1] - w[0] - dt).abs() < 1e-9);
+        }
+        // The reversal's index: the recorded instant nearest to it (by scanning them all).
+        let nearest = tr
+            .time
+            .iter()
+            .map(|t| (t - m.reversal).abs())
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!((tr.time[tr.reversal_index] - m.reversal).abs(), nearest);
+        assert!(tr.reversal_index > 0 && tr.reversal_index < len - 1);
+    }
+}
+
+/// A run recorded at every step (`samples` above the steps).
+fn every_step(v: Value) -> (fiveaxis::reversal::motion::Motion, Trace) {
+    let c = case(v);
+    let (m, tr) = simulate(&c).unwrap();
+    assert_eq!(tr.time.len(), tr.steps + 1, "every step recorded");
+    (m, tr)
+}
+
+/// Largest gap between `v` and the central differences of `x` over `t`, and the largest |v|.
+fn against_differences(t: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
+    let mut gap = 0.0f64;
+    let mut top = 0.0f64;
+    for i in 1..t.len() - 1 {
+        let fd = (x[i + 1] - x[i - 1]) / (t[i + 1] - t[i - 1]);
+        gap = gap.max((fd - v[i]).abs());
+        top = top.max(v[i].abs());
+    }
+    (gap, top)
+}
+
+#[test]
+fn each_recorded_quantity_against_a_second_method() {
+    let (m, tr) = every_step(json!({"samples": 200000, "test": {"offset": 40}}));
+    let n = tr.time.len();
+    for i in (0..n).step_by(97) {
+        let cmd = m.commands(tr.time[i]);
+        // Commands in mm as the motion gives them; C in rad.
+        for k in 0..3 {
+            let got = tr.linear[k].command[i];
+            assert!(
+                (got - cmd.linear[k].x).abs() < 1e-9,
+                "{}: {got} vs {}",
+                k,
+                cmd.linear[k].x
+            );
+        }
+        assert!((tr.c_command[i] - cmd.c.x).abs() < 1e-12);
+        assert!((tr.c_command[i] - tr.c_error[i] - tr.c_actual[i]).abs() < 1e-15);
+        // The tip through the chain at the actual axes (command − following error, mm): the
+        // errors are in mm.
+        let lin = [0, 1, 2].map(|k| tr.linear[k].command[i] - tr.linear[k].error[i]);
+        let tip = m.actual_tip(lin, tr.c_actual[i]).unwrap();
+        assert!(
+            (tip.x - tr.x[i]).abs() < 1e-9 && (tip.y - tr.y[i]).abs() < 1e-9,
+            "{i}"
+        );
+    }
+    // Velocities: the central differences of the actual positions (steps of 0.2 ms: the
+    // difference's own error is h²/6 · |x'''|, far below 1e-3 of the speed here).
+    let (gap, top) = against_differences(&tr.time, &tr.c_actual, &tr.c_velocity);
+    assert!(
+        gap < 1e-3 * top && top > 0.01,
+        "C: {gap:e} of {top:e} rad/s"
+    );
+    for l in &tr.linear[..2] {
+        let actual: Vec<f64> = l.command.iter().zip(&l.error).map(|(c, e)| c - e).collect();
+        let (gap, top) = against_differences(&tr.time, &actual, &l.velocity);
+        assert!(
+            gap < 1e-3 * top && top > 1.0,
+            "{}: {gap:e} of {top:e} mm/s",
+            l.name
+        );
+    }
+}
+
+#[test]
+fn every_moving_axis_lags_its_command_without_feed_forward() {
+    // A P position loop: in the steady state the error is v/K_p; an axis whose command moves
+    // is never followed exactly. With r = R one axis is at the same place at the start and at
+    // C's reversal: it moves all the same.
+    for r in [0.0, 25.0, 50.0] {
+        let c = case(json!({"test": {"offset": r}}));
+        let (_, tr) = simulate(&c).unwrap();
+        let kp = c.linear.position_gain;
+        for l in &tr.linear {
+            let travel = l.command.iter().fold(0.0f64, |a, b| a.max(b.abs()))
+                - l.command.iter().fold(f64::INFINITY, |a, b| a.min(b.abs()));
+            let err = l.error.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let top = l.velocity.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            if travel > 1e-6 {
+                assert!(
+                    err > 0.5 * top / kp,
+                    "r = {r}, {}: lag {err} mm at {top} mm/s",
+                    l.name
+                );
+            } else {
+                assert_eq!(err, 0.0, "r = {r}, {}", l.name);
+            }
+        }
+    }
+}
+
+/// Sign changes of `v`, starting from the sign of its first non-zero value.
+fn sign_changes(v: &[f64]) -> usize {
+    let mut dir = 0.0;
+    let mut n = 0;
+    for x in v.iter().filter(|x| **x != 0.0) {
+        if dir != 0.0 && x * dir < 0.0 {
+            n += 1;
+        }
+        dir = x.signum();
+    }
+    n
+}
+
+#[test]
+fn the_friction_sees_the_direction_changes_of_the_velocity_and_no_others() {
+    // The direction memory changes where the velocity changes sign (drive's docs), and starts
+    // in the direction of the first motion. Recorded at every step, the count of the model is
+    // the count of sign changes of each axis with friction. With an acceleration of 3 s at
+    // 3000 mm/min, X and Y turn round between 1.5 s and 6 s: a direction taken there instead
+    // of at the start of the motion would be one change too many.
+    for (v, linear) in [
+        (json!({"samples": 200000}), false),
+        (
+            json!({"samples": 200000, "test": {"feed": 3000, "accelTime": 3000},
+                   "linear": {"friction": 300}}),
+            true,
+        ),
+    ] {
+        let (_, tr) = every_step(v);
+        let mut want = sign_changes(&tr.c_velocity);
+        assert!(want >= 1, "C turns round");
+        if linear {
+            for l in &tr.linear {
+                want += sign_changes(&l.velocity);
+            }
+        }
+        assert_eq!(tr.direction_changes, want);
+    }
+}
+
+/// A trace with only θ (rad) and the deviation (mm): what [`dent`] reads.
+fn synthetic(theta: &[f64], deviation: Vec<f64>) -> Trace {
+    let n = theta.len();
+    Trace {
+        time: theta.to_vec(),
+        theta: theta.to_vec(),
+        angle: theta.to_vec(),
+        deviation,
+        x: vec![0.0; n],
+        y: vec![0.0; n],
+        c_command: vec![0.0; n],
+        c_actual: vec![0.0; n],
+        c_velocity: vec![0.0; n],
+        c_error: vec![0.0; n],
+        c_friction: vec![0.0; n],
+        c_torque: vec![0.0; n],
+        linear: Vec::new(),
+        reversal_time: 0.0,
+        reversal_index: 0,
+        steps: n,
+        step: 1.0,
+        direction_changes: 0,
+    }
+}
+
+#[test]
+fn the_dent_of_a_triangle_is_its_depth_at_its_apex_and_half_its_base_wide() {
+    // θ_i = i/100, i = 0..=100. The trace with friction dips by a triangle of depth D and half
+    // base 20 samples at `apex` (clipped by the ends), and bulges out by B at one sample: the
+    // dent is D deep at the apex, as wide at half depth as the triangle's half base (where the
+    // ends do not clip it), and the bump is B.
+    let theta: Vec<f64> = (0..=100).map(|i| i as f64 / 100.0).collect();
+    let (d, b) = (0.004, 0.0015);
+    for (apex, bump_at, width) in [(50usize, 85usize, 0.2), (0, 60, 0.1), (100, 30, 0.1)] {
+        let without = synthetic(&theta, vec![0.25e-3; 101]);
+        let mut dev: Vec<f64> = (0..=100)
+            .map(|i| 0.25e-3 - d * (1.0 - (i as f64 - apex as f64).abs() / 20.0).max(0.0))
+            .collect();
+        dev[bump_at] += b;
+        let got = dent(&synthetic(&theta, dev), &without);
+        assert!((got.depth - d).abs() < 1e-15, "{apex}: {got:?}");
+        assert_eq!(got.angle, theta[apex]);
+        assert!((got.width - width).abs() < 1e-12, "{apex}: {got:?}");
+        assert!((got.bump - b).abs() < 1e-15, "{apex}: {got:?}");
+    }
+    // The same trace twice: no dent, no width, no bump.
+    let same = synthetic(&theta, theta.iter().map(|t| 0.01 * t.sin()).collect());
+    let got = dent(&same, &same);
+    assert_eq!((got.depth, got.width, got.bump), (0.0, 0.0, 0.0));
+}
+
+#[test]
+fn before_and_after_are_the_commanded_velocities_a_reversal_time_either_side() {
+    // r > R: X and Y change direction with C; their velocities either side differ.
+    for r in [25.0, 75.0] {
+        let c = case(json!({"test": {"offset": r}}));
+        let (m, tr) = simulate(&c).unwrap();
+        let edge = c.test.reversal_time * 1e-3;
+        let dt = 1e-6;
+        for (k, d) in direction_checks(&m, &tr).iter().enumerate() {
+            let at = |t: f64| {
+                (m.commands(t + dt).linear[k].x - m.commands(t - dt).linear[k].x) / (2.0 * dt)
+            };
+            let (before, after) = (at(m.reversal - edge), at(m.reversal + edge));
+            let tol = 1e-6 * (1.0 + before.abs() + after.abs());
+            assert!(
+                (d.before - before).abs() < tol,
+                "r = {r}, {d:?}: before {before}"
+            );
+            assert!(
+                (d.after - after).abs() < tol,
+                "r = {r}, {d:?}: after {after}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_step_checks_relative_figure_is_the_difference_over_the_largest_deviation() {
+    let c = case(json!({"test": {"feed": 2000}}));
+    let (m, tr) = simulate(&c).unwrap();
+    let s = step_check(&c, &m, &tr).unwrap();
+    // The finer run's largest |deviation| is the coarse one's within the difference.
+    let scale = tr.deviation.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let (lo, hi) = (
+        s.difference / (scale + s.difference),
+        s.difference / (scale - s.difference),
+    );
+    assert!(
+        s.difference > 0.0 && scale > 10.0 * s.difference,
+        "{s:?}, {scale}"
+    );
+    assert!(
+        lo <= s.relative && s.relative <= hi,
+        "{s:?}: not within {lo}..{hi}"
+    );
+    assert_eq!(s.step, c.step * 1e-3);
+}
+
+#[test]
+fn the_closed_loop_gain_is_what_the_integrated_drive_does_with_a_sine() {
+    // Drive::response, the transfer function of the loop's equations, against the same
+    // equations integrated in time: a sine command x_r = A·sin ωt (A = 10 µm or µrad: far
+    // from the torque limit, where the loop is linear), the drive's steady-state
+    // amplitude from its projection on sin and cos over whole periods after the start-up has
+    // died out (the slowest pole is about K_p: e^(−K_p·1 s) < 1e-12).
+    use fiveaxis::reversal::drive::{AxisState, Reference};
+    let c = case(json!({"c": {"friction": 0}}));
+    let (lin, rot) = c.drives();
+    let amp = 1e-5;
+    for d in [lin[0], rot] {
+        for omega in [20.0, 150.0, 600.0] {
+            let r = |t: f64| Reference {
+                x: amp * (omega * t).sin(),
+                v: amp * omega * (omega * t).cos(),
+                a: -amp * omega * omega * (omega * t).sin(),
+            };
+            let h = 2e-3 / omega;
+            let mut s = AxisState::at_rest(&d, &r(0.0), 1.0);
+            let period = TAU / omega;
+            let settle = (1.0 / period).ceil() * period;
+            let n = ((settle + 4.0 * period) / h).round() as usize;
+            let (mut ps, mut pc, mut w) = (0.0, 0.0, 0.0);
+            for i in 0..n {
+                let t0 = i as f64 * h;
+                let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
+                s.step(&d, (t0, h), [&a, &m, &b], &r);
+                let t = t0 + h;
+                if t > settle {
+                    let x = b.x - s.e;
+                    ps += x * (omega * t).sin();
+                    pc += x * (omega * t).cos();
+                    w += 0.5;
+                }
+            }
+            let gain = (ps * ps + pc * pc).sqrt() / w / amp;
+            let want = d.response(omega);
+            assert!(
+                (gain - want).abs() < 1e-4 * want,
+                "ω = {omega}: integrated {gain}, response {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_recorded_friction_is_eq2_at_the_travel_since_the_last_reversal() {
+    // f = f_c·(2·tanh(a·|x′|) − 1)·sgn(ẋ′) (eq 2), x′ the travel of C's actual position since
+    // its velocity last changed sign, found here from the recorded samples: the crossing by
+    // linear interpolation of the velocity between two steps, the position there likewise.
+    // Before the first motion the spring is unloaded: x′ starts at atanh(½)/a (f = 0).
+    for v in [
+        json!({"samples": 200000}),
+        json!({"samples": 200000, "test": {"feed": 3000, "offset": 50}}),
+    ] {
+        let c = case(v.clone());
+        let (_, tr) = every_step(v);
+        let (fc, a) = (c.c.friction, c.c.friction_slope);
+        let first = tr.c_velocity.iter().find(|v| **v != 0.0).unwrap().signum();
+        let mut dir = first;
+        let mut x_rev = tr.c_actual[0] - dir * 0.5f64.atanh() / a;
+        let mut worst = 0.0f64;
+        let mut reversals = 0;
+        for i in 0..tr.time.len() {
+            let (v0, v1) = (tr.c_velocity[i.saturating_sub(1)], tr.c_velocity[i]);
+            if v1 * dir < 0.0 {
+                let s = v0 / (v0 - v1);
+                x_rev = tr.c_actual[i - 1] + s * (tr.c_actual[i] - tr.c_actual[i - 1]);
+                dir = -dir;
+                reversals += 1;
+            }
+            let want = fc * (2.0 * (a * (tr.c_actual[i] - x_rev).abs()).tanh() - 1.0) * dir;
+            worst = worst.max((tr.c_friction[i] - want).abs());
+        }
+        assert!(reversals >= 1);
+        assert!(worst < 1e-3 * fc, "friction off eq 2 by {worst} N·m");
+    }
+}
+
+#[test]
+fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on() {
+    // A unit-inertia drive with a 5 N·m limit told to move at 1 rad/s from rest: it saturates
+    // for a while. Wherever the unclamped torque K_v·ε + K_i·z is beyond the limit with ε of its
+    // sign at both ends of a step (ε = v_ref − v = K_p·e + ė − v_r, no feed-forward), the
+    // integral z must not move; elsewhere it integrates ε.
+    use fiveaxis::reversal::drive::{AxisState, Drive, Reference};
+    let kv = TAU * 40.0;
+    let d = Drive {
+        inertia: 1.0,
+        kp: 30.0,
+        kv,
+        ki: kv / 0.015,
+        damping: 0.0,
+        limit: 5.0,
+        fc: 0.0,
+        slope: 1.0,
+        ff_velocity: false,
+        ff_torque: false,
+    };
+    let r = |t: f64| Reference {
+        x: t,
+        v: 1.0,
+        a: 0.0,
+    };
+    let h = 1e-4;
+    let mut s = AxisState::at_rest(&d, &r(0.0), 1.0);
+    let pushing = |s: &AxisState, r: &Reference| {
+        let eps = d.kp * s.e + s.ev - r.v;
+        let raw = kv * eps + d.ki * s.z;
+        raw.abs() > 1.5 * d.limit && eps * raw > 0.0
+    };
+    let (mut held, mut moved) = (0, 0);
+    for i in 0..20000 {
+        let t0 = i as f64 * h;
+        let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
+        let before = s;
+        s.step(&d, (t0, h), [&a, &m, &b], &r);
+        if pushing(&before, &a) && pushing(&s, &b) {
+            assert_eq!(s.z, before.z, "step {i}: the integral wound up");
+            held += 1;
+        } else if s.z != before.z {
+            moved += 1;
+        }
+    }
+    assert!(held > 10 && moved > 10, "held {held}, moved {moved}");
+}
