@@ -158,10 +158,10 @@ fn each_recorded_quantity_against_a_second_method() {
 #[test]
 fn every_moving_axis_lags_its_command_without_feed_forward() {
     // A P position loop: in the steady state the error is v/K_p; an axis whose command moves
-    // is never followed exactly. With r = R one axis is at the same place at the start and at
-    // C's reversal: it moves all the same.
-    for r in [0.0, 25.0, 50.0] {
-        let c = case(json!({"test": {"offset": r}}));
+    // is never followed exactly. Y is at the same place at the start and at C's reversal (to
+    // the last bit with R = 40, r = 5): it moves all the same.
+    for (r, radius) in [(0.0, 50.0), (25.0, 50.0), (50.0, 50.0), (5.0, 40.0)] {
+        let c = case(json!({"test": {"offset": r, "radius": radius}}));
         let (_, tr) = simulate(&c).unwrap();
         let kp = c.linear.position_gain;
         for l in &tr.linear {
@@ -199,13 +199,13 @@ fn sign_changes(v: &[f64]) -> usize {
 fn the_friction_sees_the_direction_changes_of_the_velocity_and_no_others() {
     // The direction memory changes where the velocity changes sign (drive's docs), and starts
     // in the direction of the first motion. Recorded at every step, the count of the model is
-    // the count of sign changes of each axis with friction. With an acceleration of 3 s at
-    // 3000 mm/min, X and Y turn round between 1.5 s and 6 s: a direction taken there instead
-    // of at the start of the motion would be one change too many.
+    // the count of sign changes of each axis with friction. With an acceleration of 4 s at
+    // 1000 mm/min, X is at rest at 0 s and Y turns round between 2 s and 8 s: a direction
+    // taken at either instant instead of at the start of the motion is one change too many.
     for (v, linear) in [
         (json!({"samples": 200000}), false),
         (
-            json!({"samples": 200000, "test": {"feed": 3000, "accelTime": 3000},
+            json!({"samples": 200000, "test": {"accelTime": 4000},
                    "linear": {"friction": 300}}),
             true,
         ),
