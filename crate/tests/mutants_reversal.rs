@@ -403,7 +403,7 @@ fn the_recorded_friction_is_eq2_at_the_travel_since_the_last_reversal() {
 
 #[test]
 fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on() {
-    // A unit-inertia drive with a 5 N·m limit told to move at 1 rad/s from rest: it saturates
+    // A unit-inertia drive with a 5 N·m limit told to move at ±1 rad/s from rest: it saturates
     // for a while. Wherever the unclamped torque K_v·ε + K_i·z is beyond the limit with ε of its
     // sign at both ends of a step (ε = v_ref − v = K_p·e + ė − v_r, no feed-forward), the
     // integral z must not move; elsewhere it integrates ε.
@@ -421,30 +421,35 @@ fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on()
         ff_velocity: false,
         ff_torque: false,
     };
-    let r = |t: f64| Reference {
-        x: t,
-        v: 1.0,
-        a: 0.0,
-    };
-    let h = 1e-4;
-    let mut s = AxisState::at_rest(&d, &r(0.0), 1.0);
-    let pushing = |s: &AxisState, r: &Reference| {
-        let eps = d.kp * s.e + s.ev - r.v;
-        let raw = kv * eps + d.ki * s.z;
-        raw.abs() > 1.5 * d.limit && eps * raw > 0.0
-    };
-    let (mut held, mut moved) = (0, 0);
-    for i in 0..20000 {
-        let t0 = i as f64 * h;
-        let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
-        let before = s;
-        s.step(&d, (t0, h), [&a, &m, &b], &r);
-        if pushing(&before, &a) && pushing(&s, &b) {
-            assert_eq!(s.z, before.z, "step {i}: the integral wound up");
-            held += 1;
-        } else if s.z != before.z {
-            moved += 1;
+    for sign in [1.0, -1.0] {
+        let r = |t: f64| Reference {
+            x: sign * t,
+            v: sign,
+            a: 0.0,
+        };
+        let h = 1e-4;
+        let mut s = AxisState::at_rest(&d, &r(0.0), sign);
+        let pushing = |s: &AxisState, r: &Reference| {
+            let eps = d.kp * s.e + s.ev - r.v;
+            let raw = kv * eps + d.ki * s.z;
+            raw.abs() > 1.5 * d.limit && eps * raw > 0.0
+        };
+        let (mut held, mut moved) = (0, 0);
+        for i in 0..20000 {
+            let t0 = i as f64 * h;
+            let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
+            let before = s;
+            s.step(&d, (t0, h), [&a, &m, &b], &r);
+            if pushing(&before, &a) && pushing(&s, &b) {
+                assert_eq!(s.z, before.z, "{sign}, step {i}: the integral wound up");
+                held += 1;
+            } else if s.z != before.z {
+                moved += 1;
+            }
         }
+        assert!(
+            held > 10 && moved > 10,
+            "{sign}: held {held}, moved {moved}"
+        );
     }
-    assert!(held > 10 && moved > 10, "held {held}, moved {moved}");
 }
