@@ -74,6 +74,15 @@ fn the_trace_has_at_most_samples_plus_one_points_from_rest_to_the_end() {
             "ends at {} not {end}",
             tr.time[len - 1]
         );
+        // The commanded trace angle: from 0 once round, never back, and 2π while the axes
+        // settle after the motion.
+        assert_eq!(tr.theta[0], 0.0);
+        assert!(tr.theta.windows(2).all(|w| w[1] >= w[0]));
+        assert!(
+            (tr.theta[len - 1] - TAU).abs() < 1e-12,
+            "{}",
+            tr.theta[len - 1]
+        );
         // Evenly spaced but for the last interval.
         let dt = tr.time[1] - tr.time[0];
         for w in tr.time[..len - 1].windows(2) {
@@ -296,6 +305,37 @@ fn before_and_after_are_the_commanded_velocities_a_reversal_time_either_side() {
                 "r = {r}, {d:?}: after {after}"
             );
         }
+    }
+}
+
+#[test]
+fn the_step_check_compares_the_two_runs_at_the_same_instants_only() {
+    // The check's difference, against the test's own pair of runs: every step at h and every
+    // second step at h/2, paired where their times agree (to 1e-9 s). At 2500 mm/min the run
+    // lasts T with T/h just above a whole number: the finer run then ends h/2 before the
+    // coarse one, and its last sample must not be compared with the coarse run's last.
+    for f in [2000.0, 2500.0] {
+        let c = case(json!({"test": {"feed": f}, "samples": 200000}));
+        let (m, tr) = simulate(&c).unwrap();
+        assert_eq!(tr.time.len(), tr.steps + 1);
+        let h = c.step * 1e-3;
+        let fine_case = case(json!({"test": {"feed": f}, "samples": tr.steps}));
+        let fine = simulate_with_step(&fine_case, &m, h / 2.0).unwrap();
+        let mut want = 0.0f64;
+        let mut pairs = 0;
+        for (t, d) in tr.time.iter().zip(&tr.deviation) {
+            let j = fine.time.partition_point(|tf| *tf < t - 1e-9);
+            if j < fine.time.len() && (fine.time[j] - t).abs() < 1e-9 {
+                want = want.max((d - fine.deviation[j]).abs());
+                pairs += 1;
+            }
+        }
+        assert!(pairs + 1 >= tr.time.len(), "{pairs} instants in common");
+        let s = step_check(&c, &m, &tr).unwrap();
+        assert!(
+            (s.difference - want).abs() <= 1e-15,
+            "F = {f}: {s:?}, pairs give {want:e}"
+        );
     }
 }
 
