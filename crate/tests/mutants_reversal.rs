@@ -493,3 +493,34 @@ fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on()
         );
     }
 }
+
+#[test]
+fn the_readers_limits_are_those_its_messages_state() {
+    use fiveaxis::reversal::fit::parse_trace;
+    // `far` points at 0°, 1°, … and `near` within ±10° of the reversal (175° on), the first
+    // deviation `first` mm.
+    let text = |far: usize, near: usize, first: f64| {
+        let mut t = String::from("angle_deg,deviation_mm\n");
+        for i in 0..far {
+            let d = if i == 0 { first } else { 0.001 };
+            t.push_str(&format!("{i},{d}\n"));
+        }
+        for i in 0..near {
+            t.push_str(&format!("{},-0.002\n", 175.0 + i as f64 * 0.5));
+        }
+        t
+    };
+    // "at least 50" points, "at least 10" near the reversal, deviations up to 1 mm.
+    let m = parse_trace(&text(40, 10, 1.0)).unwrap();
+    assert_eq!(m.angle.len(), 50);
+    assert_eq!(m.deviation[0], 1.0);
+    assert!((m.angle[49] - 179.5f64.to_radians()).abs() < 1e-15);
+    for (t, want) in [
+        (text(39, 10, 0.0), "49 points: the fit needs at least 50"),
+        (text(41, 9, 0.0), "9 points within ±10° of the reversal"),
+        (text(40, 10, 1.0001), "deviation 1.0001 mm is over 1 mm"),
+    ] {
+        let e = parse_trace(&t).unwrap_err().to_string();
+        assert!(e.contains(want), "{e}");
+    }
+}
