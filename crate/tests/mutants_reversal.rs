@@ -6,6 +6,7 @@
 //! differences of the command, and the step check's relative figure.
 
 #![allow(clippy::unwrap_used)]
+mod common;
 
 use fiveaxis::reversal::{
     dent, direction_checks, simulate, simulate_with_step, step_check, ReversalCase, Trace,
@@ -582,5 +583,194 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
             off < 1e-2 * scale,
             "lead {lead}: x_rev off by {off:e} (scale {scale:e})"
         );
+    }
+}
+
+/// The case's trace at `angles` (rad), by the actual trace angle (linear between samples), plus
+/// `offset` mm: what a ball bar of a slightly different length would record.
+fn trace_at(c: &ReversalCase, angles: &[f64], offset: f64) -> Vec<f64> {
+    let mut c = c.clone();
+    c.samples = 10_000;
+    let (_, tr) = simulate(&c).unwrap();
+    angles
+        .iter()
+        .map(|x| {
+            let i = tr
+                .angle
+                .partition_point(|v| v < x)
+                .clamp(1, tr.angle.len() - 1);
+            let (x0, x1) = (tr.angle[i - 1], tr.angle[i]);
+            let (d0, d1) = (tr.deviation[i - 1], tr.deviation[i]);
+            d0 + (d1 - d0) * (x - x0) / (x1 - x0) + offset
+        })
+        .collect()
+}
+
+#[test]
+fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
+    // A trace simulated with f_c = 12 N·m, a = 800 1/rad, K_p = 28 1/s and a ball bar 3 µm
+    // long, with 0.2 µm of noise every 0.25°, fitted from the defaults (10, 500, 30): near the
+    // truth. Then, at
+    // the fitted values: the 95 % intervals against σ²·(JᵀJ)⁻¹ with J by central differences
+    // of the model in (ln f_c, ln a, ln K_p, offset) and σ² = Σr²/(n − 4); the fitted curve
+    // is the trace less the residuals; the half-way travel is atanh(½)/a.
+    use fiveaxis::reversal::fit::{fit, Measured};
+    use nalgebra::{Matrix4, Vector4};
+    let params = |fc: f64, a: f64, kp: f64| {
+        case(json!({"step": 0.5, "c": {"friction": fc, "frictionSlope": a, "positionGain": kp}}))
+    };
+    let angles: Vec<f64> = (1..1440).map(|i| (i as f64 * 0.25).to_radians()).collect();
+    let mut rng = common::Rng::new(11);
+    let deviation: Vec<f64> = trace_at(&params(12.0, 800.0, 28.0), &angles, 0.003)
+        .iter()
+        .map(|d| d + 2e-4 * rng.gauss())
+        .collect();
+    let n = angles.len();
+    let measured = Measured {
+        angle: angles.clone(),
+        deviation: deviation.clone(),
+        lines: (2..n + 2).collect(),
+    };
+    let f = fit(&params(10.0, 500.0, 30.0), &measured).unwrap();
+    // The truth within three standard deviations (the 95 % intervals' coverage is the
+    // Monte-Carlo test's, in reversal_fit.rs).
+    let z = 1.959_963_984_540_054;
+    for (e, truth) in [(f.fc, 12.0), (f.slope, 800.0), (f.kp, 28.0)] {
+        let sd = (e.high / e.value).ln() / z;
+        assert!(
+            (e.value / truth).ln().abs() < 3.0 * sd,
+            "{e:?} should be near {truth}"
+        );
+    }
+    let sd = (f.offset.high - f.offset.value) / z;
+    assert!((f.offset.value - 0.003).abs() < 3.0 * sd, "{:?}", f.offset);
+    // The model at the fitted values and its Jacobian.
+    let p = [
+        f.fc.value.ln(),
+        f.slope.value.ln(),
+        f.kp.value.ln(),
+        f.offset.value,
+    ];
+    let model = |p: [f64; 4]| trace_at(&params(p[0].exp(), p[1].exp(), p[2].exp()), &angles, p[3]);
+    let at = model(p);
+    let rss: f64 = deviation
+        .iter()
+        .zip(&at)
+        .map(|(d, m)| (d - m).powi(2))
+        .sum();
+    let sigma2 = rss / (n - 4) as f64;
+    assert!(
+        (f.sigma * f.sigma / sigma2 - 1.0).abs() < 1e-3,
+        "σ {} vs {}",
+        f.sigma,
+        sigma2.sqrt()
+    );
+    let mut cols = Vec::new();
+    for k in 0..4 {
+        let dk = if k < 3 { 1e-4 } else { 1e-6 };
+        let (mut up, mut down) = (p, p);
+        up[k] += dk;
+        down[k] -= dk;
+        let (mu, md) = (model(up), model(down));
+        cols.push(
+            mu.iter()
+                .zip(&md)
+                .map(|(u, d)| (u - d) / (2.0 * dk))
+                .collect::<Vec<f64>>(),
+        );
+    }
+    let jtj = Matrix4::from_fn(|i, j| cols[i].iter().zip(&cols[j]).map(|(a, b)| a * b).sum());
+    let cov = jtj.try_inverse().unwrap() * sigma2;
+    let sd = Vector4::from_fn(|k, _| cov[(k, k)].sqrt());
+    for (k, e) in [f.fc, f.slope, f.kp].iter().enumerate() {
+        assert!(
+            (e.value * e.value / (e.low * e.high) - 1.0).abs() < 1e-9,
+            "{e:?}"
+        );
+        let half = (e.high / e.value).ln() / z;
+        assert!(
+            (half / sd[k] - 1.0).abs() < 0.05,
+            "{k}: σ_ln {half:e} vs {:e}",
+            sd[k]
+        );
+    }
+    let o = f.offset;
+    assert!(((o.low + o.high) / 2.0 - o.value).abs() < 1e-12, "{o:?}");
+    assert!(
+        ((o.high - o.value) / z / sd[3] - 1.0).abs() < 0.05,
+        "{o:?} vs σ {:e}",
+        sd[3]
+    );
+    for i in 0..n {
+        assert!((f.fitted[i] + f.residuals[i] - deviation[i]).abs() < 1e-15);
+        assert!(
+            (f.fitted[i] - at[i]).abs() < 1e-9,
+            "{i}: {} vs {}",
+            f.fitted[i],
+            at[i]
+        );
+    }
+    assert!((f.halfway - 0.5f64.atanh() / f.slope.value).abs() < 1e-15);
+}
+
+#[test]
+fn a_fit_needs_four_parameters_and_thirty_degrees_of_freedom() {
+    // n − 4 ≥ 30 (fit's docs): 33 points are refused for their number, 34 and 60 are not.
+    use fiveaxis::reversal::fit::{fit, Measured};
+    let c = case(json!({"step": 0.5}));
+    for (n, refused) in [(33, true), (34, false), (60, false)] {
+        let angle: Vec<f64> = (0..n)
+            .map(|i| (170.0 + 20.0 * i as f64 / n as f64).to_radians())
+            .collect();
+        let deviation = trace_at(&c, &angle, 0.0);
+        let m = Measured {
+            angle,
+            deviation,
+            lines: (2..n + 2).collect(),
+        };
+        let said = fit(&c, &m).err().map(|e| e.to_string()).unwrap_or_default();
+        assert_eq!(
+            said.contains("too few points for the fit (at least 34)"),
+            refused,
+            "{n}: {said}"
+        );
+    }
+}
+
+#[test]
+fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
+    // Along the circle: s(t), ṡ and s̈ against central differences of each other, at rest
+    // before 0 and after the end, the feed reached at the end of the acceleration time, the
+    // circumference at the end.
+    for (f, acc) in [(1000.0, 50.0), (3000.0, 400.0)] {
+        let c = case(json!({"test": {"feed": f, "accelTime": acc}}));
+        let m = c.motion().unwrap();
+        let (v_f, ta) = (f / 60.0, acc * 1e-3);
+        let dt = 1e-6;
+        let n = 20_000;
+        for i in 0..=n {
+            let t = -0.01 + (m.duration + 0.02) * i as f64 / n as f64;
+            let (p, lo, hi) = (m.path(t), m.path(t - dt), m.path(t + dt));
+            let v = (hi.x - lo.x) / (2.0 * dt);
+            let a = (hi.v - lo.v) / (2.0 * dt);
+            assert!(
+                (v - p.v).abs() < 1e-5 * v_f,
+                "F = {f}, t = {t}: ṡ {} vs {v}",
+                p.v
+            );
+            assert!(
+                (a - p.a).abs() < 1e-4 * v_f / ta,
+                "F = {f}, t = {t}: s̈ {} vs {a}",
+                p.a
+            );
+        }
+        assert_eq!(m.path(-1.0), m.path(0.0));
+        assert_eq!((m.path(0.0).x, m.path(0.0).v), (0.0, 0.0));
+        assert!((m.path(ta).v - v_f).abs() < 1e-12 * v_f);
+        // The ramp covers half the distance the feed would: s(ta) = v_f·ta/2.
+        assert!((m.path(ta).x - v_f * ta / 2.0).abs() < 1e-9);
+        let end = m.path(m.duration);
+        assert!((end.x - TAU * 50.0).abs() < 1e-9 && end.v.abs() < 1e-12 && end.a.abs() < 1e-9);
+        assert_eq!(m.path(m.duration + 1.0).x, end.x);
     }
 }
