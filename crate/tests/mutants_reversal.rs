@@ -564,7 +564,7 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
         i += 1;
     }
     let (fine_rev, crossing) = (s.x_rev, i as f64 * hf);
-    // Coarse: from the fine state 0.7·H before the crossing, one step of H.
+    // Coarse: from the fine state 0.3·H or 0.7·H before the crossing, one step of H.
     let big = 2e-3;
     for lead in [0.3, 0.7] {
         let start = ((crossing - lead * big) / hf).round() as usize;
@@ -572,11 +572,24 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
         for j in 0..start {
             assert_eq!(step(&mut s, j as f64 * hf, hf), 0);
         }
+        // The fine run on to the end of the big step.
+        let mut f = s;
+        let sub = (big / hf).round() as usize;
+        let turns: usize = (start..start + sub)
+            .map(|j| step(&mut f, j as f64 * hf, hf))
+            .sum();
+        assert_eq!(turns, 1);
         assert_eq!(
             step(&mut s, start as f64 * hf, big),
             1,
             "the step holds the crossing"
         );
+        // The state at its end: both sub-steps integrated with the command of their own times
+        // (RK4 over 1 ms: far below the following error's change over the step, ė·H).
+        let de = (s.e - f.e).abs();
+        let dv = (s.ev - f.ev).abs();
+        assert!(de < 1e-3 * f.ev.abs() * big, "lead {lead}: e off by {de:e}");
+        assert!(dv < 1e-3 * w * w * big, "lead {lead}: ė off by {dv:e}");
         let scale = 0.5 * w * w * big * big;
         let off = (s.x_rev - fine_rev).abs();
         assert!(
