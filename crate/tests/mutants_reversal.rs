@@ -777,6 +777,32 @@ fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
                 p.a
             );
         }
+        // The ramps' closed form: half the feed half way, at rest at their far ends.
+        assert!((m.path(ta / 2.0).v - v_f / 2.0).abs() < 1e-9 * v_f);
+        assert!((m.path(m.duration - ta / 2.0).v - v_f / 2.0).abs() < 1e-9 * v_f);
+        assert!(m.path(1e-9).v < 1e-6 * v_f && m.path(m.duration - 1e-9).v < 1e-6 * v_f);
+        // C's and the axes' commands likewise, accelerations included (the ramps' too).
+        let jets = |t: f64| {
+            let c = m.commands(t);
+            [c.c, c.linear[0], c.linear[1]]
+        };
+        let top = (0..=n)
+            .map(|i| jets(m.duration * i as f64 / n as f64).map(|j| j.a.abs()))
+            .fold([0.0f64; 3], |a, b| {
+                [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
+            });
+        for i in 0..=n {
+            let t = m.duration * i as f64 / n as f64;
+            let (p, lo, hi) = (jets(t), jets(t - dt), jets(t + dt));
+            for k in 0..3 {
+                let a = (hi[k].v - lo[k].v) / (2.0 * dt);
+                assert!(
+                    (a - p[k].a).abs() < 1e-4 * top[k],
+                    "F = {f}, t = {t}, {k}: {} vs {a}",
+                    p[k].a
+                );
+            }
+        }
         assert_eq!(m.path(-1.0), m.path(0.0));
         assert_eq!((m.path(0.0).x, m.path(0.0).v), (0.0, 0.0));
         assert!((m.path(ta).v - v_f).abs() < 1e-12 * v_f);
