@@ -528,7 +528,7 @@ fn the_readers_limits_are_those_its_messages_state() {
 
 #[test]
 fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
-    // A drive with friction follows x_r = sin 2πt (SI) and turns round near t = 0.25 s. The
+    // A drive with friction follows x_r = ±sin 2πt (SI) and turns round near t = 0.25 s. The
     // direction memory's position x′ = 0 (x_rev) after one step of H = 2 ms over the
     // crossing, against the same found with steps of 10 µs: the split at the linearly
     // interpolated crossing puts it within a small part of ½·|ẍ|·H² (the distance travelled
@@ -548,54 +548,62 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
         ff_torque: false,
     };
     let w = TAU;
-    let r = |t: f64| Reference {
-        x: (w * t).sin(),
-        v: w * (w * t).cos(),
-        a: -w * w * (w * t).sin(),
-    };
-    let step = |s: &mut AxisState, t0: f64, h: f64| {
-        s.step(&d, (t0, h), [&r(t0), &r(t0 + h / 2.0), &r(t0 + h)], &r)
-    };
-    // Fine: where the direction changes.
-    let hf = 1e-5;
-    let mut s = AxisState::at_rest(&d, &r(0.0), 1.0);
-    let mut i = 0;
-    while step(&mut s, i as f64 * hf, hf) == 0 {
-        i += 1;
-    }
-    let (fine_rev, crossing) = (s.x_rev, i as f64 * hf);
-    // Coarse: from the fine state 0.3·H or 0.7·H before the crossing, one step of H.
-    let big = 2e-3;
-    for lead in [0.3, 0.7] {
-        let start = ((crossing - lead * big) / hf).round() as usize;
-        let mut s = AxisState::at_rest(&d, &r(0.0), 1.0);
-        for j in 0..start {
-            assert_eq!(step(&mut s, j as f64 * hf, hf), 0);
+    for sign in [1.0, -1.0] {
+        let r = |t: f64| Reference {
+            x: sign * (w * t).sin(),
+            v: sign * w * (w * t).cos(),
+            a: -sign * w * w * (w * t).sin(),
+        };
+        let step = |s: &mut AxisState, t0: f64, h: f64| {
+            s.step(&d, (t0, h), [&r(t0), &r(t0 + h / 2.0), &r(t0 + h)], &r)
+        };
+        // Fine: where the direction changes.
+        let hf = 1e-5;
+        let mut s = AxisState::at_rest(&d, &r(0.0), sign);
+        let mut i = 0;
+        while step(&mut s, i as f64 * hf, hf) == 0 {
+            i += 1;
         }
-        // The fine run on to the end of the big step.
-        let mut f = s;
-        let sub = (big / hf).round() as usize;
-        let turns: usize = (start..start + sub)
-            .map(|j| step(&mut f, j as f64 * hf, hf))
-            .sum();
-        assert_eq!(turns, 1);
-        assert_eq!(
-            step(&mut s, start as f64 * hf, big),
-            1,
-            "the step holds the crossing"
-        );
-        // The state at its end: both sub-steps integrated with the command of their own times
-        // (RK4 over 1 ms: far below the following error's change over the step, ė·H).
-        let de = (s.e - f.e).abs();
-        let dv = (s.ev - f.ev).abs();
-        assert!(de < 1e-3 * f.ev.abs() * big, "lead {lead}: e off by {de:e}");
-        assert!(dv < 1e-3 * w * w * big, "lead {lead}: ė off by {dv:e}");
-        let scale = 0.5 * w * w * big * big;
-        let off = (s.x_rev - fine_rev).abs();
-        assert!(
-            off < 1e-2 * scale,
-            "lead {lead}: x_rev off by {off:e} (scale {scale:e})"
-        );
+        let (fine_rev, crossing) = (s.x_rev, i as f64 * hf);
+        // Coarse: from the fine state 0.3·H or 0.7·H before the crossing, one step of H.
+        let big = 2e-3;
+        for lead in [0.3, 0.7] {
+            let start = ((crossing - lead * big) / hf).round() as usize;
+            let mut s = AxisState::at_rest(&d, &r(0.0), sign);
+            for j in 0..start {
+                assert_eq!(step(&mut s, j as f64 * hf, hf), 0);
+            }
+            // The fine run on to the end of the big step.
+            let mut f = s;
+            let sub = (big / hf).round() as usize;
+            let turns: usize = (start..start + sub)
+                .map(|j| step(&mut f, j as f64 * hf, hf))
+                .sum();
+            assert_eq!(turns, 1);
+            assert_eq!(
+                step(&mut s, start as f64 * hf, big),
+                1,
+                "the step holds the crossing"
+            );
+            // The state at its end: both sub-steps integrated with the command of their own times
+            // (RK4 over 1 ms: far below the following error's change over the step, ė·H).
+            let de = (s.e - f.e).abs();
+            let dv = (s.ev - f.ev).abs();
+            assert!(
+                de < 1e-3 * f.ev.abs() * big,
+                "{sign}, lead {lead}: e off by {de:e}"
+            );
+            assert!(
+                dv < 1e-3 * w * w * big,
+                "{sign}, lead {lead}: ė off by {dv:e}"
+            );
+            let scale = 0.5 * w * w * big * big;
+            let off = (s.x_rev - fine_rev).abs();
+            assert!(
+                off < 1e-2 * scale,
+                "{sign}, lead {lead}: x_rev off by {off:e} (scale {scale:e})"
+            );
+        }
     }
 }
 
