@@ -842,3 +842,29 @@ fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
         assert_eq!(m.path(m.duration + 1.0).x, end.x);
     }
 }
+
+#[test]
+fn a_fit_whose_interval_spans_more_than_a_factor_ten_is_refused() {
+    // A small dent (f_c = 2 N·m) under 1 µm of noise: a's 95 % interval spans 14 to 476 1/rad
+    // (a factor 34), so the fit refuses to give a and says why.
+    use fiveaxis::reversal::fit::{fit, Measured};
+    let truth = case(json!({"step": 0.5, "c": {"friction": 2}}));
+    let angle: Vec<f64> = (1..720).map(|i| (0.5 * i as f64).to_radians()).collect();
+    let mut rng = common::Rng::new(7);
+    let deviation: Vec<f64> = trace_at(&truth, &angle, 0.0)
+        .iter()
+        .map(|d| d + 1e-3 * rng.gauss())
+        .collect();
+    let m = Measured {
+        angle,
+        deviation,
+        lines: (2..721).collect(),
+    };
+    let e = fit(&case(json!({"step": 0.5})), &m).unwrap_err();
+    assert_eq!(e.field, "csv");
+    assert!(
+        e.message
+            .contains("the trace hardly determines a: its 95 % interval spans"),
+        "{e}"
+    );
+}
