@@ -74,7 +74,7 @@ quick() {
     cubic) echo "--lib --test mutants_cubic --test mutants_cubic_analysis --test mutants_cubic_design --test cubic_paper --test cubic_design --test cubic_identify --test cubic_any_machine" ;;
     sshape) echo "--lib --test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify --test sshape_any_machine --test sshape_eq14_vs_chain" ;;
     volumetric) echo "--lib --test mutants_volumetric --test volumetric_map --test volumetric_paper" ;;
-    reversal) echo "--lib --test reversal_friction --test reversal_motion" ;;
+    reversal) echo "--lib --test mutants_reversal --test reversal_friction --test reversal_motion" ;;
     toolpath) echo "--lib --test mutants_toolpath --test mutants_toolpath_parse --test toolpath_parse --test toolpath_compare" ;;
     identify) echo "--lib --test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
     machine) echo "--lib --test mutants_machine --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;

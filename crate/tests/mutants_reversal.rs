@@ -1,9 +1,16 @@
-//! Tests written for the reversal study's surviving mutants (`npm run mutants -- reversal`): the
-//! drives' gains from their labels, the trace's sampling and each recorded quantity against a
-//! second method (finite differences of the positions, the chain at the recorded axes), the
-//! friction's direction memory against the velocity's sign changes, the dent's measures on
-//! traces whose dent is known in closed form, the direction checks' velocities against finite
-//! differences of the command, and the step check's relative figure.
+//! Tests written for the reversal study's surviving mutants (`npm run mutants -- reversal`), each
+//! against a second method or a closed form:
+//! - the drives: gains from their labels; the loop gain `Drive::response` against the loop's
+//!   equations integrated with a sine; the integral held at the torque limit; a step over a
+//!   reversal against 10 µs steps (where the friction switches, and the state after it);
+//! - the run: the trace's sampling and end, each recorded quantity against finite differences
+//!   and the chain at the recorded axes, every moving axis lagging, the friction's direction
+//!   memory against the velocity's sign changes and eq 2 at the recorded travel;
+//! - the motion: the path s(t) and the commands' accelerations against central differences;
+//! - the measures: the dent of a known triangle, the direction checks' velocities, the step
+//!   check against the test's own pair of runs;
+//! - the fit: the reader's limits, the truth within 3σ, the intervals against σ²(JᵀJ)⁻¹ from the
+//!   test's own Jacobian, the point count, a trace past 360°, an interval spanning over 10×.
 
 #![allow(clippy::unwrap_used)]
 mod common;
