@@ -68,7 +68,7 @@ filters() {
 quick() {
   case "$1" in
     chain) echo "--test mutants_chain --test chain_model --test machine_model --test rotary_kinematics --test volumetric_map --test cubic_any_machine --test sshape_any_machine" ;;
-    rotary) echo "--lib --test rotary_kinematics --test nonlinear_outputs --test nonlinear_split --test chain_model" ;;
+    rotary) echo "--lib --test mutants_rotary --test rotary_kinematics --test nonlinear_outputs --test nonlinear_split --test chain_model" ;;
     binding) echo "--lib" ;;
     nonlinear) echo "--lib --test mutants_nonlinear --test mutants_nonlinear_inputs --test nonlinear_outputs --test nonlinear_split --test rotary_kinematics --test toolpath_compare" ;;
     cubic) echo "--lib --test mutants_cubic --test mutants_cubic_analysis --test mutants_cubic_design --test cubic_paper --test cubic_design --test cubic_identify --test cubic_any_machine" ;;

@@ -163,3 +163,15 @@ fn the_jet_is_the_derivatives_of_the_tool_vector_along_any_line() {
         }
     }
 }
+
+#[test]
+fn a_type_prints_as_its_name() {
+    let names = [
+        "ABX", "ACX", "BCY", "BAY", "CAZ", "CBZ", "ABZ", "ACY", "BCX", "BAZ", "CAY", "CBX",
+    ];
+    for name in names {
+        let t = RotaryType::parse(name).unwrap();
+        assert_eq!(format!("{t}"), name);
+        assert_eq!(t.to_string(), t.name());
+    }
+}
