@@ -449,26 +449,33 @@ fn the_recorded_friction_is_eq2_at_the_travel_since_the_last_reversal() {
     }
 }
 
+/// A unit-inertia drive without damping or feed-forward: K_p = 30 1/s, a 40 Hz velocity loop
+/// with a 15 ms integral time, the limit, f_c and a given.
+fn unit_drive(limit: f64, fc: f64, slope: f64) -> fiveaxis::reversal::drive::Drive {
+    let kv = TAU * 40.0;
+    fiveaxis::reversal::drive::Drive {
+        inertia: 1.0,
+        kp: 30.0,
+        kv,
+        ki: kv / 0.015,
+        damping: 0.0,
+        limit,
+        fc,
+        slope,
+        ff_velocity: false,
+        ff_torque: false,
+    }
+}
+
 #[test]
 fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on() {
     // A unit-inertia drive with a 5 N·m limit told to move at ±1 rad/s from rest: it saturates
     // for a while. Wherever the unclamped torque K_v·ε + K_i·z is beyond the limit with ε of its
     // sign at both ends of a step (ε = v_ref − v = K_p·e + ė − v_r, no feed-forward), the
     // integral z must not move; elsewhere it integrates ε.
-    use fiveaxis::reversal::drive::{AxisState, Drive, Reference};
-    let kv = TAU * 40.0;
-    let d = Drive {
-        inertia: 1.0,
-        kp: 30.0,
-        kv,
-        ki: kv / 0.015,
-        damping: 0.0,
-        limit: 5.0,
-        fc: 0.0,
-        slope: 1.0,
-        ff_velocity: false,
-        ff_torque: false,
-    };
+    use fiveaxis::reversal::drive::{AxisState, Reference};
+    let d = unit_drive(5.0, 0.0, 1.0);
+    let kv = d.kv;
     for sign in [1.0, -1.0] {
         let r = |t: f64| Reference {
             x: sign * t,
@@ -540,20 +547,8 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
     // crossing, against the same found with steps of 10 µs: the split at the linearly
     // interpolated crossing puts it within a small part of ½·|ẍ|·H² (the distance travelled
     // in a step from rest), where the crossing placed anywhere else in the step would not be.
-    use fiveaxis::reversal::drive::{AxisState, Drive, Reference};
-    let kv = TAU * 40.0;
-    let d = Drive {
-        inertia: 1.0,
-        kp: 30.0,
-        kv,
-        ki: kv / 0.015,
-        damping: 0.0,
-        limit: 1e6,
-        fc: 5.0,
-        slope: 200.0,
-        ff_velocity: false,
-        ff_torque: false,
-    };
+    use fiveaxis::reversal::drive::{AxisState, Reference};
+    let d = unit_drive(1e6, 5.0, 200.0);
     let w = TAU;
     for sign in [1.0, -1.0] {
         let r = |t: f64| Reference {
