@@ -115,6 +115,11 @@ fn every_step(v: Value) -> (fiveaxis::reversal::motion::Motion, Trace) {
     (m, tr)
 }
 
+/// The largest |x|.
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |a, b| a.max(b.abs()))
+}
+
 /// Largest gap between `v` and the central differences of `x` over `t`, and the largest |v|.
 fn against_differences(t: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
     let mut gap = 0.0f64;
@@ -182,10 +187,9 @@ fn every_moving_axis_lags_its_command_without_feed_forward() {
         let (_, tr) = simulate(&c).unwrap();
         let kp = c.linear.position_gain;
         for l in &tr.linear {
-            let travel = l.command.iter().fold(0.0f64, |a, b| a.max(b.abs()))
-                - l.command.iter().fold(f64::INFINITY, |a, b| a.min(b.abs()));
-            let err = l.error.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            let top = l.velocity.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let travel = l.command.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b))
+                - l.command.iter().fold(f64::INFINITY, |a, b| a.min(*b));
+            let (err, top) = (max_abs(&l.error), max_abs(&l.velocity));
             if travel > 1e-6 {
                 assert!(
                     err > 0.5 * top / kp,
@@ -353,7 +357,7 @@ fn the_step_checks_relative_figure_is_the_difference_over_the_largest_deviation(
     let (m, tr) = simulate(&c).unwrap();
     let s = step_check(&c, &m, &tr).unwrap();
     // The finer run's largest |deviation| is the coarse one's within the difference.
-    let scale = tr.deviation.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let scale = max_abs(&tr.deviation);
     let (lo, hi) = (
         s.difference / (scale + s.difference),
         s.difference / (scale - s.difference),
@@ -394,12 +398,10 @@ fn the_closed_loop_gain_is_what_the_integrated_drive_does_with_a_sine() {
             let n = ((settle + 4.0 * period) / h).round() as usize;
             let (mut ps, mut pc, mut w) = (0.0, 0.0, 0.0);
             for i in 0..n {
-                let t0 = i as f64 * h;
-                let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
-                s.step(&d, (t0, h), [&a, &m, &b], &r);
-                let t = t0 + h;
+                let t = (i + 1) as f64 * h;
+                advance(&d, &mut s, &r, (t - h, h));
                 if t > settle {
-                    let x = b.x - s.e;
+                    let x = r(t).x - s.e;
                     ps += x * (omega * t).sin();
                     pc += x * (omega * t).cos();
                     w += 0.5;
@@ -449,6 +451,17 @@ fn the_recorded_friction_is_eq2_at_the_travel_since_the_last_reversal() {
     }
 }
 
+/// One step of `s` from `t0` to `t0 + h` following the command `r` (its values at the step's
+/// start, middle and end, as the study's run gives them); the direction changes seen.
+fn advance(
+    d: &fiveaxis::reversal::drive::Drive,
+    s: &mut fiveaxis::reversal::drive::AxisState,
+    r: &dyn Fn(f64) -> fiveaxis::reversal::drive::Reference,
+    (t0, h): (f64, f64),
+) -> usize {
+    s.step(d, (t0, h), [&r(t0), &r(t0 + h / 2.0), &r(t0 + h)], r)
+}
+
 /// A unit-inertia drive without damping or feed-forward: K_p = 30 1/s, a 40 Hz velocity loop
 /// with a 15 ms integral time, the limit, f_c and a given.
 fn unit_drive(limit: f64, fc: f64, slope: f64) -> fiveaxis::reversal::drive::Drive {
@@ -492,10 +505,9 @@ fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on()
         let (mut held, mut moved) = (0, 0);
         for i in 0..20000 {
             let t0 = i as f64 * h;
-            let (a, m, b) = (r(t0), r(t0 + h / 2.0), r(t0 + h));
             let before = s;
-            s.step(&d, (t0, h), [&a, &m, &b], &r);
-            if pushing(&before, &a) && pushing(&s, &b) {
+            advance(&d, &mut s, &r, (t0, h));
+            if pushing(&before, &r(t0)) && pushing(&s, &r(t0 + h)) {
                 assert_eq!(s.z, before.z, "{sign}, step {i}: the integral wound up");
                 held += 1;
             } else if s.z != before.z {
@@ -556,9 +568,7 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
             v: sign * w * (w * t).cos(),
             a: -sign * w * w * (w * t).sin(),
         };
-        let step = |s: &mut AxisState, t0: f64, h: f64| {
-            s.step(&d, (t0, h), [&r(t0), &r(t0 + h / 2.0), &r(t0 + h)], &r)
-        };
+        let step = |s: &mut AxisState, t0: f64, h: f64| advance(&d, s, &r, (t0, h));
         // Fine: where the direction changes.
         let hf = 1e-5;
         let mut s = AxisState::at_rest(&d, &r(0.0), sign);
@@ -609,6 +619,19 @@ fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
     }
 }
 
+/// A measured trace of the points given, as the reader would return it (lines from 2).
+fn measured(angle: Vec<f64>, deviation: Vec<f64>) -> fiveaxis::reversal::fit::Measured {
+    let lines = (2..angle.len() + 2).collect();
+    fiveaxis::reversal::fit::Measured {
+        angle,
+        deviation,
+        lines,
+    }
+}
+
+/// The 95 % two-sided normal quantile.
+const Z95: f64 = 1.959_963_984_540_054;
+
 /// The case's trace at `angles` (rad), by the actual trace angle (linear between samples), plus
 /// `offset` mm: what a ball bar of a slightly different length would record.
 fn trace_at(c: &ReversalCase, angles: &[f64], offset: f64) -> Vec<f64> {
@@ -633,11 +656,10 @@ fn trace_at(c: &ReversalCase, angles: &[f64], offset: f64) -> Vec<f64> {
 fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
     // A trace simulated with f_c = 12 N·m, a = 800 1/rad, K_p = 28 1/s and a ball bar 3 µm
     // long, with 0.2 µm of noise every 0.25°, fitted from the defaults (10, 500, 30): near the
-    // truth. Then, at
-    // the fitted values: the 95 % intervals against σ²·(JᵀJ)⁻¹ with J by central differences
+    // truth. Then, at the fitted values: the 95 % intervals against σ²·(JᵀJ)⁻¹ with J by central differences
     // of the model in (ln f_c, ln a, ln K_p, offset) and σ² = Σr²/(n − 4); the fitted curve
     // is the trace less the residuals; the half-way travel is atanh(½)/a.
-    use fiveaxis::reversal::fit::{fit, Measured};
+    use fiveaxis::reversal::fit::fit;
     use nalgebra::{Matrix4, Vector4};
     let params = |fc: f64, a: f64, kp: f64| {
         case(json!({"step": 0.5, "c": {"friction": fc, "frictionSlope": a, "positionGain": kp}}))
@@ -649,15 +671,14 @@ fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
         .map(|d| d + 2e-4 * rng.gauss())
         .collect();
     let n = angles.len();
-    let measured = Measured {
-        angle: angles.clone(),
-        deviation: deviation.clone(),
-        lines: (2..n + 2).collect(),
-    };
-    let f = fit(&params(10.0, 500.0, 30.0), &measured).unwrap();
+    let f = fit(
+        &params(10.0, 500.0, 30.0),
+        &measured(angles.clone(), deviation.clone()),
+    )
+    .unwrap();
     // The truth within three standard deviations (the 95 % intervals' coverage is the
     // Monte-Carlo test's, in reversal_fit.rs).
-    let z = 1.959_963_984_540_054;
+    let z = Z95;
     for (e, truth) in [(f.fc, 12.0), (f.slope, 800.0), (f.kp, 28.0)] {
         let sd = (e.high / e.value).ln() / z;
         assert!(
@@ -739,19 +760,17 @@ fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
 #[test]
 fn a_fit_needs_four_parameters_and_thirty_degrees_of_freedom() {
     // n − 4 ≥ 30 (fit's docs): 33 points are refused for their number, 34 and 60 are not.
-    use fiveaxis::reversal::fit::{fit, Measured};
+    use fiveaxis::reversal::fit::fit;
     let c = case(json!({"step": 0.5}));
     for (n, refused) in [(33, true), (34, false), (60, false)] {
         let angle: Vec<f64> = (0..n)
             .map(|i| (170.0 + 20.0 * i as f64 / n as f64).to_radians())
             .collect();
         let deviation = trace_at(&c, &angle, 0.0);
-        let m = Measured {
-            angle,
-            deviation,
-            lines: (2..n + 2).collect(),
-        };
-        let said = fit(&c, &m).err().map(|e| e.to_string()).unwrap_or_default();
+        let said = fit(&c, &measured(angle, deviation))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
         assert_eq!(
             said.contains("too few points for the fit (at least 34)"),
             refused,
@@ -771,13 +790,8 @@ fn a_fit_needs_four_parameters_and_thirty_degrees_of_freedom() {
         .zip(&angle)
         .map(|(d, a)| if *a < TAU { *d } else { last } + 2e-4 * rng.gauss())
         .collect();
-    let m = Measured {
-        angle,
-        deviation,
-        lines: (2..742).collect(),
-    };
-    let f = fit(&c, &m).unwrap();
-    let sd = (f.fc.high / f.fc.value).ln() / 1.96;
+    let f = fit(&c, &measured(angle, deviation)).unwrap();
+    let sd = (f.fc.high / f.fc.value).ln() / Z95;
     assert!((f.fc.value / 10.0).ln().abs() < 3.0 * sd, "{:?}", f.fc);
 }
 
@@ -849,7 +863,7 @@ fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
 fn a_fit_whose_interval_spans_more_than_a_factor_ten_is_refused() {
     // A small dent (f_c = 2 N·m) under 1 µm of noise: a's 95 % interval spans 14 to 476 1/rad
     // (a factor 34), so the fit refuses to give a and says why.
-    use fiveaxis::reversal::fit::{fit, Measured};
+    use fiveaxis::reversal::fit::fit;
     let truth = case(json!({"step": 0.5, "c": {"friction": 2}}));
     let angle: Vec<f64> = (1..720).map(|i| (0.5 * i as f64).to_radians()).collect();
     let mut rng = common::Rng::new(7);
@@ -857,12 +871,7 @@ fn a_fit_whose_interval_spans_more_than_a_factor_ten_is_refused() {
         .iter()
         .map(|d| d + 1e-3 * rng.gauss())
         .collect();
-    let m = Measured {
-        angle,
-        deviation,
-        lines: (2..721).collect(),
-    };
-    let e = fit(&case(json!({"step": 0.5})), &m).unwrap_err();
+    let e = fit(&case(json!({"step": 0.5})), &measured(angle, deviation)).unwrap_err();
     assert_eq!(e.field, "csv");
     assert!(
         e.message
