@@ -24,19 +24,6 @@ fn machine(v: Value) -> Machine {
     Machine::from_value(&v, "machine").unwrap()
 }
 
-fn unit(rng: &mut Rng) -> Vector3<f64> {
-    loop {
-        let v = Vector3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        if v.norm() > 0.2 && v.norm() < 1.0 {
-            return v / v.norm();
-        }
-    }
-}
-
 #[test]
 fn the_tool_vector_is_r_k_r_m_e_h_for_every_kind_type_layout_and_sense() {
     let mut rng = Rng::new(7);
@@ -192,7 +179,7 @@ fn inverse_kinematics_within_the_travel_round_trips() {
             let chain = model.nominal();
             let mut previous: Option<Vec<f64>> = None;
             for i in 0..40 {
-                let dir = unit(&mut rng);
+                let dir = rng.direction();
                 let tip = Vector3::new(
                     rng.range(-80.0, 80.0),
                     rng.range(-80.0, 80.0),

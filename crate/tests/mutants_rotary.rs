@@ -13,22 +13,9 @@ use fiveaxis::rotary::{Pose, RotaryType};
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-fn random_unit(rng: &mut Rng) -> Vector3<f64> {
-    loop {
-        let v = Vector3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        if v.norm() > 0.1 && v.norm() < 1.0 {
-            return v.normalize();
-        }
-    }
-}
-
 /// Unit directions exactly perpendicular to K's axis (its component exactly 0).
 fn perpendicular_to_k(t: RotaryType, rng: &mut Rng) -> Vector3<f64> {
-    let mut v = random_unit(rng);
+    let mut v = rng.direction();
     v[t.k.axis().index()] = 0.0;
     v.normalize()
 }
@@ -41,7 +28,7 @@ fn every_solution_of_inverse_gives_the_direction_back() {
             let v = if i % 3 == 0 {
                 perpendicular_to_k(t, &mut rng)
             } else {
-                random_unit(&mut rng)
+                rng.direction()
             };
             // Any length: the direction is normalised.
             let inv = t.inverse(&(v * rng.range(0.01, 100.0)), None).unwrap();
@@ -65,7 +52,7 @@ fn without_a_previous_pose_the_smallest_tilt_is_chosen_then_the_smallest_k_then_
     let mut rng = Rng::new(78);
     for t in RotaryType::ALL {
         for _ in 0..600 {
-            let v = random_unit(&mut rng);
+            let v = rng.direction();
             let inv = t.inverse(&v, None).unwrap();
             let (a, b) = (inv.solutions[0], inv.solutions[1]);
             let key = |p: Pose| (p.m.abs(), p.k.abs());
@@ -103,7 +90,7 @@ fn with_a_previous_pose_the_nearest_solution_over_whole_turns_is_chosen() {
     let mut rng = Rng::new(79);
     for t in RotaryType::ALL {
         for _ in 0..600 {
-            let v = random_unit(&mut rng);
+            let v = rng.direction();
             let prev = Pose::new(rng.range(-9.0, 9.0), rng.range(-9.0, 9.0));
             let inv = t.inverse(&v, Some(prev)).unwrap();
             // Brute force: each solution plus whole turns in each angle, nearest by the sum of

@@ -55,6 +55,20 @@ impl Rng {
     pub fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.unit()
     }
+    /// A direction uniform on the sphere (a point of the cube kept inside the unit ball, away
+    /// from its centre, normalised).
+    pub fn direction(&mut self) -> nalgebra::Vector3<f64> {
+        loop {
+            let v = nalgebra::Vector3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            if v.norm() > 0.2 && v.norm() < 1.0 {
+                return v / v.norm();
+            }
+        }
+    }
 }
 
 pub fn deg(x: f64) -> f64 {
