@@ -10,7 +10,7 @@ use common::toolpath::tilted;
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::parse::Format;
+use fiveaxis::toolpath::read::Format;
 use fiveaxis::toolpath::{
     analyse, arc_distance, machine_of_type, refine, slerp, ToolpathCase, ToolpathReadInput,
 };
@@ -56,7 +56,7 @@ fn the_ranking_has_one_row_per_type_over_every_segment() {
         })
         .collect();
     let types = [RotaryType::ALL[0], RotaryType::ALL[5], RotaryType::ALL[11]];
-    let rows = case.compare(&axes, &types).unwrap();
+    let rows = case.compare(&fiveaxis::toolpath::Path::axes(&axes), &types).unwrap();
     assert_eq!(rows.len(), types.len());
     for r in &rows {
         assert!(types.contains(&r.rtype));

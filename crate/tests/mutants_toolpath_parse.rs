@@ -11,7 +11,8 @@ mod common;
 
 use common::toolpath::{at, caz_head, error};
 use fiveaxis::machine::Machine;
-use fiveaxis::toolpath::parse::{parse, write, Format, Parser, Point, MAX_LINE};
+use fiveaxis::toolpath::read::{Motion, ReadOptions, parse, Format, Parser, Point, MAX_LINE};
+use fiveaxis::toolpath::write::write;
 use nalgebra::Vector3;
 
 /// The tips of the points of `text`.
@@ -61,7 +62,7 @@ fn a_line_of_exactly_max_line_bytes_is_read() {
     assert_eq!(tips(&whole, Format::Csv, None).len(), 1);
 
     // Carried: the whole long line without its end, then the end and a point.
-    let mut p = Parser::new(Format::Csv, None).unwrap();
+    let mut p = Parser::new(Format::Csv, None, ReadOptions::default()).unwrap();
     let mut out = Vec::new();
     p.feed(&comment(MAX_LINE), &mut out).unwrap();
     p.feed("\n1,2,3,0,0,1\n", &mut out).unwrap();
@@ -76,7 +77,7 @@ fn a_line_of_exactly_max_line_bytes_is_read() {
         None,
     );
     assert!(m.starts_with(too_long), "{m}");
-    let mut p = Parser::new(Format::Csv, None).unwrap();
+    let mut p = Parser::new(Format::Csv, None, ReadOptions::default()).unwrap();
     p.feed(&comment(MAX_LINE), &mut out).unwrap();
     let e = p.feed("x", &mut out).unwrap_err();
     assert!(e.message.starts_with(too_long), "{}", e.message);
@@ -109,13 +110,14 @@ fn a_continued_apt_statement_of_exactly_max_line_bytes_is_read() {
 #[test]
 fn the_points_of_the_file_are_counted_not_the_callers_vector() {
     let earlier = Point {
+        motion: Motion::Feed,
         tip: Vector3::zeros(),
         axis: Vector3::z(),
         line: 0,
         angles: None,
     };
     let mut out = vec![earlier; 3];
-    let mut p = Parser::new(Format::Csv, None).unwrap();
+    let mut p = Parser::new(Format::Csv, None, ReadOptions::default()).unwrap();
     p.feed("# nothing but a comment\n", &mut out).unwrap();
     let e = p.finish(&mut out).unwrap_err();
     assert!(
@@ -124,7 +126,7 @@ fn the_points_of_the_file_are_counted_not_the_callers_vector() {
         e.message
     );
 
-    let mut p = Parser::new(Format::Csv, None).unwrap();
+    let mut p = Parser::new(Format::Csv, None, ReadOptions::default()).unwrap();
     p.feed("1,2,3,0,0,1\n", &mut out).unwrap();
     assert_eq!(out.len(), 4);
     out.clear();
@@ -213,28 +215,17 @@ fn a_wrong_count_of_apt_numbers_is_reported_where_it_goes_wrong() {
 // ---------------------------------------------------------------------------------------------
 // NC words
 
-/// The word rules of the module docs: `X 12.5`, `X=12.5` and `X = 12.5` are one word; a leading
-/// `/` is block delete, a `/` after a word is no word; a run of two letters is a keyword, skipped
-/// with the digits and `_` that follow it.
+/// The word rules of the ISO reader's docs: `X 12.5`, `X=12.5` and `X = 12.5` are one word; a
+/// leading `/` is block delete, a `/` after a word is no word; a run of two letters is a keyword
+/// of another dialect, refused with its column.
 #[test]
 fn nc_words_keywords_and_slashes() {
     let m = caz_head();
-    let t = tips(
-        "X 1.5 Y= 2 Z = 3\n/N20 X4\nDL1 X5\nCYCLE800 X6\nTRAORI_1 X7\nG1 X8 TRAFOOF\n",
-        Format::Nc,
-        Some(&m),
-    );
-    assert_eq!(
-        t,
-        [
-            Vector3::new(1.5, 2.0, 3.0),
-            Vector3::new(4.0, 2.0, 3.0),
-            Vector3::new(5.0, 2.0, 3.0),
-            Vector3::new(6.0, 2.0, 3.0),
-            Vector3::new(7.0, 2.0, 3.0),
-            Vector3::new(8.0, 2.0, 3.0),
-        ]
-    );
+    let t = tips("X 1.5 Y= 2 Z = 3\n/N20 X4\n", Format::Nc, Some(&m));
+    assert_eq!(t, [Vector3::new(1.5, 2.0, 3.0), Vector3::new(4.0, 2.0, 3.0)]);
+    for (text, column) in [("X0 Y0 Z0\nDL1 X5\n", 1), ("X0 Y0 Z0\nG1 X8 TRAFOOF\n", 7)] {
+        at(&error(text, Format::Nc, Some(&m)), 2, column, "is not ISO G-code");
+    }
     at(
         &error("G1 X1 / Y2\n", Format::Nc, Some(&m)),
         1,
@@ -260,10 +251,10 @@ fn nc_words_keywords_and_slashes() {
 #[test]
 fn nc_positions_at_their_limits() {
     let m = caz_head();
-    let p = parse("G1 X100000 Y-100000 C3600 A-3600\n", Format::Nc, Some(&m)).unwrap();
+    let p = parse("G1 X100000 Y-100000 Z0 C3600 A-3600\n", Format::Nc, Some(&m)).unwrap();
     assert_eq!(p[0].tip, Vector3::new(1e5, -1e5, 0.0));
     assert_eq!(p[0].angles, Some([3600.0, -3600.0]));
-    let p = parse("G20 X3937.0078\n", Format::Nc, Some(&m)).unwrap();
+    let p = parse("G20 X3937.0078 Y0 Z0\n", Format::Nc, Some(&m)).unwrap();
     assert!((p[0].tip.x - 3937.0078 * 25.4).abs() < 1e-9);
     at(
         &error("G20 X3937.0079\n", Format::Nc, Some(&m)),
@@ -272,8 +263,9 @@ fn nc_positions_at_their_limits() {
         "expected X within ±100000 mm",
     );
     // Incremental: the position reached, exactly at the limit.
-    let p = parse("G91 C3000\nC600\n", Format::Nc, Some(&m)).unwrap();
-    assert_eq!(p[1].angles, Some([3600.0, 0.0]));
+    let p = parse("X0 Y0 Z0\nG91 C3000\nC600\n", Format::Nc, Some(&m)).unwrap();
+    assert_eq!(p[1].angles, Some([3000.0, 0.0]));
+    assert_eq!(p[2].angles, Some([3600.0, 0.0]));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -284,6 +276,7 @@ fn nc_positions_at_their_limits() {
 #[test]
 fn apt_lines_are_continued_only_past_72_characters() {
     let point = |axis: [f64; 3]| Point {
+        motion: Motion::Feed,
         tip: Vector3::new(-99999.123456, -99999.123456, -99999.123456),
         axis: Vector3::from(axis),
         line: 0,

@@ -334,9 +334,9 @@ fn inputs_that_cannot_be_analysed_are_refused_with_their_path() {
 }
 
 /// The tool axes of a sample file of `public/samples/` (written by `scripts/samples.mjs`).
-fn sample(name: &str, format: fiveaxis::toolpath::parse::Format) -> Vec<Vector3<f64>> {
+fn sample(name: &str, format: fiveaxis::toolpath::read::Format) -> Vec<Vector3<f64>> {
     let text = std::fs::read_to_string(format!("../public/samples/{name}")).unwrap();
-    fiveaxis::toolpath::parse::parse(&text, format, None)
+    fiveaxis::toolpath::read::parse(&text, format, None)
         .unwrap()
         .iter()
         .map(|p| p.axis)
@@ -353,7 +353,7 @@ fn the_dome_sample_flips_exactly_the_types_whose_k_axis_is_vertical() {
     // cannot start.
     let axes = sample(
         "dome-past-the-pole.csv",
-        fiveaxis::toolpath::parse::Format::Csv,
+        fiveaxis::toolpath::read::Format::Csv,
     );
     assert_eq!(axes.len(), 81);
     let rows = compare(&machine(json!({})), &axes, 150.0, 0.01).unwrap();
@@ -388,7 +388,7 @@ fn the_impeller_sample_turns_c_round_and_tilts_a_and_b_less() {
     // about Z follows the azimuth (at least 300° of C in all), while K about X or Y only rocks:
     // its total travel stays below C's. Every type that follows the whole path keeps its worst
     // segment within a few times the tolerance (0.5° of blade per point) unless it flips.
-    let axes = sample("impeller-swarf.apt", fiveaxis::toolpath::parse::Format::Apt);
+    let axes = sample("impeller-swarf.apt", fiveaxis::toolpath::read::Format::Apt);
     assert_eq!(axes.len(), 751);
     let rows = compare(&machine(json!({})), &axes, 150.0, 0.01).unwrap();
     let row = |n: &str| rows.iter().find(|r| r.rtype.name() == n).unwrap();

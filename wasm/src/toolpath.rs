@@ -1,14 +1,21 @@
-//! Exports of the toolpath study (see `fiveaxis::toolpath`): the customer's path on the machine
-//! and on the twelve rotary-axis types, and the path refined to a tolerance. A path crosses as a
+//! Exports of the toolpath study (see `fiveaxis::toolpath`): reading the customer's file
+//! (`ToolpathReader`, `toolpathParse`), the path on the machine and on the twelve rotary-axis
+//! types, and the path refined to a tolerance.
+//!
+//! A path crosses as a `ToolpathPath`: `{points, motions?, angles?, readFor?}` with `points` a
 //! `Float64Array` of `[x, y, z, i, j, k]` per point (tip mm, tool axis any length, workpiece
-//! coordinates), the case (machine, `L`, tolerance) as a plain object.
+//! coordinates), `motions` the motion code of each point (0 rapid, 1 feed, 2 arc; all feed when
+//! left out), and for NC blocks `angles` (`[K, M]` degrees per point) with `readFor`, the type of
+//! the machine they command. A bare `Float64Array` of points is a path of feed moves. The
+//! reader's `ParsedToolpath.path` is one.
 
 use crate::{degrees, f64_array, js_error, json, output, Series};
 use fiveaxis::rotary::{Group, RotaryType};
-use fiveaxis::toolpath::parse::{write, Format, Parser, Point};
-use fiveaxis::toolpath::{Summary, ToolpathCase, ToolpathReadInput, Unreachable};
+use fiveaxis::toolpath::read::{Format, Motion, Parser, Point, Report};
+use fiveaxis::toolpath::write::write;
+use fiveaxis::toolpath::{Commands, Path, Rapids, Summary, ToolpathCase, ToolpathReadInput, Unreachable};
 use fiveaxis::Error;
-use js_sys::Float64Array;
+use js_sys::{Float64Array, Object, Reflect};
 use nalgebra::Vector3;
 use serde::Serialize;
 use tsify::Tsify;
@@ -18,49 +25,117 @@ use wasm_bindgen::JsCast;
 /// Largest accepted coordinate of a point, mm.
 const MAX_COORDINATE: f64 = 1e5;
 
-/// Tool tips and tool axes of a path, mm and any length.
-type TipsAndAxes = (Vec<Vector3<f64>>, Vec<Vector3<f64>>);
+/// A path read from JavaScript: tips, axes, motions, and the program's commands.
+pub(crate) struct PathInput {
+    pub tips: Vec<Vector3<f64>>,
+    pub axes: Vec<Vector3<f64>>,
+    pub motions: Option<Vec<Motion>>,
+    pub commands: Option<(Vec<[f64; 2]>, RotaryType)>,
+}
 
-/// Tool tips and axes of a `Float64Array` of 6 numbers per point, each checked (`points[i]`).
-pub(crate) fn points(value: &JsValue) -> Result<TipsAndAxes, JsError> {
-    let bad = |msg: String| js_error(Error::field("points", msg));
-    let a = value
+impl PathInput {
+    /// The engine's view of it.
+    pub fn path(&self) -> Path<'_> {
+        Path {
+            axes: &self.axes,
+            motions: self.motions.as_deref(),
+            commands: self.commands.as_ref().map(|(a, t)| Commands { angles: a, rtype: *t }),
+        }
+    }
+}
+
+/// The numbers of a `Float64Array` (or a plain array of numbers) at `field`.
+fn numbers(value: &JsValue, field: &str, what: &str) -> Result<Vec<f64>, JsError> {
+    if let Some(a) = value.dyn_ref::<Float64Array>() {
+        return Ok(a.to_vec());
+    }
+    let v = json(value)?;
+    v.as_array()
+        .and_then(|a| a.iter().map(serde_json::Value::as_f64).collect::<Option<Vec<f64>>>())
+        .ok_or_else(|| js_error(Error::field(field, format!("expected {what}"))))
+}
+
+/// A path (module docs), each number checked (`points[i]`).
+pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
+    let bad = |field: &str, msg: String| js_error(Error::field(field, msg));
+    let (pts, motions, angles, read_for) = if value.is_instance_of::<Float64Array>() {
+        (value.clone(), JsValue::UNDEFINED, JsValue::UNDEFINED, JsValue::UNDEFINED)
+    } else if value.is_object() && !value.is_function() {
+        let obj: &Object = value.unchecked_ref();
+        for key in Object::keys(obj).iter() {
+            let k = key.as_string().unwrap_or_default();
+            if !matches!(k.as_str(), "points" | "motions" | "angles" | "readFor") {
+                return Err(bad(&format!("path.{k}"), "unknown key; a path has points, motions, angles and readFor".into()));
+            }
+        }
+        let get = |k: &str| Reflect::get(obj, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
+        (get("points"), get("motions"), get("angles"), get("readFor"))
+    } else {
+        return Err(bad("points", "expected a Float64Array of [x, y, z, i, j, k] per point, or a path {points, motions, angles, readFor}".into()));
+    };
+    let a = pts
         .dyn_ref::<Float64Array>()
-        .ok_or_else(|| bad("expected a Float64Array of [x, y, z, i, j, k] per point".into()))?
+        .ok_or_else(|| bad("points", "expected a Float64Array of [x, y, z, i, j, k] per point".into()))?
         .to_vec();
     if a.len() % 6 != 0 {
-        return Err(bad(format!(
-            "length must be a multiple of 6 ([x, y, z, i, j, k] per point), got {}",
-            a.len()
-        )));
+        return Err(bad("points", format!("length must be a multiple of 6 ([x, y, z, i, j, k] per point), got {}", a.len())));
     }
-    let mut tips = Vec::with_capacity(a.len() / 6);
-    let mut axes = Vec::with_capacity(a.len() / 6);
-    for (n, p) in a.chunks_exact(6).enumerate() {
+    let n = a.len() / 6;
+    let mut tips = Vec::with_capacity(n);
+    let mut axes = Vec::with_capacity(n);
+    for (i, p) in a.chunks_exact(6).enumerate() {
         for (j, v) in p.iter().enumerate() {
             if v.is_finite() && v.abs() <= MAX_COORDINATE {
                 continue; // the message (and its formatted path) only for a bad value
             }
-            fiveaxis::error::check_range(
-                &format!("points[{n}][{j}]"),
-                *v,
-                -MAX_COORDINATE,
-                MAX_COORDINATE,
-                "mm",
-            )
-            .map_err(js_error)?;
+            fiveaxis::error::check_range(&format!("points[{i}][{j}]"), *v, -MAX_COORDINATE, MAX_COORDINATE, "mm").map_err(js_error)?;
         }
         let axis = Vector3::new(p[3], p[4], p[5]);
         if axis.norm() < 1e-12 {
-            return Err(js_error(Error::field(
-                format!("points[{n}]"),
-                "the tool axis (i, j, k) must not be zero",
-            )));
+            return Err(bad(&format!("points[{i}]"), "the tool axis (i, j, k) must not be zero".into()));
         }
         tips.push(Vector3::new(p[0], p[1], p[2]));
         axes.push(axis);
     }
-    Ok((tips, axes))
+    let motions = if motions.is_undefined() || motions.is_null() {
+        None
+    } else {
+        let codes = if let Some(u) = motions.dyn_ref::<js_sys::Uint8Array>() {
+            u.to_vec().into_iter().map(f64::from).collect()
+        } else {
+            numbers(&motions, "motions", "a motion code per point (0 rapid, 1 feed, 2 arc)")?
+        };
+        if codes.len() != n {
+            return Err(bad("motions", format!("expected one motion per point ({n}), got {}", codes.len())));
+        }
+        Some(
+            codes
+                .iter()
+                .enumerate()
+                .map(|(i, c)| Motion::from_code(*c).ok_or_else(|| bad(&format!("motions[{i}]"), format!("expected 0 (rapid), 1 (feed) or 2 (arc), got {c}"))))
+                .collect::<Result<Vec<_>, _>>()?,
+        )
+    };
+    let commands = if angles.is_undefined() || angles.is_null() {
+        if !(read_for.is_undefined() || read_for.is_null()) {
+            return Err(bad("readFor", "readFor names the machine the angles were written for; give angles too".into()));
+        }
+        None
+    } else {
+        let v = numbers(&angles, "angles", "[K, M] degrees per point")?;
+        if v.len() != 2 * n {
+            return Err(bad("angles", format!("expected {} numbers ([K, M] per point), got {}", 2 * n, v.len())));
+        }
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            return Err(bad(&format!("angles[{}]", i / 2), "must be finite".into()));
+        }
+        let name = read_for
+            .as_string()
+            .ok_or_else(|| bad("readFor", "expected the type of the machine the angles command, such as \"CAZ\"".into()))?;
+        let t = RotaryType::parse(&name).map_err(|e| bad("readFor", e.message))?;
+        Some((v.chunks_exact(2).map(|c| [c[0], c[1]]).collect(), t))
+    };
+    Ok(PathInput { tips, axes, motions, commands })
 }
 
 fn case(value: &JsValue) -> Result<ToolpathCase, JsError> {
@@ -77,7 +152,38 @@ pub struct ToolpathUnreachable {
     pub message: String,
 }
 
-/// One machine on the path: a row of the ranking (mm, degrees).
+/// The rapid moves of a path on one machine, apart from the cutting ones (mm, degrees).
+#[derive(Serialize, Tsify)]
+#[serde(rename_all = "camelCase")]
+pub struct ToolpathRapids {
+    /// Rapid segments.
+    pub count: usize,
+    /// Rapids that turn a rotary axis.
+    pub swings: usize,
+    /// Largest excursion of the tool tip from the straight line in a rapid, mm.
+    pub max: f64,
+    /// Index of that segment.
+    pub max_segment: usize,
+    /// Largest turn of K in one rapid, degrees.
+    pub k_swing: f64,
+    /// Largest turn of M in one rapid, degrees.
+    pub m_swing: f64,
+}
+
+impl From<Rapids> for ToolpathRapids {
+    fn from(r: Rapids) -> Self {
+        Self {
+            count: r.count,
+            swings: r.swings,
+            max: r.max,
+            max_segment: r.max_segment,
+            k_swing: r.k_swing.to_degrees(),
+            m_swing: r.m_swing.to_degrees(),
+        }
+    }
+}
+
+/// One machine on the path: a row of the ranking (mm, degrees), on its cutting segments.
 #[derive(Serialize, Tsify)]
 #[tsify(missing_as_null)]
 #[serde(rename_all = "camelCase")]
@@ -87,9 +193,9 @@ pub struct ToolpathSummary {
     pub rtype: String,
     /// Its group.
     pub group: Group,
-    /// Segments analysed.
+    /// Cutting segments analysed.
     pub segments: usize,
-    /// Largest δ, mm.
+    /// Largest δ of a cutting segment, mm.
     pub max: f64,
     /// Index of the segment with the largest δ.
     pub max_segment: usize,
@@ -97,18 +203,22 @@ pub struct ToolpathSummary {
     pub mean: f64,
     /// 95th percentile of δ, mm.
     pub p95: f64,
-    /// Segments above the tolerance.
+    /// Cutting segments above the tolerance.
     pub above: usize,
-    /// Flips.
+    /// Flips while cutting.
     pub flips: usize,
-    /// Segments passing by the pole.
+    /// Cutting segments passing by the pole.
     pub poles: usize,
-    /// Total travel of K, degrees.
+    /// Total travel of K, degrees (rapids included).
     pub k_travel: f64,
     /// Total travel of M, degrees.
     pub m_travel: f64,
     /// The first point out of reach, when one is.
     pub unreachable: Option<ToolpathUnreachable>,
+    /// The rapids, apart.
+    pub rapids: ToolpathRapids,
+    /// The row follows the program's own commands.
+    pub commanded: bool,
 }
 
 impl From<Summary> for ToolpathSummary {
@@ -129,6 +239,8 @@ impl From<Summary> for ToolpathSummary {
             unreachable: s
                 .unreachable
                 .map(|Unreachable { point, message }| ToolpathUnreachable { point, message }),
+            rapids: s.rapids.into(),
+            commanded: s.commanded,
         }
     }
 }
@@ -142,36 +254,36 @@ pub struct ToolpathAnalysis {
     pub length: f64,
     /// Tolerance, mm.
     pub tolerance: f64,
-    /// Totals.
+    /// Totals of the cutting segments, and the rapids apart.
     pub summary: ToolpathSummary,
     /// K command at each point reached, degrees.
     pub k: Series,
     /// M command, degrees.
     pub m: Series,
-    /// δ of each segment, mm.
+    /// δ of each segment (rapids included), mm.
     pub delta: Series,
     /// Where along each segment δ is largest, u ∈ [0, 1].
     pub u: Series,
-    /// Indices of the segments that flip.
+    /// Indices of the cutting segments that flip.
     pub flips: Vec<usize>,
-    /// Indices of the segments passing by the pole.
+    /// Indices of the cutting segments passing by the pole.
     pub poles: Vec<usize>,
+    /// Indices of the rapid segments (segment i ends at point i + 1).
+    pub rapids: Vec<usize>,
 }
 
 /// The path on the machine: its commands, each segment's nonlinear error and where, flips and
-/// pole passages, and the totals.
+/// pole passages, the rapids apart, and the totals of the cutting segments.
 #[wasm_bindgen(js_name = toolpathAnalyse, unchecked_return_type = "ToolpathAnalysis")]
 pub fn toolpath_analyse(
     #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolpathPath | Float64Array")] path: JsValue,
 ) -> Result<JsValue, JsError> {
     let c = case(&value)?;
-    let (_, axes) = points(&path)?;
-    let a = c.analyse(&axes).map_err(js_error)?;
+    let p = points(&path)?;
+    let a = c.analyse(&p.path()).map_err(js_error)?;
     let pick = |f: fn(&fiveaxis::toolpath::Segment) -> bool| -> Vec<usize> {
-        (0..a.segments.len())
-            .filter(|&i| f(&a.segments[i]))
-            .collect()
+        (0..a.segments.len()).filter(|&i| f(&a.segments[i])).collect()
     };
     output(&ToolpathAnalysis {
         length: c.length().map_err(js_error)?,
@@ -180,54 +292,40 @@ pub fn toolpath_analyse(
         m: degrees(&a.following.m),
         delta: f64_array(&a.segments.iter().map(|s| s.delta).collect::<Vec<_>>()),
         u: f64_array(&a.segments.iter().map(|s| s.u).collect::<Vec<_>>()),
-        flips: pick(|s| s.flip),
-        poles: pick(|s| s.pole),
+        flips: pick(|s| s.flip && !s.rapid),
+        poles: pick(|s| s.pole && !s.rapid),
+        rapids: pick(|s| s.rapid),
         summary: a.summary.into(),
     })
 }
 
 /// The path on each of the twelve rotary-axis types (the machine's kind, geometry, senses and
 /// travel), or on `types` (names such as `"CAZ"`) when given, ranked: those that follow the whole
-/// path first, by largest δ.
+/// path first, by largest δ of the cutting segments.
 #[wasm_bindgen(js_name = toolpathCompare, unchecked_return_type = "ToolpathSummary[]")]
 pub fn toolpath_compare(
     #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolpathPath | Float64Array")] path: JsValue,
     #[wasm_bindgen(unchecked_param_type = "RotaryType[] | undefined")] types: JsValue,
 ) -> Result<JsValue, JsError> {
     let c = case(&value)?;
-    let (_, axes) = points(&path)?;
+    let p = points(&path)?;
     let types = if types.is_undefined() || types.is_null() {
         RotaryType::ALL.to_vec()
     } else {
         let list = json(&types)?;
-        let names = list.as_array().ok_or_else(|| {
-            js_error(Error::field(
-                "types",
-                "expected a list of type names such as [\"CAZ\"]",
-            ))
-        })?;
+        let names = list.as_array().ok_or_else(|| js_error(Error::field("types", "expected a list of type names such as [\"CAZ\"]")))?;
         names
             .iter()
             .enumerate()
             .map(|(i, n)| {
-                let name = n.as_str().ok_or_else(|| {
-                    Error::field(
-                        format!("types[{i}]"),
-                        "expected a type name such as \"CAZ\"",
-                    )
-                })?;
+                let name = n.as_str().ok_or_else(|| Error::field(format!("types[{i}]"), "expected a type name such as \"CAZ\""))?;
                 RotaryType::parse(name).map_err(|e| Error::field(format!("types[{i}]"), e.message))
             })
             .collect::<Result<Vec<_>, Error>>()
             .map_err(js_error)?
     };
-    let rows: Vec<ToolpathSummary> = c
-        .compare(&axes, &types)
-        .map_err(js_error)?
-        .into_iter()
-        .map(Into::into)
-        .collect();
+    let rows: Vec<ToolpathSummary> = c.compare(&p.path(), &types).map_err(js_error)?.into_iter().map(Into::into).collect();
     output(&rows)
 }
 
@@ -238,6 +336,8 @@ pub fn toolpath_compare(
 pub struct ToolpathRefined {
     /// `[x, y, z, i, j, k]` per point (unit axes), the inserted points among the original ones.
     pub points: Series,
+    /// The motion code of each point (0 rapid, 1 feed, 2 arc).
+    pub motions: Series,
     /// K command at each point, degrees.
     pub k: Series,
     /// M command, degrees.
@@ -246,36 +346,28 @@ pub struct ToolpathRefined {
     pub source: Series,
     /// Points inserted.
     pub added: usize,
-    /// Largest δ of the refined path, mm.
+    /// Largest δ of the refined path's cutting segments, mm.
     pub max: f64,
     /// Segments (index of their first original point) that no number of points keeps within the
     /// tolerance (a swing round at the end of the travel), left as they were.
     pub unfixed: Vec<usize>,
 }
 
-/// The path with the fewest equally spaced points inserted into each segment above the
-/// tolerance, so that every piece stays within it on the machine.
+/// The path with the fewest equally spaced points inserted into each cutting segment above the
+/// tolerance, so that every piece stays within it on the machine; rapids are left as they are.
 #[wasm_bindgen(js_name = toolpathRefine, unchecked_return_type = "ToolpathRefined")]
 pub fn toolpath_refine(
     #[wasm_bindgen(unchecked_param_type = "ToolpathCase")] value: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolpathPath | Float64Array")] path: JsValue,
 ) -> Result<JsValue, JsError> {
     let c = case(&value)?;
-    let (tips, axes) = points(&path)?;
-    let r = c.refine(&tips, &axes).map_err(js_error)?;
-    let flat: Vec<f64> = r
-        .tips
-        .iter()
-        .zip(&r.axes)
-        .flat_map(|(t, a)| [t.x, t.y, t.z, a.x, a.y, a.z])
-        .collect();
-    let source: Vec<f64> = r
-        .source
-        .iter()
-        .map(|s| s.map_or(-1.0, |i| i as f64))
-        .collect();
+    let p = points(&path)?;
+    let r = c.refine(&p.tips, &p.path()).map_err(js_error)?;
+    let flat: Vec<f64> = r.tips.iter().zip(&r.axes).flat_map(|(t, a)| [t.x, t.y, t.z, a.x, a.y, a.z]).collect();
+    let source: Vec<f64> = r.source.iter().map(|s| s.map_or(-1.0, |i| i as f64)).collect();
     output(&ToolpathRefined {
         points: f64_array(&flat),
+        motions: f64_array(&r.motions.iter().map(|m| f64::from(m.code())).collect::<Vec<_>>()),
         k: degrees(&r.k),
         m: degrees(&r.m),
         source: f64_array(&source),
@@ -285,29 +377,46 @@ pub fn toolpath_refine(
     })
 }
 
+/// A path as the analyses take it (module docs).
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null)]
+#[serde(rename_all = "camelCase")]
+pub struct ToolpathPath {
+    /// `[x, y, z, i, j, k]` per point: tip mm, unit tool axis, workpiece coordinates.
+    pub points: Series,
+    /// The motion code of each point: 0 rapid, 1 feed, 2 arc (a chord of an arc).
+    pub motions: Series,
+    /// NC blocks: the commands `[K, M]` of each point, degrees; null for CL data, or where a
+    /// tilted working plane gives the tool axis.
+    pub angles: Option<Series>,
+    /// NC blocks: the type of the machine the angles command (null with no angles).
+    pub read_for: Option<String>,
+}
+
 /// A toolpath read from a file.
 #[derive(Serialize, Tsify)]
 #[tsify(missing_as_null)]
 #[serde(rename_all = "camelCase")]
 pub struct ParsedToolpath {
-    /// The format read: `"csv"`, `"apt"` or `"nc"`.
+    /// The format read: `"csv"`, `"apt"`, `"nc"`, `"siemens"` or `"heidenhain"`.
     pub format: String,
     /// Points read.
     pub count: usize,
-    /// `[x, y, z, i, j, k]` per point: tip mm, unit tool axis, workpiece coordinates.
-    pub points: Series,
+    /// The path, for the analyses.
+    pub path: ToolpathPath,
     /// The file's line of each point (1-based).
     pub lines: Series,
-    /// NC blocks: the commands `[K, M]` of each point, degrees; null for CL data.
-    pub angles: Option<Series>,
     /// Lines read.
     pub lines_read: u32,
+    /// What the reader found: dialect, unit and why, frames, tool-centre-point control, what it
+    /// skipped.
+    pub report: Report,
 }
 
 /// Reads a toolpath file piece by piece, so that a large file never needs to be one string:
-/// `new ToolpathReader({format, machine})`, then `feed(text)` for each piece (pieces may split
-/// lines anywhere; returns the lines read so far), then `finish()`. A bad line throws an Error
-/// `"toolpath: line 12, column 7: …"`.
+/// `new ToolpathReader({format, machine, unit, aptFrame, chordTolerance})`, then `feed(text)`
+/// for each piece (pieces may split lines anywhere; returns the lines read so far), then
+/// `finish()`. A bad line throws an Error `"toolpath: line 12, column 7: …"`.
 #[wasm_bindgen]
 pub struct ToolpathReader {
     options: ToolpathReadInput,
@@ -324,11 +433,7 @@ impl ToolpathReader {
         #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
     ) -> Result<ToolpathReader, JsError> {
         let options = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
-        Ok(Self {
-            options,
-            parser: None,
-            points: Vec::new(),
-        })
+        Ok(Self { options, parser: None, points: Vec::new() })
     }
 
     /// Reads the next piece of the file; returns the lines read so far. (The piece is taken as a
@@ -337,13 +442,11 @@ impl ToolpathReader {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     ) -> Result<u32, JsError> {
-        let text = text
-            .as_string()
-            .ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
+        let text = text.as_string().ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
         self.feed_str(&text)
     }
 
-    /// Ends the file: the points read.
+    /// Ends the file: the points read and the report.
     #[wasm_bindgen(unchecked_return_type = "ParsedToolpath")]
     pub fn finish(&mut self) -> Result<JsValue, JsError> {
         self.finish_points()
@@ -355,13 +458,8 @@ impl ToolpathReader {
         let parser = match &mut self.parser {
             Some(p) => p,
             None => {
-                let format = self
-                    .options
-                    .format
-                    .format()
-                    .unwrap_or_else(|| Format::detect(text));
-                self.parser
-                    .insert(Parser::new(format, Some(&self.options.machine)).map_err(js_error)?)
+                let format = self.options.format.format().unwrap_or_else(|| Format::detect(text));
+                self.parser.insert(Parser::new(format, Some(&self.options.machine), self.options.options()).map_err(js_error)?)
             }
         };
         parser.feed(text, &mut self.points).map_err(js_error)?;
@@ -372,29 +470,31 @@ impl ToolpathReader {
         if self.parser.is_none() {
             self.feed_str("")?;
         }
-        let parser = self
-            .parser
-            .as_mut()
-            .ok_or_else(|| js_error("toolpath: no parser"))?;
-        parser.finish(&mut self.points).map_err(js_error)?;
+        let parser = self.parser.as_mut().ok_or_else(|| js_error("toolpath: no parser"))?;
+        let report = parser.finish(&mut self.points).map_err(js_error)?;
         let p = std::mem::take(&mut self.points);
-        let flat: Vec<f64> = p
-            .iter()
-            .flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z])
-            .collect();
+        let flat: Vec<f64> = p.iter().flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z]).collect();
+        let format = parser.format();
+        // The commands: only when every point has them (a tilted plane gives axes without).
         let angles: Option<Vec<f64>> = p
             .iter()
             .map(|q| q.angles)
             .collect::<Option<Vec<_>>>()
-            .filter(|_| parser.format() == Format::Nc)
+            .filter(|_| format.is_nc())
             .map(|a| a.into_iter().flatten().collect());
+        let read_for = angles.as_ref().map(|_| self.options.machine.rotary_type.name());
         output(&ParsedToolpath {
-            format: parser.format().name().to_string(),
+            format: format.name().to_string(),
             count: p.len(),
-            points: f64_array(&flat),
+            path: ToolpathPath {
+                points: f64_array(&flat),
+                motions: f64_array(&p.iter().map(|q| f64::from(q.motion.code())).collect::<Vec<_>>()),
+                angles: angles.map(|a| f64_array(&a)),
+                read_for,
+            },
             lines: f64_array(&p.iter().map(|q| f64::from(q.line)).collect::<Vec<_>>()),
-            angles: angles.map(|a| f64_array(&a)),
             lines_read: parser.lines(),
+            report,
         })
     }
 }
@@ -405,69 +505,33 @@ pub fn toolpath_parse(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text = text
-        .as_string()
-        .ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
+    let text = text.as_string().ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
     let mut r = ToolpathReader::new(options)?;
     r.feed_str(&text)?;
     r.finish_points()
 }
 
-/// Writes points (`[x, y, z, i, j, k]` each) in a format: CSV, APT, or NC blocks for the
-/// machine, for which `angles` (`[K, M]` degrees per point, e.g. a refined path's) are needed.
+/// Writes a path in a format: CSV, APT, or ISO NC blocks for the machine, for which the path's
+/// `angles` (`[K, M]` degrees per point, e.g. a refined path's) are needed; rapids are written
+/// as rapids (`RAPID`, `G0`).
 #[wasm_bindgen(js_name = toolpathWrite)]
 pub fn toolpath_write(
     #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array")] path: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "Float64Array | undefined")] angles: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolpathPath | Float64Array")] path: JsValue,
 ) -> Result<String, JsError> {
     let o = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
-    let format = o.format.format().ok_or_else(|| {
-        js_error(Error::field(
-            "format",
-            "say which format to write: csv, apt or nc",
-        ))
-    })?;
-    let (tips, axes) = points(&path)?;
-    let angles: Option<Vec<f64>> = if angles.is_undefined() || angles.is_null() {
-        None
-    } else {
-        Some(
-            angles
-                .dyn_ref::<Float64Array>()
-                .ok_or_else(|| {
-                    js_error(Error::field(
-                        "angles",
-                        "expected a Float64Array of [K, M] per point",
-                    ))
-                })?
-                .to_vec(),
-        )
-    };
-    if let Some(a) = &angles {
-        if a.len() != 2 * tips.len() {
-            return Err(js_error(Error::field(
-                "angles",
-                format!(
-                    "expected {} numbers ([K, M] per point), got {}",
-                    2 * tips.len(),
-                    a.len()
-                ),
-            )));
-        }
+    let format = o.format.format().ok_or_else(|| js_error(Error::field("format", "say which format to write: csv, apt or nc")))?;
+    let p = points(&path)?;
+    if format.is_nc() && p.commands.is_none() {
+        return Err(js_error(Error::field("angles", "NC blocks need the machine's commands [K, M] of each point")));
     }
-    if format == Format::Nc && angles.is_none() {
-        return Err(js_error(Error::field(
-            "angles",
-            "NC blocks need the machine's commands [K, M] of each point",
-        )));
-    }
-    let pts: Vec<Point> = (0..tips.len())
+    let pts: Vec<Point> = (0..p.tips.len())
         .map(|i| Point {
-            tip: tips[i],
-            axis: axes[i].normalize(),
+            tip: p.tips[i],
+            axis: p.axes[i].normalize(),
             line: 0,
-            angles: angles.as_ref().map(|a| [a[2 * i], a[2 * i + 1]]),
+            motion: p.motions.as_ref().map_or(Motion::Feed, |m| m[i]),
+            angles: p.commands.as_ref().map(|(a, _)| a[i]),
         })
         .collect();
     let letters = o.machine.build().map_err(js_error)?.letters();

@@ -207,6 +207,22 @@ crate::inputs! {
             default: DefaultValue::Num(360.0),
             group: "Rotary axes",
         },
+        /// K turns without a travel limit (a rotary table).
+        pub k_continuous: bool = "kContinuous" optional {
+            label: "{K} turns without limit (continuous)",
+            help: "Tick for a rotary table that turns endlessly: the control then takes whole turns as the program says, and the travel limits of K above are not used.",
+            kind: Kind::Flag,
+            default: DefaultValue::Flag(false),
+            group: "Rotary axes",
+        },
+        /// K moves the shorter way round to a commanded angle (rollover).
+        pub k_rollover: bool = "kRollover" optional {
+            label: "{K} takes the shorter way round (rollover)",
+            help: "Tick when the control moves K the shorter way to a commanded angle (rotary rollover on Haas and Fanuc, M126 on Heidenhain, a modulo axis on Siemens): a program's K commands are then read modulo 360°. Unticked, the control turns as far as the numbers say.",
+            kind: Kind::Flag,
+            default: DefaultValue::Flag(false),
+            group: "Rotary axes",
+        },
         /// K turns against ISO 841.
         pub k_reversed: bool = "kReversed" optional {
             label: "{K} turns the other way (not ISO 841)",
@@ -779,10 +795,15 @@ impl Model {
         ))
     }
 
-    /// The commanded travel `(from, to)` of K and M, rad.
+    /// The commanded travel `(from, to)` of K and M, rad; `(−∞, ∞)` for a K marked continuous.
     pub fn travel(&self) -> [(f64, f64); 2] {
         let t = &self.machine.rotary;
-        [(t.k_from, t.k_to), (t.m_from, t.m_to)]
+        let k = if t.k_continuous {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            (t.k_from, t.k_to)
+        };
+        [k, (t.m_from, t.m_to)]
     }
 
     /// The letters of K and M.
@@ -911,12 +932,15 @@ impl Model {
                 )
             })
             .collect();
+        let k_travel = if k_lo.is_finite() {
+            format!("{kl} travels from {} to {} and {ml}", d(k_lo), d(k_hi))
+        } else {
+            format!("{kl} turns without limit and {ml} travels")
+        };
         format!(
             "outside the travel: this tool direction needs {} (or a whole turn more or less), \
-             but {kl} travels from {} to {} and {ml} from {} to {}",
+             but {k_travel} from {} to {}",
             needs.join(" or "),
-            d(k_lo),
-            d(k_hi),
             d(m_lo),
             d(m_hi)
         )
@@ -925,8 +949,22 @@ impl Model {
 
 /// The angle `a` (rad) plus whole turns within `[lo, hi]` (with [`TRAVEL_TOLERANCE`]): nearest
 /// `near` when given; else in `[0, 2π)` if that is within, else nearest 0. `None` when no turn
-/// fits.
+/// fits. `(−∞, ∞)` is no limit.
 pub fn fit(a: f64, lo: f64, hi: f64, near: Option<f64>) -> Option<f64> {
+    if lo == f64::NEG_INFINITY && hi == f64::INFINITY {
+        // No limit: nearest `near`, else in [0, 2π).
+        return Some(match near {
+            Some(p) => a + TAU * ((p - a) / TAU).round(),
+            None => {
+                let c = a.rem_euclid(TAU);
+                if TAU - c < 1e-12 {
+                    0.0
+                } else {
+                    c
+                }
+            }
+        });
+    }
     let tol = TRAVEL_TOLERANCE;
     let n_lo = ((lo - tol - a) / TAU).ceil();
     let n_hi = ((hi + tol - a) / TAU).floor();

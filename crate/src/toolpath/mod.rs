@@ -16,6 +16,17 @@
 //! (unwinding). A point no solution within the travel reaches stops the following: the machine
 //! cannot run the path as given, and says which point and what it would need.
 //!
+//! # Rapids and the program's own commands
+//! Each point carries how it was reached ([`read::Motion`]). The statistics, the ranking and
+//! every verdict are on the **cutting** segments (feed and arc moves); rapid positioning moves
+//! (`G0`, APT `RAPID`, Heidenhain `FMAX`) do not touch the part and are summarised apart
+//! ([`Rapids`]: their count, their largest rotary swing and the largest excursion of the tool
+//! tip from the straight line, a positioning and collision note). NC blocks carry the program's
+//! commanded angles ([`Commands`]): on the type they were written for, the machine follows those
+//! commands, its branch and its turns, instead of the inverse kinematics; they must lie within
+//! the travel (a rotary table marked continuous has none). The other types follow the tool axes
+//! by their own continuity.
+//!
 //! # What is flagged
 //! * **Pole**: the great-circle arc of a segment passes within [`POLE_ANGLE_DEG`] of the K axis
 //!   (`±e_K`, the singular orientation where K is undefined): there K must turn at least
@@ -50,45 +61,59 @@ use crate::nonlinear::{swing_length, Deviation, Move, MAX_LENGTH_MM};
 use crate::rotary::{Group, Pose, RotaryType};
 use crate::schema::{self, DefaultValue, Kind, Quantity};
 use nalgebra::Vector3;
+use read::Motion;
 use serde::Serialize;
 use serde_json::Value;
 
-pub mod parse;
+pub mod read;
+pub mod write;
 
 crate::choices! {
-    /// The format of a toolpath file ([`parse`]).
+    /// The format of a toolpath file ([`read`]).
     pub enum FileFormat {
-        /// Recognised from the first lines ([`parse::Format::detect`]).
+        /// Recognised from the first lines ([`read::Format::detect`]).
         Auto = "auto" {
             label: "Recognise it",
-            help: "From its first lines: GOTO/ statements are APT, letter words (X… A… C…) NC blocks, numbers CSV.",
+            help: "From its first lines: GOTO/ statements are APT, BEGIN PGM and L blocks Heidenhain, TRAORI, R1= or X= Siemens, letter words (G1 X… A…) ISO G-code, numbers CSV.",
         },
         /// `x,y,z,i,j,k` per line.
         Csv = "csv" {
             label: "CSV: x, y, z, i, j, k",
-            help: "One point per line: the tool tip (mm) and the tool axis, workpiece coordinates.",
+            help: "One point per line: the tool tip and the tool axis, workpiece coordinates.",
         },
         /// APT CL data.
         Apt = "apt" {
-            label: "APT CL data (GOTO/x,y,z,i,j,k)",
-            help: "CL data from the CAM system, with MULTAX.",
+            label: "APT CL data (NX CLSF, CATIA, SolidWorks CAM, Mastercam …)",
+            help: "CL data from the CAM system: GOTO/, RAPID, CIRCLE/, MSYS/, CSYS/, UNITS/.",
         },
-        /// NC blocks for this machine.
+        /// ISO G-code for this machine.
         Nc = "nc" {
-            label: "NC blocks for this machine (X Y Z and its two rotary axes)",
-            help: "With tool-centre-point control on: X Y Z the tool tip, the rotary words the machine's commands.",
+            label: "ISO G-code for this machine (Fanuc, Haas, LinuxCNC)",
+            help: "NC blocks with X Y Z the tool tip and the machine's two rotary words; G43.4, G234 or G254 for tool-centre-point control.",
+        },
+        /// Siemens Sinumerik 840D blocks for this machine.
+        Siemens = "siemens" {
+            label: "Siemens Sinumerik 840D for this machine",
+            help: "NC blocks with TRAORI, R parameters, TRANS/ROT frames.",
+        },
+        /// Heidenhain conversational for this machine.
+        Heidenhain = "heidenhain" {
+            label: "Heidenhain conversational for this machine",
+            help: "BEGIN PGM … L X+… FMAX, CC/C arcs, M128 or FUNCTION TCPM, PLANE SPATIAL.",
         },
     }
 }
 
 impl FileFormat {
-    /// The parser's format, `None` for [`FileFormat::Auto`].
-    pub fn format(self) -> Option<parse::Format> {
+    /// The reader's format, `None` for [`FileFormat::Auto`].
+    pub fn format(self) -> Option<read::Format> {
         match self {
             FileFormat::Auto => None,
-            FileFormat::Csv => Some(parse::Format::Csv),
-            FileFormat::Apt => Some(parse::Format::Apt),
-            FileFormat::Nc => Some(parse::Format::Nc),
+            FileFormat::Csv => Some(read::Format::Csv),
+            FileFormat::Apt => Some(read::Format::Apt),
+            FileFormat::Nc => Some(read::Format::Nc),
+            FileFormat::Siemens => Some(read::Format::Siemens),
+            FileFormat::Heidenhain => Some(read::Format::Heidenhain),
         }
     }
 }
@@ -108,6 +133,30 @@ crate::inputs! {
             default: DefaultValue::Str("auto"),
             group: "Toolpath",
         },
+        /// The unit where the file states none.
+        pub unit: read::UnitChoice = "unit" optional {
+            label: "Length unit of the file",
+            help: "A unit the file states (G20/G21, G70/G71, UNITS/, BEGIN PGM … INCH) is always used; this decides where it states none.",
+            kind: Kind::Choice(read::UnitChoice::CHOICES),
+            default: DefaultValue::Str("auto"),
+            group: "Toolpath",
+        },
+        /// How an APT output frame (MSYS/, CSYS/) is read.
+        pub apt_frame: read::AptFrameChoice = "aptFrame" optional {
+            label: "APT output frame (MSYS/, CSYS/)",
+            help: "Whether the GOTO/ points after an MSYS/ or CSYS/ are written in that frame (NX's reading: turned into the frame it is given in) or already in the machine's frame.",
+            kind: Kind::Choice(read::AptFrameChoice::CHOICES),
+            default: DefaultValue::Str("apply"),
+            group: "Toolpath",
+        },
+        /// Largest distance of an arc from its chords, mm.
+        pub chord_tolerance: f64 = "chordTolerance" optional {
+            label: "Chord tolerance of arcs",
+            help: "Arcs (G2/G3, CIRCLE/, C/CR/CP) are cut into straight chords that stay this close to the arc, as the control moves along it.",
+            kind: schema::positive(Quantity::SmallLength, 1.0),
+            default: DefaultValue::Num(read::DEFAULT_CHORD_TOLERANCE),
+            group: "Toolpath",
+        },
     }
 }
 
@@ -117,6 +166,15 @@ impl ToolpathReadInput {
         let c = <Self as schema::Inputs>::from_value(value, "")?;
         c.machine.validate("machine")?;
         Ok(c)
+    }
+
+    /// The reader's options.
+    pub fn options(&self) -> read::ReadOptions {
+        read::ReadOptions {
+            unit: self.unit,
+            chord_tolerance: self.chord_tolerance,
+            apt_frame: self.apt_frame,
+        }
     }
 }
 
@@ -158,21 +216,21 @@ impl ToolpathCase {
         swing_length(self.length, &self.machine)
     }
 
-    /// The path on the machine ([`analyse`]).
-    pub fn analyse(&self, axes: &[Vector3<f64>]) -> Result<Analysis> {
+    /// The path on the machine ([`analyse_path`]).
+    pub fn analyse(&self, path: &Path) -> Result<Analysis> {
         let model = self.machine.without_errors().build()?;
-        analyse(&model, axes, self.length()?, self.tolerance)
+        analyse_path(&model, path, self.length()?, self.tolerance)
     }
 
-    /// The path on `types` ([`compare_types`]), ranked.
-    pub fn compare(&self, axes: &[Vector3<f64>], types: &[RotaryType]) -> Result<Vec<Summary>> {
-        compare_types(&self.machine, axes, self.length()?, self.tolerance, types)
+    /// The path on `types` ([`compare_path`]), ranked.
+    pub fn compare(&self, path: &Path, types: &[RotaryType]) -> Result<Vec<Summary>> {
+        compare_path(&self.machine, path, self.length()?, self.tolerance, types)
     }
 
-    /// The path refined on the machine ([`refine`]).
-    pub fn refine(&self, tips: &[Vector3<f64>], axes: &[Vector3<f64>]) -> Result<Refined> {
+    /// The path refined on the machine ([`refine_path`]).
+    pub fn refine(&self, tips: &[Vector3<f64>], path: &Path) -> Result<Refined> {
         let model = self.machine.without_errors().build()?;
-        refine(&model, tips, axes, self.length()?, self.tolerance)
+        refine_path(&model, tips, path, self.length()?, self.tolerance)
     }
 }
 
@@ -208,6 +266,8 @@ pub struct Segment {
     pub flip: bool,
     /// The segment passes by the pole (module docs).
     pub pole: bool,
+    /// The segment is a rapid positioning move (not cutting).
+    pub rapid: bool,
 }
 
 /// The path on one machine: the commands and each segment.
@@ -252,6 +312,29 @@ pub struct Summary {
     pub m_travel: f64,
     /// The first point that cannot be reached and why, when one cannot.
     pub unreachable: Option<Unreachable>,
+    /// The rapid moves, apart from the cutting ones.
+    pub rapids: Rapids,
+    /// The row follows the program's own commands (the machine it was written for).
+    pub commanded: bool,
+}
+
+/// The rapid positioning moves of a path on one machine (module docs): not cutting, so not in
+/// the statistics; a positioning and collision note.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Rapids {
+    /// Rapid segments.
+    pub count: usize,
+    /// Rapids that turn a rotary axis.
+    pub swings: usize,
+    /// Largest excursion of the tool tip from the straight line in a rapid (its δ), mm.
+    pub max: f64,
+    /// Index of that segment (0 when there is no rapid).
+    pub max_segment: usize,
+    /// Largest turn of K in one rapid, rad.
+    pub k_swing: f64,
+    /// Largest turn of M in one rapid, rad.
+    pub m_swing: f64,
 }
 
 /// A point outside the travel.
@@ -261,6 +344,115 @@ pub struct Unreachable {
     pub point: usize,
     /// What it would need.
     pub message: String,
+}
+
+/// A path to analyse: the tool axes, how each point was reached and, for NC blocks, the
+/// program's own commands.
+#[derive(Debug, Clone, Copy)]
+pub struct Path<'a> {
+    /// Tool axes, workpiece coordinates, any non-zero length.
+    pub axes: &'a [Vector3<f64>],
+    /// How each point was reached; `None`: every point by a feed move.
+    pub motions: Option<&'a [Motion]>,
+    /// The program's commands, for the machine they were written for.
+    pub commands: Option<Commands<'a>>,
+}
+
+impl<'a> Path<'a> {
+    /// Tool axes alone: every point a feed move, no commands.
+    pub fn axes(axes: &'a [Vector3<f64>]) -> Self {
+        Path {
+            axes,
+            motions: None,
+            commands: None,
+        }
+    }
+
+    /// Checks the lengths of the motions and commands against the axes.
+    fn check(&self) -> Result<()> {
+        let n = self.axes.len();
+        if let Some(m) = self.motions {
+            if m.len() != n {
+                return Err(Error::field(
+                    "motions",
+                    format!("expected one motion per point ({n}), got {}", m.len()),
+                ));
+            }
+        }
+        if let Some(c) = self.commands {
+            if c.angles.len() != n {
+                return Err(Error::field(
+                    "angles",
+                    format!("expected [K, M] per point ({n}), got {}", c.angles.len()),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The motion that reaches point `i`.
+    pub fn motion(&self, i: usize) -> Motion {
+        self.motions.map_or(Motion::Feed, |m| m[i])
+    }
+
+    /// The program's commands when they were written for `rtype`.
+    fn commands_for(&self, rtype: RotaryType) -> Option<&'a [[f64; 2]]> {
+        self.commands.filter(|c| c.rtype == rtype).map(|c| c.angles)
+    }
+}
+
+/// The K and M angles an NC program commands at each point (degrees), and the rotary-axis type
+/// of the machine it was read for: they are that machine's commands only.
+#[derive(Debug, Clone, Copy)]
+pub struct Commands<'a> {
+    /// `[K, M]` per point, degrees.
+    pub angles: &'a [[f64; 2]],
+    /// The type they were written for.
+    pub rtype: RotaryType,
+}
+
+/// The program's own commands (degrees) on `model`: followed as they are, up to the first one
+/// outside the travel (a rotary table marked continuous has no limit).
+pub fn follow_commands(model: &Model, angles: &[[f64; 2]]) -> Following {
+    let [(k_lo, k_hi), (m_lo, m_hi)] = model.travel();
+    let [kl, ml] = model.letters();
+    let tol = crate::machine::TRAVEL_TOLERANCE;
+    let inside = |x: f64, lo: f64, hi: f64| x >= lo - tol && x <= hi + tol;
+    let mut k = Vec::with_capacity(angles.len());
+    let mut m = Vec::with_capacity(angles.len());
+    for (i, a) in angles.iter().enumerate() {
+        let (kr, mr) = (a[0].to_radians(), a[1].to_radians());
+        for (letter, x, lo, hi) in [(kl, kr, k_lo, k_hi), (ml, mr, m_lo, m_hi)] {
+            if !inside(x, lo, hi) {
+                return Following {
+                    k,
+                    m,
+                    unreachable: Some((
+                        i,
+                        format!(
+                            "commanded {letter} = {}°, outside the travel of {letter} ({}° to \
+                             {}°); a table that turns without limit: tick its continuous box",
+                            round4(x.to_degrees()),
+                            round4(lo.to_degrees()),
+                            round4(hi.to_degrees())
+                        ),
+                    )),
+                };
+            }
+        }
+        k.push(kr);
+        m.push(mr);
+    }
+    Following {
+        k,
+        m,
+        unreachable: None,
+    }
+}
+
+/// `x` to 4 decimals.
+fn round4(x: f64) -> f64 {
+    (x * 1e4).round() / 1e4
 }
 
 /// The given machine with rotary-axis type `t` and no errors (the control's model).
@@ -338,6 +530,7 @@ fn segment(
         u: peak.u,
         flip,
         pole,
+        rapid: false,
     }
 }
 
@@ -363,15 +556,30 @@ pub fn arc_distance(a0: &Vector3<f64>, a1: &Vector3<f64>, p: &Vector3<f64>) -> f
     }
 }
 
-/// The path (tool axes, unit) on `model` with `L = length` mm and tolerance `tolerance` mm.
+/// The path (tool axes, unit) on `model` with `L = length` mm and tolerance `tolerance` mm,
+/// every point a feed move ([`analyse_path`]).
 pub fn analyse(
     model: &Model,
     axes: &[Vector3<f64>],
     length: f64,
     tolerance: f64,
 ) -> Result<Analysis> {
+    analyse_path(model, &Path::axes(axes), length, tolerance)
+}
+
+/// The path on `model` with `L = length` mm and tolerance `tolerance` mm (module docs): the
+/// program's commands where they were written for this type, else the inverse kinematics with
+/// continuity; every segment; the totals of the cutting ones and the rapids apart.
+pub fn analyse_path(
+    model: &Model,
+    path: &Path,
+    length: f64,
+    tolerance: f64,
+) -> Result<Analysis> {
     check_positive("length", length, MAX_LENGTH_MM, "mm")?;
     check_positive("tolerance", tolerance, MAX_LENGTH_MM, "mm")?;
+    path.check()?;
+    let axes = path.axes;
     if axes.len() < 2 {
         return Err(Error::field(
             "points",
@@ -382,24 +590,39 @@ pub fn analyse(
     let axes = if axes.iter().all(|a| (a.norm() - 1.0).abs() < 1e-12) {
         axes
     } else {
-        unit = axes.iter().map(|a| a.normalize()).collect::<Vec<_>>();
+        unit = axes
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                a.try_normalize(0.0).ok_or_else(|| {
+                    Error::field(format!("points[{i}]"), "the tool axis must not be zero")
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
         &unit
     };
-    let following = follow(model, axes)?;
+    let commands = path.commands_for(model.layout.rtype);
+    let following = match commands {
+        Some(c) => follow_commands(model, c),
+        None => follow(model, axes)?,
+    };
     let reached = following.k.len();
     let segments: Vec<Segment> = (1..reached)
         .map(|i| {
-            segment(
+            let mut s = segment(
                 model,
                 length,
                 (following.k[i - 1], following.m[i - 1]),
                 (following.k[i], following.m[i]),
                 &axes[i - 1],
                 &axes[i],
-            )
+            );
+            s.rapid = !path.motion(i).cuts();
+            s
         })
         .collect();
-    let summary = summarise(model.layout.rtype, &following, &segments, tolerance);
+    let mut summary = summarise(model.layout.rtype, &following, &segments, tolerance);
+    summary.commanded = commands.is_some();
     Ok(Analysis {
         following,
         segments,
@@ -413,24 +636,42 @@ fn summarise(
     segments: &[Segment],
     tolerance: f64,
 ) -> Summary {
-    let n = segments.len();
-    let (mut max, mut max_segment, mut sum) = (0.0_f64, 0, 0.0);
-    for (i, s) in segments.iter().enumerate() {
-        if s.delta > max {
-            max = s.delta;
-            max_segment = i;
+    let cutting = || segments.iter().enumerate().filter(|(_, s)| !s.rapid);
+    let n = cutting().count();
+    // The first of equals: strictly larger replaces.
+    let mut best: Option<(usize, f64)> = None;
+    let mut sum = 0.0;
+    for (i, s) in cutting() {
+        if best.is_none_or(|(_, m)| s.delta > m) {
+            best = Some((i, s.delta));
         }
         sum += s.delta;
     }
+    let (max_segment, max) = best.unwrap_or((0, 0.0));
     let p95 = if n == 0 {
         0.0
     } else {
-        let mut d: Vec<f64> = segments.iter().map(|s| s.delta).collect();
+        let mut d: Vec<f64> = cutting().map(|(_, s)| s.delta).collect();
         // Nearest rank: the smallest value with at least 95 % of the values at or below it.
         let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n) - 1;
         *d.select_nth_unstable_by(rank, f64::total_cmp).1
     };
     let travel = |v: &[f64]| v.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    let mut rapids = Rapids::default();
+    for (i, s) in segments.iter().enumerate().filter(|(_, s)| s.rapid) {
+        let (dk, dm) = (
+            (following.k[i + 1] - following.k[i]).abs(),
+            (following.m[i + 1] - following.m[i]).abs(),
+        );
+        rapids.count += 1;
+        rapids.swings += usize::from(dk > 1e-12 || dm > 1e-12);
+        if s.delta > rapids.max || rapids.count == 1 {
+            rapids.max = s.delta;
+            rapids.max_segment = i;
+        }
+        rapids.k_swing = rapids.k_swing.max(dk);
+        rapids.m_swing = rapids.m_swing.max(dm);
+    }
     Summary {
         rtype,
         group: rtype.group(),
@@ -439,9 +680,9 @@ fn summarise(
         max_segment,
         mean: if n == 0 { 0.0 } else { sum / n as f64 },
         p95,
-        above: segments.iter().filter(|s| s.delta > tolerance).count(),
-        flips: segments.iter().filter(|s| s.flip).count(),
-        poles: segments.iter().filter(|s| s.pole).count(),
+        above: cutting().filter(|(_, s)| s.delta > tolerance).count(),
+        flips: cutting().filter(|(_, s)| s.flip).count(),
+        poles: cutting().filter(|(_, s)| s.pole).count(),
         k_travel: travel(&following.k),
         m_travel: travel(&following.m),
         unreachable: following
@@ -451,6 +692,8 @@ fn summarise(
                 point: *point,
                 message: message.clone(),
             }),
+        rapids,
+        commanded: false,
     }
 }
 
@@ -473,11 +716,22 @@ pub fn compare_types(
     tolerance: f64,
     types: &[RotaryType],
 ) -> Result<Vec<Summary>> {
+    compare_path(machine, &Path::axes(axes), length, tolerance, types)
+}
+
+/// [`compare_types`] of a path with its motions and commands ([`analyse_path`] on each type).
+pub fn compare_path(
+    machine: &Machine,
+    path: &Path,
+    length: f64,
+    tolerance: f64,
+    types: &[RotaryType],
+) -> Result<Vec<Summary>> {
     let mut rows = types
         .iter()
         .map(|&t| {
             let model = machine_of_type(machine, t).build()?;
-            Ok(analyse(&model, axes, length, tolerance)?.summary)
+            Ok(analyse_path(&model, path, length, tolerance)?.summary)
         })
         .collect::<Result<Vec<Summary>>>()?;
     rank(&mut rows);
@@ -509,6 +763,8 @@ pub struct Refined {
     pub k: Vec<f64>,
     /// M commands, rad.
     pub m: Vec<f64>,
+    /// How each point is reached (an inserted point as its segment).
+    pub motions: Vec<Motion>,
     /// For each point, the index of the original point it is, or `None` for an inserted one.
     pub source: Vec<Option<usize>>,
     /// Points inserted.
@@ -524,7 +780,8 @@ pub struct Refined {
 /// Inserts equally spaced points into each segment above `tolerance` (mm) so that every piece
 /// stays within it, one piece fewer would not (module docs), and segments within it get none;
 /// a segment that [`MAX_PIECES`] pieces do not fix is left as it is and listed in
-/// [`Refined::unfixed`]. The machine must reach the whole path.
+/// [`Refined::unfixed`]. The machine must reach the whole path. Every point a feed move
+/// ([`refine_path`]).
 pub fn refine(
     model: &Model,
     tips: &[Vector3<f64>],
@@ -532,8 +789,24 @@ pub fn refine(
     length: f64,
     tolerance: f64,
 ) -> Result<Refined> {
+    refine_path(model, tips, &Path::axes(axes), length, tolerance)
+}
+
+/// [`refine`] of a path with its motions and commands: rapid segments get no point (they do
+/// not cut) and count in no maximum; on the type the program was written for, its original
+/// points keep the program's commands, and a segment whose commanded end is not the one the
+/// inserted points lead to (a change of branch) is left as it is and listed as unfixed.
+pub fn refine_path(
+    model: &Model,
+    tips: &[Vector3<f64>],
+    path: &Path,
+    length: f64,
+    tolerance: f64,
+) -> Result<Refined> {
     check_positive("length", length, MAX_LENGTH_MM, "mm")?;
     check_positive("tolerance", tolerance, MAX_LENGTH_MM, "mm")?;
+    path.check()?;
+    let axes = path.axes;
     if tips.len() != axes.len() || axes.len() < 2 {
         return Err(Error::field(
             "points",
@@ -541,15 +814,32 @@ pub fn refine(
         ));
     }
     let unit: Vec<Vector3<f64>> = axes.iter().map(|v| v.normalize()).collect();
-    let first = follow(model, &unit[..1])?;
-    if let Some((i, why)) = first.unreachable {
-        return Err(Error::field(format!("points[{i}]"), why));
-    }
+    let commanded = match path.commands_for(model.layout.rtype) {
+        Some(c) => {
+            let f = follow_commands(model, c);
+            if let Some((i, why)) = f.unreachable {
+                return Err(Error::field(format!("points[{i}]"), why));
+            }
+            Some(f)
+        }
+        None => None,
+    };
+    let start = match &commanded {
+        Some(f) => (f.k[0], f.m[0]),
+        None => {
+            let first = follow(model, &unit[..1])?;
+            if let Some((i, why)) = first.unreachable {
+                return Err(Error::field(format!("points[{i}]"), why));
+            }
+            (first.k[0], first.m[0])
+        }
+    };
     let mut out = Refined {
         tips: vec![tips[0]],
         axes: vec![unit[0]],
-        k: vec![first.k[0]],
-        m: vec![first.m[0]],
+        k: vec![start.0],
+        m: vec![start.1],
+        motions: vec![path.motion(0)],
         source: vec![Some(0)],
         added: 0,
         max: 0.0,
@@ -559,18 +849,31 @@ pub fn refine(
         let last = out.k.len() - 1;
         let prev = (out.k[last], out.m[last]);
         let at = |e: Error| Error::field(format!("points[{}]", i + 1), e.message);
-        let o = model
-            .orientations(&unit[i + 1], BranchRule::Nearest, Some([prev.0, prev.1]))
-            .map_err(at)?;
-        let c = o.pick(&format!("points[{}]", i + 1))?;
+        let c = match &commanded {
+            Some(f) => (f.k[i + 1], f.m[i + 1]),
+            None => {
+                let o = model
+                    .orientations(&unit[i + 1], BranchRule::Nearest, Some([prev.0, prev.1]))
+                    .map_err(at)?;
+                let c = o.pick(&format!("points[{}]", i + 1))?;
+                (c.k, c.m)
+            }
+        };
+        let motion = path.motion(i + 1);
         // The segment as it is now (its start may be an inserted point's commands).
-        let s = segment(model, length, prev, (c.k, c.m), &unit[i], &unit[i + 1]);
-        let mut end = (c.k, c.m);
-        if s.delta <= tolerance {
+        let s = segment(model, length, prev, c, &unit[i], &unit[i + 1]);
+        let mut end = c;
+        if !motion.cuts() {
+            // A rapid: not cut, left as it is.
+        } else if s.delta <= tolerance {
             out.max = out.max.max(s.delta);
         } else {
             match split(model, length, tolerance, &out, (tips[i + 1], unit[i + 1])).map_err(at)? {
-                Some(pieces) => {
+                Some(pieces)
+                    if commanded.is_none()
+                        || ((pieces.k[pieces.k.len() - 1] - c.0).abs() < 1e-9
+                            && (pieces.m[pieces.m.len() - 1] - c.1).abs() < 1e-9) =>
+                {
                     out.max = out.max.max(pieces.max);
                     let n = pieces.k.len();
                     for p in 0..n - 1 {
@@ -578,13 +881,15 @@ pub fn refine(
                         out.axes.push(pieces.axes[p]);
                         out.k.push(pieces.k[p]);
                         out.m.push(pieces.m[p]);
+                        out.motions.push(motion);
                         out.source.push(None);
                         out.added += 1;
                     }
                     end = (pieces.k[n - 1], pieces.m[n - 1]);
                 }
-                None => {
-                    // No number of pieces helps (a flip at the end of the travel): left as it is.
+                _ => {
+                    // No number of pieces helps (a flip at the end of the travel, or a change
+                    // of branch the program commands): left as it is.
                     out.max = out.max.max(s.delta);
                     out.unfixed.push(i);
                 }
@@ -594,6 +899,7 @@ pub fn refine(
         out.axes.push(unit[i + 1]);
         out.k.push(end.0);
         out.m.push(end.1);
+        out.motions.push(motion);
         out.source.push(Some(i + 1));
     }
     Ok(out)

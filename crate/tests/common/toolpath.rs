@@ -3,7 +3,7 @@
 
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::parse::{parse, Format};
+use fiveaxis::toolpath::read::{parse, Format};
 use nalgebra::Vector3;
 
 /// A C-A fork head (head-head CAZ), ISO 841 senses: NC letters C (K) and A (M).
