@@ -12,7 +12,9 @@ use nalgebra::Vector3;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let file = args.get(1).ok_or("usage: read_toolpath FILE [MACHINE-JSON]")?;
+    let file = args
+        .get(1)
+        .ok_or("usage: read_toolpath FILE [MACHINE-JSON]")?;
     let bytes = std::fs::read(file)?;
     let text = String::from_utf8_lossy(&bytes);
     let machine_json = args.get(2).map_or(
@@ -41,22 +43,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }),
     };
     if let (Ok(t), true) = (std::env::var("WORST"), points.len() >= 2) {
-        let m = fiveaxis::toolpath::machine_of_type(&machine, fiveaxis::rotary::RotaryType::parse(&t)?).build()?;
+        let m =
+            fiveaxis::toolpath::machine_of_type(&machine, fiveaxis::rotary::RotaryType::parse(&t)?)
+                .build()?;
         let a = fiveaxis::toolpath::analyse_path(&m, &path, 100.0, 0.01)?;
-        let mut idx: Vec<usize> = (0..a.segments.len()).filter(|&i| !a.segments[i].rapid).collect();
+        let mut idx: Vec<usize> = (0..a.segments.len())
+            .filter(|&i| !a.segments[i].rapid)
+            .collect();
         idx.sort_by(|&x, &y| a.segments[y].delta.total_cmp(&a.segments[x].delta));
         for &i in idx.iter().take(6) {
             let (p0, p1) = (&points[i], &points[i + 1]);
             println!(
                 "segment {i}: δ {:.4} mm, lines {}→{} {:?}, K {:.3}→{:.3}, M {:.3}→{:.3}",
-                a.segments[i].delta, p0.line, p1.line, p1.motion,
-                a.following.k[i].to_degrees(), a.following.k[i + 1].to_degrees(),
-                a.following.m[i].to_degrees(), a.following.m[i + 1].to_degrees()
+                a.segments[i].delta,
+                p0.line,
+                p1.line,
+                p1.motion,
+                a.following.k[i].to_degrees(),
+                a.following.k[i + 1].to_degrees(),
+                a.following.m[i].to_degrees(),
+                a.following.m[i + 1].to_degrees()
             );
         }
     }
     if points.len() >= 2 {
-        let rows = compare_path(&machine, &path, 100.0, 0.01, &fiveaxis::rotary::RotaryType::ALL)?;
+        let rows = compare_path(
+            &machine,
+            &path,
+            100.0,
+            0.01,
+            &fiveaxis::rotary::RotaryType::ALL,
+        )?;
         for r in rows {
             println!(
                 "{:4} max {:>10.4} mm (segment {:>6}) cutting {:>6} rapids {:>4} (max {:.3} mm, swings {}) flips {} commanded {} {}",

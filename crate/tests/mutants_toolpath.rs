@@ -56,7 +56,9 @@ fn the_ranking_has_one_row_per_type_over_every_segment() {
         })
         .collect();
     let types = [RotaryType::ALL[0], RotaryType::ALL[5], RotaryType::ALL[11]];
-    let rows = case.compare(&fiveaxis::toolpath::Path::axes(&axes), &types).unwrap();
+    let rows = case
+        .compare(&fiveaxis::toolpath::Path::axes(&axes), &types)
+        .unwrap();
     assert_eq!(rows.len(), types.len());
     for r in &rows {
         assert!(types.contains(&r.rtype));

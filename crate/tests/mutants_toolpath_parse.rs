@@ -11,7 +11,7 @@ mod common;
 
 use common::toolpath::{at, caz_head, error};
 use fiveaxis::machine::Machine;
-use fiveaxis::toolpath::read::{Motion, ReadOptions, parse, Format, Parser, Point, MAX_LINE};
+use fiveaxis::toolpath::read::{parse, Format, Motion, Parser, Point, ReadOptions, MAX_LINE};
 use fiveaxis::toolpath::write::write;
 use nalgebra::Vector3;
 
@@ -222,9 +222,17 @@ fn a_wrong_count_of_apt_numbers_is_reported_where_it_goes_wrong() {
 fn nc_words_keywords_and_slashes() {
     let m = caz_head();
     let t = tips("X 1.5 Y= 2 Z = 3\n/N20 X4\n", Format::Nc, Some(&m));
-    assert_eq!(t, [Vector3::new(1.5, 2.0, 3.0), Vector3::new(4.0, 2.0, 3.0)]);
+    assert_eq!(
+        t,
+        [Vector3::new(1.5, 2.0, 3.0), Vector3::new(4.0, 2.0, 3.0)]
+    );
     for (text, column) in [("X0 Y0 Z0\nDL1 X5\n", 1), ("X0 Y0 Z0\nG1 X8 TRAFOOF\n", 7)] {
-        at(&error(text, Format::Nc, Some(&m)), 2, column, "is not ISO G-code");
+        at(
+            &error(text, Format::Nc, Some(&m)),
+            2,
+            column,
+            "is not ISO G-code",
+        );
     }
     at(
         &error("G1 X1 / Y2\n", Format::Nc, Some(&m)),
@@ -251,7 +259,12 @@ fn nc_words_keywords_and_slashes() {
 #[test]
 fn nc_positions_at_their_limits() {
     let m = caz_head();
-    let p = parse("G1 X100000 Y-100000 Z0 C3600 A-3600\n", Format::Nc, Some(&m)).unwrap();
+    let p = parse(
+        "G1 X100000 Y-100000 Z0 C3600 A-3600\n",
+        Format::Nc,
+        Some(&m),
+    )
+    .unwrap();
     assert_eq!(p[0].tip, Vector3::new(1e5, -1e5, 0.0));
     assert_eq!(p[0].angles, Some([3600.0, -3600.0]));
     let p = parse("G20 X3937.0078 Y0 Z0\n", Format::Nc, Some(&m)).unwrap();

@@ -10,7 +10,7 @@ use common::toolpath::{at, caz_head, error};
 use common::{close, Rng};
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::read::{Motion, ReadOptions, parse, Format, Parser, Point, MAX_LINE};
+use fiveaxis::toolpath::read::{parse, Format, Motion, Parser, Point, ReadOptions, MAX_LINE};
 use fiveaxis::toolpath::write::write;
 use nalgebra::Vector3;
 use serde_json::json;
@@ -569,7 +569,9 @@ fn nc_needs_a_machine_and_formats_have_names() {
     }
     let e = "gcode".parse::<Format>().unwrap_err();
     assert_eq!(e.field, "format");
-    assert!(e.message.contains("expected csv, apt, nc, siemens or heidenhain"));
+    assert!(e
+        .message
+        .contains("expected csv, apt, nc, siemens or heidenhain"));
 }
 
 #[test]
@@ -861,7 +863,10 @@ fn written_nc_reads_exactly_as_written() {
         angles: Some([90.0, 30.0]),
     };
     let text = write(Format::Nc, &[p], Some(['C', 'A'])).unwrap();
-    assert!(text.contains("\nG1 X10.0 Y0.0 Z2.5 C90.0 A30.0\n"), "{text}");
+    assert!(
+        text.contains("\nG1 X10.0 Y0.0 Z2.5 C90.0 A30.0\n"),
+        "{text}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

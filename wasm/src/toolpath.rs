@@ -13,7 +13,9 @@ use crate::{degrees, f64_array, js_error, json, output, Series};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::toolpath::read::{Format, Motion, Parser, Point, Report};
 use fiveaxis::toolpath::write::write;
-use fiveaxis::toolpath::{Commands, Path, Rapids, Summary, ToolpathCase, ToolpathReadInput, Unreachable};
+use fiveaxis::toolpath::{
+    Commands, Path, Rapids, Summary, ToolpathCase, ToolpathReadInput, Unreachable,
+};
 use fiveaxis::Error;
 use js_sys::{Float64Array, Object, Reflect};
 use nalgebra::Vector3;
@@ -39,7 +41,10 @@ impl PathInput {
         Path {
             axes: &self.axes,
             motions: self.motions.as_deref(),
-            commands: self.commands.as_ref().map(|(a, t)| Commands { angles: a, rtype: *t }),
+            commands: self.commands.as_ref().map(|(a, t)| Commands {
+                angles: a,
+                rtype: *t,
+            }),
         }
     }
 }
@@ -51,7 +56,11 @@ fn numbers(value: &JsValue, field: &str, what: &str) -> Result<Vec<f64>, JsError
     }
     let v = json(value)?;
     v.as_array()
-        .and_then(|a| a.iter().map(serde_json::Value::as_f64).collect::<Option<Vec<f64>>>())
+        .and_then(|a| {
+            a.iter()
+                .map(serde_json::Value::as_f64)
+                .collect::<Option<Vec<f64>>>()
+        })
         .ok_or_else(|| js_error(Error::field(field, format!("expected {what}"))))
 }
 
@@ -59,13 +68,21 @@ fn numbers(value: &JsValue, field: &str, what: &str) -> Result<Vec<f64>, JsError
 pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
     let bad = |field: &str, msg: String| js_error(Error::field(field, msg));
     let (pts, motions, angles, read_for) = if value.is_instance_of::<Float64Array>() {
-        (value.clone(), JsValue::UNDEFINED, JsValue::UNDEFINED, JsValue::UNDEFINED)
+        (
+            value.clone(),
+            JsValue::UNDEFINED,
+            JsValue::UNDEFINED,
+            JsValue::UNDEFINED,
+        )
     } else if value.is_object() && !value.is_function() {
         let obj: &Object = value.unchecked_ref();
         for key in Object::keys(obj).iter() {
             let k = key.as_string().unwrap_or_default();
             if !matches!(k.as_str(), "points" | "motions" | "angles" | "readFor") {
-                return Err(bad(&format!("path.{k}"), "unknown key; a path has points, motions, angles and readFor".into()));
+                return Err(bad(
+                    &format!("path.{k}"),
+                    "unknown key; a path has points, motions, angles and readFor".into(),
+                ));
             }
         }
         let get = |k: &str| Reflect::get(obj, &JsValue::from_str(k)).unwrap_or(JsValue::UNDEFINED);
@@ -75,10 +92,21 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
     };
     let a = pts
         .dyn_ref::<Float64Array>()
-        .ok_or_else(|| bad("points", "expected a Float64Array of [x, y, z, i, j, k] per point".into()))?
+        .ok_or_else(|| {
+            bad(
+                "points",
+                "expected a Float64Array of [x, y, z, i, j, k] per point".into(),
+            )
+        })?
         .to_vec();
     if a.len() % 6 != 0 {
-        return Err(bad("points", format!("length must be a multiple of 6 ([x, y, z, i, j, k] per point), got {}", a.len())));
+        return Err(bad(
+            "points",
+            format!(
+                "length must be a multiple of 6 ([x, y, z, i, j, k] per point), got {}",
+                a.len()
+            ),
+        ));
     }
     let n = a.len() / 6;
     let mut tips = Vec::with_capacity(n);
@@ -88,11 +116,21 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
             if v.is_finite() && v.abs() <= MAX_COORDINATE {
                 continue; // the message (and its formatted path) only for a bad value
             }
-            fiveaxis::error::check_range(&format!("points[{i}][{j}]"), *v, -MAX_COORDINATE, MAX_COORDINATE, "mm").map_err(js_error)?;
+            fiveaxis::error::check_range(
+                &format!("points[{i}][{j}]"),
+                *v,
+                -MAX_COORDINATE,
+                MAX_COORDINATE,
+                "mm",
+            )
+            .map_err(js_error)?;
         }
         let axis = Vector3::new(p[3], p[4], p[5]);
         if axis.norm() < 1e-12 {
-            return Err(bad(&format!("points[{i}]"), "the tool axis (i, j, k) must not be zero".into()));
+            return Err(bad(
+                &format!("points[{i}]"),
+                "the tool axis (i, j, k) must not be zero".into(),
+            ));
         }
         tips.push(Vector3::new(p[0], p[1], p[2]));
         axes.push(axis);
@@ -103,39 +141,71 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
         let codes = if let Some(u) = motions.dyn_ref::<js_sys::Uint8Array>() {
             u.to_vec().into_iter().map(f64::from).collect()
         } else {
-            numbers(&motions, "motions", "a motion code per point (0 rapid, 1 feed, 2 arc)")?
+            numbers(
+                &motions,
+                "motions",
+                "a motion code per point (0 rapid, 1 feed, 2 arc)",
+            )?
         };
         if codes.len() != n {
-            return Err(bad("motions", format!("expected one motion per point ({n}), got {}", codes.len())));
+            return Err(bad(
+                "motions",
+                format!("expected one motion per point ({n}), got {}", codes.len()),
+            ));
         }
         Some(
             codes
                 .iter()
                 .enumerate()
-                .map(|(i, c)| Motion::from_code(*c).ok_or_else(|| bad(&format!("motions[{i}]"), format!("expected 0 (rapid), 1 (feed) or 2 (arc), got {c}"))))
+                .map(|(i, c)| {
+                    Motion::from_code(*c).ok_or_else(|| {
+                        bad(
+                            &format!("motions[{i}]"),
+                            format!("expected 0 (rapid), 1 (feed) or 2 (arc), got {c}"),
+                        )
+                    })
+                })
                 .collect::<Result<Vec<_>, _>>()?,
         )
     };
     let commands = if angles.is_undefined() || angles.is_null() {
         if !(read_for.is_undefined() || read_for.is_null()) {
-            return Err(bad("readFor", "readFor names the machine the angles were written for; give angles too".into()));
+            return Err(bad(
+                "readFor",
+                "readFor names the machine the angles were written for; give angles too".into(),
+            ));
         }
         None
     } else {
         let v = numbers(&angles, "angles", "[K, M] degrees per point")?;
         if v.len() != 2 * n {
-            return Err(bad("angles", format!("expected {} numbers ([K, M] per point), got {}", 2 * n, v.len())));
+            return Err(bad(
+                "angles",
+                format!(
+                    "expected {} numbers ([K, M] per point), got {}",
+                    2 * n,
+                    v.len()
+                ),
+            ));
         }
         if let Some(i) = v.iter().position(|x| !x.is_finite()) {
             return Err(bad(&format!("angles[{}]", i / 2), "must be finite".into()));
         }
-        let name = read_for
-            .as_string()
-            .ok_or_else(|| bad("readFor", "expected the type of the machine the angles command, such as \"CAZ\"".into()))?;
+        let name = read_for.as_string().ok_or_else(|| {
+            bad(
+                "readFor",
+                "expected the type of the machine the angles command, such as \"CAZ\"".into(),
+            )
+        })?;
         let t = RotaryType::parse(&name).map_err(|e| bad("readFor", e.message))?;
         Some((v.chunks_exact(2).map(|c| [c[0], c[1]]).collect(), t))
     };
-    Ok(PathInput { tips, axes, motions, commands })
+    Ok(PathInput {
+        tips,
+        axes,
+        motions,
+        commands,
+    })
 }
 
 fn case(value: &JsValue) -> Result<ToolpathCase, JsError> {
@@ -283,7 +353,9 @@ pub fn toolpath_analyse(
     let p = points(&path)?;
     let a = c.analyse(&p.path()).map_err(js_error)?;
     let pick = |f: fn(&fiveaxis::toolpath::Segment) -> bool| -> Vec<usize> {
-        (0..a.segments.len()).filter(|&i| f(&a.segments[i])).collect()
+        (0..a.segments.len())
+            .filter(|&i| f(&a.segments[i]))
+            .collect()
     };
     output(&ToolpathAnalysis {
         length: c.length().map_err(js_error)?,
@@ -314,18 +386,33 @@ pub fn toolpath_compare(
         RotaryType::ALL.to_vec()
     } else {
         let list = json(&types)?;
-        let names = list.as_array().ok_or_else(|| js_error(Error::field("types", "expected a list of type names such as [\"CAZ\"]")))?;
+        let names = list.as_array().ok_or_else(|| {
+            js_error(Error::field(
+                "types",
+                "expected a list of type names such as [\"CAZ\"]",
+            ))
+        })?;
         names
             .iter()
             .enumerate()
             .map(|(i, n)| {
-                let name = n.as_str().ok_or_else(|| Error::field(format!("types[{i}]"), "expected a type name such as \"CAZ\""))?;
+                let name = n.as_str().ok_or_else(|| {
+                    Error::field(
+                        format!("types[{i}]"),
+                        "expected a type name such as \"CAZ\"",
+                    )
+                })?;
                 RotaryType::parse(name).map_err(|e| Error::field(format!("types[{i}]"), e.message))
             })
             .collect::<Result<Vec<_>, Error>>()
             .map_err(js_error)?
     };
-    let rows: Vec<ToolpathSummary> = c.compare(&p.path(), &types).map_err(js_error)?.into_iter().map(Into::into).collect();
+    let rows: Vec<ToolpathSummary> = c
+        .compare(&p.path(), &types)
+        .map_err(js_error)?
+        .into_iter()
+        .map(Into::into)
+        .collect();
     output(&rows)
 }
 
@@ -363,11 +450,25 @@ pub fn toolpath_refine(
     let c = case(&value)?;
     let p = points(&path)?;
     let r = c.refine(&p.tips, &p.path()).map_err(js_error)?;
-    let flat: Vec<f64> = r.tips.iter().zip(&r.axes).flat_map(|(t, a)| [t.x, t.y, t.z, a.x, a.y, a.z]).collect();
-    let source: Vec<f64> = r.source.iter().map(|s| s.map_or(-1.0, |i| i as f64)).collect();
+    let flat: Vec<f64> = r
+        .tips
+        .iter()
+        .zip(&r.axes)
+        .flat_map(|(t, a)| [t.x, t.y, t.z, a.x, a.y, a.z])
+        .collect();
+    let source: Vec<f64> = r
+        .source
+        .iter()
+        .map(|s| s.map_or(-1.0, |i| i as f64))
+        .collect();
     output(&ToolpathRefined {
         points: f64_array(&flat),
-        motions: f64_array(&r.motions.iter().map(|m| f64::from(m.code())).collect::<Vec<_>>()),
+        motions: f64_array(
+            &r.motions
+                .iter()
+                .map(|m| f64::from(m.code()))
+                .collect::<Vec<_>>(),
+        ),
         k: degrees(&r.k),
         m: degrees(&r.m),
         source: f64_array(&source),
@@ -433,7 +534,11 @@ impl ToolpathReader {
         #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
     ) -> Result<ToolpathReader, JsError> {
         let options = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
-        Ok(Self { options, parser: None, points: Vec::new() })
+        Ok(Self {
+            options,
+            parser: None,
+            points: Vec::new(),
+        })
     }
 
     /// Reads the next piece of the file; returns the lines read so far. (The piece is taken as a
@@ -442,7 +547,9 @@ impl ToolpathReader {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     ) -> Result<u32, JsError> {
-        let text = text.as_string().ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
+        let text = text
+            .as_string()
+            .ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
         self.feed_str(&text)
     }
 
@@ -458,8 +565,15 @@ impl ToolpathReader {
         let parser = match &mut self.parser {
             Some(p) => p,
             None => {
-                let format = self.options.format.format().unwrap_or_else(|| Format::detect(text));
-                self.parser.insert(Parser::new(format, Some(&self.options.machine), self.options.options()).map_err(js_error)?)
+                let format = self
+                    .options
+                    .format
+                    .format()
+                    .unwrap_or_else(|| Format::detect(text));
+                self.parser.insert(
+                    Parser::new(format, Some(&self.options.machine), self.options.options())
+                        .map_err(js_error)?,
+                )
             }
         };
         parser.feed(text, &mut self.points).map_err(js_error)?;
@@ -470,10 +584,16 @@ impl ToolpathReader {
         if self.parser.is_none() {
             self.feed_str("")?;
         }
-        let parser = self.parser.as_mut().ok_or_else(|| js_error("toolpath: no parser"))?;
+        let parser = self
+            .parser
+            .as_mut()
+            .ok_or_else(|| js_error("toolpath: no parser"))?;
         let report = parser.finish(&mut self.points).map_err(js_error)?;
         let p = std::mem::take(&mut self.points);
-        let flat: Vec<f64> = p.iter().flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z]).collect();
+        let flat: Vec<f64> = p
+            .iter()
+            .flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z])
+            .collect();
         let format = parser.format();
         // The commands: only when every point has them (a tilted plane gives axes without).
         let angles: Option<Vec<f64>> = p
@@ -482,13 +602,19 @@ impl ToolpathReader {
             .collect::<Option<Vec<_>>>()
             .filter(|_| format.is_nc())
             .map(|a| a.into_iter().flatten().collect());
-        let read_for = angles.as_ref().map(|_| self.options.machine.rotary_type.name());
+        let read_for = angles
+            .as_ref()
+            .map(|_| self.options.machine.rotary_type.name());
         output(&ParsedToolpath {
             format: format.name().to_string(),
             count: p.len(),
             path: ToolpathPath {
                 points: f64_array(&flat),
-                motions: f64_array(&p.iter().map(|q| f64::from(q.motion.code())).collect::<Vec<_>>()),
+                motions: f64_array(
+                    &p.iter()
+                        .map(|q| f64::from(q.motion.code()))
+                        .collect::<Vec<_>>(),
+                ),
                 angles: angles.map(|a| f64_array(&a)),
                 read_for,
             },
@@ -505,7 +631,9 @@ pub fn toolpath_parse(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text = text.as_string().ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
+    let text = text
+        .as_string()
+        .ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
     let mut r = ToolpathReader::new(options)?;
     r.feed_str(&text)?;
     r.finish_points()
@@ -520,10 +648,18 @@ pub fn toolpath_write(
     #[wasm_bindgen(unchecked_param_type = "ToolpathPath | Float64Array")] path: JsValue,
 ) -> Result<String, JsError> {
     let o = ToolpathReadInput::read(&json(&options)?).map_err(js_error)?;
-    let format = o.format.format().ok_or_else(|| js_error(Error::field("format", "say which format to write: csv, apt or nc")))?;
+    let format = o.format.format().ok_or_else(|| {
+        js_error(Error::field(
+            "format",
+            "say which format to write: csv, apt or nc",
+        ))
+    })?;
     let p = points(&path)?;
     if format.is_nc() && p.commands.is_none() {
-        return Err(js_error(Error::field("angles", "NC blocks need the machine's commands [K, M] of each point")));
+        return Err(js_error(Error::field(
+            "angles",
+            "NC blocks need the machine's commands [K, M] of each point",
+        )));
     }
     let pts: Vec<Point> = (0..p.tips.len())
         .map(|i| Point {

@@ -570,12 +570,7 @@ pub fn analyse(
 /// The path on `model` with `L = length` mm and tolerance `tolerance` mm (module docs): the
 /// program's commands where they were written for this type, else the inverse kinematics with
 /// continuity; every segment; the totals of the cutting ones and the rapids apart.
-pub fn analyse_path(
-    model: &Model,
-    path: &Path,
-    length: f64,
-    tolerance: f64,
-) -> Result<Analysis> {
+pub fn analyse_path(model: &Model, path: &Path, length: f64, tolerance: f64) -> Result<Analysis> {
     check_positive("length", length, MAX_LENGTH_MM, "mm")?;
     check_positive("tolerance", tolerance, MAX_LENGTH_MM, "mm")?;
     path.check()?;

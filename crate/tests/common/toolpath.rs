@@ -44,3 +44,80 @@ pub fn tilted(t: f64, c: f64) -> Vector3<f64> {
     let (t, c) = (t.to_radians(), c.to_radians());
     Vector3::new(t.sin() * c.cos(), t.sin() * c.sin(), t.cos())
 }
+
+/// Reads `text` with `options`: the points and the report (a failure stops the test).
+#[track_caller]
+#[allow(clippy::unwrap_used)]
+pub fn read_with(
+    text: &str,
+    format: Format,
+    machine: Option<&Machine>,
+    options: fiveaxis::toolpath::read::ReadOptions,
+) -> (
+    Vec<fiveaxis::toolpath::read::Point>,
+    fiveaxis::toolpath::read::Report,
+) {
+    match fiveaxis::toolpath::read::read(text, format, machine, options) {
+        Ok(r) => r,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// [`read_with`] the default options.
+#[track_caller]
+pub fn read_all(
+    text: &str,
+    format: Format,
+    machine: Option<&Machine>,
+) -> (
+    Vec<fiveaxis::toolpath::read::Point>,
+    fiveaxis::toolpath::read::Report,
+) {
+    read_with(text, format, machine, Default::default())
+}
+
+/// Asserts `|a − b| ≤ tol`.
+#[track_caller]
+pub fn close_vec(a: &Vector3<f64>, b: &Vector3<f64>, tol: f64, what: &str) {
+    assert!(
+        (a - b).norm() <= tol,
+        "{what}: {a:?} vs {b:?} (diff {:e})",
+        (a - b).norm()
+    );
+}
+
+/// The tool axis of a C/A machine (K = C about Z, M = A about X, spindle along Z), ISO 841
+/// senses: `V = R_Z(c)·R_X(a)·e_Z = (sin a sin c, −sin a cos c, cos a)`.
+pub fn caz(c_deg: f64, a_deg: f64) -> Vector3<f64> {
+    let (c, a) = (c_deg.to_radians(), a_deg.to_radians());
+    Vector3::new(a.sin() * c.sin(), -a.sin() * c.cos(), a.cos())
+}
+
+/// The fewest chords of an arc of radius `r` over `sweep` radians within `tol`: the sagitta of a
+/// chord over `φ` is `r·(1 − cos(φ/2))`, so `φ ≤ 2·acos(1 − tol/r)`.
+pub fn chords(r: f64, sweep: f64, tol: f64) -> usize {
+    (sweep / (2.0 * (1.0 - tol / r).acos())).ceil() as usize
+}
+
+/// The note of `report` whose text contains `part`, with its line (a failure when none).
+#[track_caller]
+pub fn note<'a>(
+    report: &'a fiveaxis::toolpath::read::Report,
+    part: &str,
+) -> &'a fiveaxis::toolpath::read::Note {
+    report
+        .notes
+        .iter()
+        .find(|n| n.text.contains(part))
+        .unwrap_or_else(|| panic!("no note with {part:?} in {:#?}", report.notes))
+}
+
+/// The count of the skipped kind whose name contains `part` (0 when none).
+pub fn skipped(report: &fiveaxis::toolpath::read::Report, part: &str) -> u32 {
+    report
+        .skipped
+        .iter()
+        .filter(|s| s.what.contains(part))
+        .map(|s| s.count)
+        .sum()
+}

@@ -63,7 +63,9 @@
 
 use super::frame::{arc, ArcError, Frame};
 use super::lex::{shown, unit, unit_axis, Fields, Loc, Seg, MAX_COORDINATE, NAMES};
-use super::{AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, FIELD, MAX_LINE};
+use super::{
+    AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, FIELD, MAX_LINE,
+};
 use crate::error::{Error, Result};
 use crate::toolpath::slerp;
 use nalgebra::Vector3;
@@ -95,7 +97,8 @@ pub(super) fn is_statement(l: &str) -> bool {
         .to_ascii_uppercase();
     let rest = l[word.len()..].trim();
     matches!(word.as_str(), "RAPID" | "FINI" | "MULTAX") && rest.is_empty()
-        || matches!(word.as_str(), "PARTNO" | "PPRINT") && (rest.is_empty() || l[word.len()..].starts_with(' '))
+        || matches!(word.as_str(), "PARTNO" | "PPRINT")
+            && (rest.is_empty() || l[word.len()..].starts_with(' '))
 }
 
 /// The arc that `GOTO`s follow after a `CIRCLE/` (file unit, the statement's own frame).
@@ -173,11 +176,26 @@ const SKIPPED: [(&str, &str); 28] = [
     ("PARTNO", "names and comments (PARTNO, PPRINT, INSERT)"),
     ("PPRINT", "names and comments (PARTNO, PPRINT, INSERT)"),
     ("INSERT", "names and comments (PARTNO, PPRINT, INSERT)"),
-    ("CUTTER", "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)"),
-    ("TLDATA", "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)"),
-    ("LOADTL", "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)"),
-    ("LOAD", "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)"),
-    ("SELECT", "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)"),
+    (
+        "CUTTER",
+        "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
+    ),
+    (
+        "TLDATA",
+        "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
+    ),
+    (
+        "LOADTL",
+        "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
+    ),
+    (
+        "LOAD",
+        "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
+    ),
+    (
+        "SELECT",
+        "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
+    ),
     ("SPINDL", "spindle and coolant (SPINDL, COOLNT)"),
     ("COOLNT", "spindle and coolant (SPINDL, COOLNT)"),
     ("FEDRAT", "feeds (FEDRAT)"),
@@ -185,12 +203,30 @@ const SKIPPED: [(&str, &str); 28] = [
     ("PAINT", "display (PAINT)"),
     ("TOOL PATH", "operations (TOOL PATH, END-OF-PATH)"),
     ("END-OF-PATH", "operations (TOOL PATH, END-OF-PATH)"),
-    ("MACHIN", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
-    ("CLPRNT", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
-    ("INTOL", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
-    ("OUTTOL", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
-    ("TOLER", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
-    ("TRNTYP", "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)"),
+    (
+        "MACHIN",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
+    (
+        "CLPRNT",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
+    (
+        "INTOL",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
+    (
+        "OUTTOL",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
+    (
+        "TOLER",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
+    (
+        "TRNTYP",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
     ("DELAY", "stops and dwells (DELAY, OPSTOP, STOP)"),
     ("OPSTOP", "stops and dwells (DELAY, OPSTOP, STOP)"),
     ("STOP", "stops and dwells (DELAY, OPSTOP, STOP)"),
@@ -206,7 +242,13 @@ const SOURCE: [&str; 9] = [
 ];
 
 impl Apt {
-    pub(super) fn line(&mut self, line: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        line: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         if self.fini {
             return Ok(());
         }
@@ -355,7 +397,9 @@ impl Apt {
             }
             let applied = match reading {
                 AptFrameChoice::Apply => "the points after it are read in it (origin + R·p)",
-                AptFrameChoice::Ignore => "shown only: the points are left as written (your choice beside the file)",
+                AptFrameChoice::Ignore => {
+                    "shown only: the points are left as written (your choice beside the file)"
+                }
             };
             let desc = frame.describe();
             log.note("apt-frame", NoteKind::Frame, line, || {
@@ -368,7 +412,13 @@ impl Apt {
     }
 
     /// One whole statement (comments and continuations removed).
-    fn statement(&mut self, text: &str, segs: &[Seg], log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn statement(
+        &mut self,
+        text: &str,
+        segs: &[Seg],
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let loc = Loc { text, segs };
         let Some(start) = text.find(|c: char| !c.is_whitespace()) else {
             return Ok(());
@@ -398,7 +448,19 @@ impl Apt {
             .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == '-')
             .collect();
         // The statements that take numbers need their `/` right after the word.
-        if matches!(first.as_str(), "GOTO" | "FROM" | "GODLTA" | "TLAXIS" | "CIRCLE" | "MSYS" | "CSYS" | "TRACUT" | "UNITS" | "UNIT") {
+        if matches!(
+            first.as_str(),
+            "GOTO"
+                | "FROM"
+                | "GODLTA"
+                | "TLAXIS"
+                | "CIRCLE"
+                | "MSYS"
+                | "CSYS"
+                | "TRACUT"
+                | "UNITS"
+                | "UNIT"
+        ) {
             let after = &rest[first.len()..];
             let at = start + first.len() + (after.len() - after.trim_start().len());
             if !text[at..].starts_with('/') {
@@ -420,8 +482,15 @@ impl Apt {
             "TLAXIS" => {
                 let f = numbers(args, args_at, &loc, "TLAXIS", 0, 3)?;
                 if f.1 != 3 {
-                    let off = if f.1 < 3 { args_at + args.trim_end().len() } else { field_offsets(args, args_at)[3] };
-                    return Err(loc.err(off, format!("expected 3 numbers (i, j, k) after TLAXIS/, got {}", f.1)));
+                    let off = if f.1 < 3 {
+                        args_at + args.trim_end().len()
+                    } else {
+                        field_offsets(args, args_at)[3]
+                    };
+                    return Err(loc.err(
+                        off,
+                        format!("expected 3 numbers (i, j, k) after TLAXIS/, got {}", f.1),
+                    ));
                 }
                 let g = shift_axis(&f);
                 self.axis = unit_axis(&loc, &g)?;
@@ -440,7 +509,10 @@ impl Apt {
                     _ => {
                         return Err(loc.err(
                             args_at,
-                            format!("expected UNITS/MM or UNITS/INCHES, got {}", shown(args.trim())),
+                            format!(
+                                "expected UNITS/MM or UNITS/INCHES, got {}",
+                                shown(args.trim())
+                            ),
                         ))
                     }
                 };
@@ -450,8 +522,16 @@ impl Apt {
             "FEDRAT" => {
                 for w in args.split(',').map(|w| w.trim().to_ascii_uppercase()) {
                     match w.as_str() {
-                        "IPM" | "IPR" => log.hint_unit(LengthUnit::Inch, no, &format!("FEDRAT/{w} (a feed in inches)")),
-                        "MMPM" | "MMPR" => log.hint_unit(LengthUnit::Mm, no, &format!("FEDRAT/{w} (a feed in millimetres)")),
+                        "IPM" | "IPR" => log.hint_unit(
+                            LengthUnit::Inch,
+                            no,
+                            &format!("FEDRAT/{w} (a feed in inches)"),
+                        ),
+                        "MMPM" | "MMPR" => log.hint_unit(
+                            LengthUnit::Mm,
+                            no,
+                            &format!("FEDRAT/{w} (a feed in millimetres)"),
+                        ),
                         _ => {}
                     }
                 }
@@ -460,7 +540,12 @@ impl Apt {
             }
             "MSYS" | "CSYS" | "TRACUT" => self.matrix(&first, args, args_at, &loc, log),
             "CYCLE" => {
-                let kind = args.split(',').next().unwrap_or("").trim().to_ascii_uppercase();
+                let kind = args
+                    .split(',')
+                    .next()
+                    .unwrap_or("")
+                    .trim()
+                    .to_ascii_uppercase();
                 if kind == "OFF" {
                     self.cycle = None;
                 } else {
@@ -476,7 +561,12 @@ impl Apt {
                 Ok(())
             }
             "CUTCOM" => {
-                let w = args.split(',').next().unwrap_or("").trim().to_ascii_uppercase();
+                let w = args
+                    .split(',')
+                    .next()
+                    .unwrap_or("")
+                    .trim()
+                    .to_ascii_uppercase();
                 if matches!(w.as_str(), "LEFT" | "RIGHT") {
                     log.note("apt-cutcom", NoteKind::Partial, no, || {
                         format!(
@@ -515,7 +605,10 @@ impl Apt {
                 if let Some((_, kind)) = SKIPPED.iter().find(|(k, _)| major == *k || first == *k) {
                     log.skip(kind, no);
                 } else {
-                    log.skip("statements the reader does not know (no geometry assumed)", no);
+                    log.skip(
+                        "statements the reader does not know (no geometry assumed)",
+                        no,
+                    );
                     log.note("apt-unknown", NoteKind::Partial, no, || {
                         format!(
                             "line {no}: {major} is not a statement the reader knows; it is \
@@ -530,12 +623,24 @@ impl Apt {
 
     /// `GOTO/`, `FROM/`, `GODLTA/` of the statement starting on line `no`.
     #[allow(clippy::too_many_arguments)]
-    fn goto(&mut self, word: &str, args: &str, args_at: usize, no: u32, loc: &Loc, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn goto(
+        &mut self,
+        word: &str,
+        args: &str,
+        args_at: usize,
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let (p, axis) = if word == "GODLTA" {
             let f = numbers(args, args_at, loc, word, 1, 6)?;
             let n = f.1;
             let from = self.pos.ok_or_else(|| {
-                loc.err(args_at, "GODLTA/ moves from the last position, but there is none yet")
+                loc.err(
+                    args_at,
+                    "GODLTA/ moves from the last position, but there is none yet",
+                )
             })?;
             match n {
                 1 => (from + self.axis * f.0.vals[0], None),
@@ -563,7 +668,11 @@ impl Apt {
                 } else {
                     offs[6]
                 };
-                let why = if n == 5 || n == 8 { ": no documentation defines that form" } else { "" };
+                let why = if n == 5 || n == 8 {
+                    ": no documentation defines that form"
+                } else {
+                    ""
+                };
                 return Err(loc.err(
                     off,
                     format!("expected 3 numbers (x, y, z) or 6 (x, y, z, i, j, k) after {word}/, got {n}{why}"),
@@ -641,7 +750,10 @@ impl Apt {
         let tol = log.options.chord_tolerance / scale;
         let ccw = !self.nx;
         let pts = arc(p0, p1, &c.centre, &c.normal, ccw, 0, tol).map_err(|e| match e {
-            ArcError::Radii(a, b) => loc.err(at, format!("the arc's end is not on its circle ({a} and {b} from its axis)")),
+            ArcError::Radii(a, b) => loc.err(
+                at,
+                format!("the arc's end is not on its circle ({a} and {b} from its axis)"),
+            ),
             ArcError::NoRadius => loc.err(at, "the arc starts or ends on its axis"),
         })?;
         let a1 = self.axis;
@@ -655,7 +767,11 @@ impl Apt {
     /// `CIRCLE/`: the arc the next GOTOs follow.
     fn circle(&mut self, args: &str, args_at: usize, loc: &Loc) -> Result<()> {
         let (f, n, extra) = all_numbers(args, args_at, loc, "CIRCLE")?;
-        let centre = Vector3::new(f[0], f.get(1).copied().unwrap_or(0.0), f.get(2).copied().unwrap_or(0.0));
+        let centre = Vector3::new(
+            f[0],
+            f.get(1).copied().unwrap_or(0.0),
+            f.get(2).copied().unwrap_or(0.0),
+        );
         let (normal, radius) = match n {
             4 => (Some(self.axis), Some(f[3])),
             6 => (axis_of(&f[3..6]), None),
@@ -670,21 +786,39 @@ impl Apt {
                 ))
             }
         };
-        let normal = normal.ok_or_else(|| loc.err(args_at, "the CIRCLE/ axis (i, j, k) must not be zero"))?;
+        let normal = normal
+            .ok_or_else(|| loc.err(args_at, "the CIRCLE/ axis (i, j, k) must not be zero"))?;
         if let Some(r) = radius {
             if !(r > 0.0 && r.is_finite()) {
-                return Err(loc.err(args_at, format!("expected a CIRCLE/ radius above 0, got {r}")));
+                return Err(loc.err(
+                    args_at,
+                    format!("expected a CIRCLE/ radius above 0, got {r}"),
+                ));
             }
         }
         if centre.iter().any(|v| v.abs() > MAX_COORDINATE) {
-            return Err(loc.err(args_at, format!("expected the CIRCLE/ centre within ±{MAX_COORDINATE} mm")));
+            return Err(loc.err(
+                args_at,
+                format!("expected the CIRCLE/ centre within ±{MAX_COORDINATE} mm"),
+            ));
         }
-        self.circle = Some(Circle { centre, normal, radius });
+        self.circle = Some(Circle {
+            centre,
+            normal,
+            radius,
+        });
         Ok(())
     }
 
     /// `MSYS/`, `CSYS/`, `TRACUT/`.
-    fn matrix(&mut self, word: &str, args: &str, args_at: usize, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn matrix(
+        &mut self,
+        word: &str,
+        args: &str,
+        args_at: usize,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let no = loc.line_of(args_at);
         if word == "TRACUT" && args.trim().eq_ignore_ascii_case("NOMORE") {
             self.tracut = Frame::IDENTITY;
@@ -705,7 +839,11 @@ impl Apt {
                 Vector3::new(f[3], f[7], f[11]),
             ),
             _ => {
-                let counts = if word == "MSYS" { "9 numbers (origin, x axis, y axis) or 12 (a matrix)" } else { "12 numbers (a matrix, rows of [R | t])" };
+                let counts = if word == "MSYS" {
+                    "9 numbers (origin, x axis, y axis) or 12 (a matrix)"
+                } else {
+                    "12 numbers (a matrix, rows of [R | t])"
+                };
                 return Err(loc.err(args_at, format!("expected {word}/ with {counts}, got {n}")));
             }
         }
@@ -722,8 +860,12 @@ impl Apt {
             let desc = frame.describe();
             let reading = log.options.apt_frame;
             log.note("apt-tracut", NoteKind::Frame, no, || match reading {
-                AptFrameChoice::Apply => format!("line {no}: TRACUT/ moves the points after it by {desc}: applied"),
-                AptFrameChoice::Ignore => format!("line {no}: TRACUT/ ({desc}) shown only: the points are left as written"),
+                AptFrameChoice::Apply => {
+                    format!("line {no}: TRACUT/ moves the points after it by {desc}: applied")
+                }
+                AptFrameChoice::Ignore => format!(
+                    "line {no}: TRACUT/ ({desc}) shown only: the points are left as written"
+                ),
             });
             if reading == AptFrameChoice::Apply {
                 self.tracut = frame;
@@ -735,7 +877,15 @@ impl Apt {
     }
 
     /// Writes the point `p` (file unit) with axis `a`, both in the statements' own frame.
-    fn emit(&mut self, p: &Vector3<f64>, a: &Vector3<f64>, motion: Motion, line: u32, log: &Log, out: &mut Vec<Point>) -> Result<()> {
+    fn emit(
+        &mut self,
+        p: &Vector3<f64>,
+        a: &Vector3<f64>,
+        motion: Motion,
+        line: u32,
+        log: &Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let (scale, _) = log.scale();
         let f = self.output.then(&self.tracut);
         let tip = f.apply(p) * scale;
@@ -776,7 +926,14 @@ fn shift_axis<'a>(f: &(Fields<'a>, usize)) -> Fields<'a> {
 /// The numbers after `word/` (at most 6 kept, counted all): `(fields, count)`. Fewer than
 /// `min` is an error, and so is a field that is not a number (a minor word among the first
 /// `max`).
-fn numbers<'a>(args: &'a str, at: usize, loc: &Loc, word: &str, min: usize, max: usize) -> Result<(Fields<'a>, usize)> {
+fn numbers<'a>(
+    args: &'a str,
+    at: usize,
+    loc: &Loc,
+    word: &str,
+    min: usize,
+    max: usize,
+) -> Result<(Fields<'a>, usize)> {
     let mut f = Fields::new();
     let mut n = 0;
     let mut piece_start = at;
@@ -786,7 +943,10 @@ fn numbers<'a>(args: &'a str, at: usize, loc: &Loc, word: &str, min: usize, max:
         piece_start += piece.len() + 1;
         if n < 6 {
             let v = super::lex::number(tok, true).ok_or_else(|| {
-                loc.err(off, format!("expected a number after {word}/, got {}", shown(tok)))
+                loc.err(
+                    off,
+                    format!("expected a number after {word}/, got {}", shown(tok)),
+                )
             })?;
             if n < max {
                 f.vals[n] = v;
@@ -822,7 +982,12 @@ fn field_offsets(args: &str, at: usize) -> Vec<usize> {
 
 /// Every number after `word/` (a statement of up to 12): values, count, and the offset of the
 /// 13th field when there are more.
-fn all_numbers(args: &str, at: usize, loc: &Loc, word: &str) -> Result<(Vec<f64>, usize, Option<usize>)> {
+fn all_numbers(
+    args: &str,
+    at: usize,
+    loc: &Loc,
+    word: &str,
+) -> Result<(Vec<f64>, usize, Option<usize>)> {
     let mut v = Vec::new();
     let mut piece_start = at;
     let mut extra = None;
@@ -835,7 +1000,12 @@ fn all_numbers(args: &str, at: usize, loc: &Loc, word: &str) -> Result<(Vec<f64>
         }
         let x = super::lex::number(tok, true)
             .filter(|x| x.is_finite())
-            .ok_or_else(|| loc.err(off, format!("expected a number after {word}/, got {}", shown(tok))))?;
+            .ok_or_else(|| {
+                loc.err(
+                    off,
+                    format!("expected a number after {word}/, got {}", shown(tok)),
+                )
+            })?;
         v.push(x);
     }
     let n = v.len();

@@ -100,12 +100,24 @@ fn csv_fields(line: &str) -> impl Iterator<Item = (usize, &str)> + '_ {
 }
 
 impl Csv {
-    pub(super) fn line(&mut self, line: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        line: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         csv_line(line, no, &mut self.started, log, out)
     }
 }
 
-fn csv_line(line: &str, no: u32, started: &mut bool, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+fn csv_line(
+    line: &str,
+    no: u32,
+    started: &mut bool,
+    log: &mut Log,
+    out: &mut Vec<Point>,
+) -> Result<()> {
     let t = line.trim();
     if t.is_empty() || t.starts_with('#') {
         return Ok(());
@@ -162,4 +174,3 @@ fn csv_line(line: &str, no: u32, started: &mut bool, log: &mut Log, out: &mut Ve
     });
     Ok(())
 }
-

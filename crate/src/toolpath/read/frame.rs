@@ -63,8 +63,7 @@ impl Frame {
     /// orthonormalised to rounding: `x` kept, `y` made perpendicular to it).
     pub fn from_axes(origin: Vector3<f64>, x: Vector3<f64>, y: Vector3<f64>) -> Option<Frame> {
         let tol = ORTHONORMAL_TOLERANCE;
-        if (x.norm() - 1.0).abs() > tol || (y.norm() - 1.0).abs() > tol || x.dot(&y).abs() > tol
-        {
+        if (x.norm() - 1.0).abs() > tol || (y.norm() - 1.0).abs() > tol || x.dot(&y).abs() > tol {
             return None;
         }
         let x = x.normalize();
@@ -288,6 +287,8 @@ mod tests {
         )
         .unwrap_or_default();
         assert_eq!(cw.len(), 167);
-        assert!(cw.iter().any(|(p, _)| (p - Vector3::new(0.0, -10.0, 0.0)).norm() < 0.2));
+        assert!(cw
+            .iter()
+            .any(|(p, _)| (p - Vector3::new(0.0, -10.0, 0.0)).norm() < 0.2));
     }
 }

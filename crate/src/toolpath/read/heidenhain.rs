@@ -74,7 +74,11 @@ const MAX_RUN: u64 = 50_000_000;
 /// `CYCL DEF`.
 pub(super) fn is_statement(l: &str) -> bool {
     let u = l.to_ascii_uppercase();
-    if u.contains("BEGIN PGM") || u.contains("TOOL CALL") || u.contains("CYCL DEF") || u.contains("FMAX") && !u.contains('(') {
+    if u.contains("BEGIN PGM")
+        || u.contains("TOOL CALL")
+        || u.contains("CYCL DEF")
+        || u.contains("FMAX") && !u.contains('(')
+    {
         return true;
     }
     let rest = u.trim_start_matches(|c: char| c.is_ascii_digit());
@@ -82,7 +86,21 @@ pub(super) fn is_statement(l: &str) -> bool {
         return false;
     }
     let first = rest.split_whitespace().next().unwrap_or("");
-    matches!(first, "L" | "C" | "CC" | "CR" | "CT" | "CP" | "LN" | "PLANE" | "LBL" | "FN" | "BLK" | "M128" | "FUNCTION")
+    matches!(
+        first,
+        "L" | "C"
+            | "CC"
+            | "CR"
+            | "CT"
+            | "CP"
+            | "LN"
+            | "PLANE"
+            | "LBL"
+            | "FN"
+            | "BLK"
+            | "M128"
+            | "FUNCTION"
+    )
 }
 
 /// A Q parameter's value: a plain number, or computed on a line.
@@ -116,7 +134,14 @@ pub struct Heidenhain {
 }
 
 impl Heidenhain {
-    pub(super) fn line(&mut self, _core: &mut Core, text: &str, no: u32, log: &mut Log, _out: &mut [Point]) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        _core: &mut Core,
+        text: &str,
+        no: u32,
+        log: &mut Log,
+        _out: &mut [Point],
+    ) -> Result<()> {
         let code = strip_comment(text);
         let t = code.trim_end();
         match self.pending.take() {
@@ -163,7 +188,12 @@ impl Heidenhain {
         self.blocks.push((no, text));
     }
 
-    pub(super) fn finish(&mut self, core: &mut Core, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn finish(
+        &mut self,
+        core: &mut Core,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         if let Some((no, acc)) = self.pending.take() {
             self.push(no, acc, log);
         }
@@ -176,7 +206,16 @@ impl Heidenhain {
     /// Runs blocks from `start` until the end of the program, or (a subprogram) `LBL 0`, or
     /// (a repeat) the block `until`.
     #[allow(clippy::too_many_arguments)]
-    fn run_from(&mut self, core: &mut Core, blocks: &[(u32, String)], start: usize, until: Option<usize>, depth: usize, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn run_from(
+        &mut self,
+        core: &mut Core,
+        blocks: &[(u32, String)],
+        start: usize,
+        until: Option<usize>,
+        depth: usize,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let mut i = start;
         while i < blocks.len() && !core.ended {
             if until == Some(i) {
@@ -187,7 +226,10 @@ impl Heidenhain {
                 return Err(Error::field(super::FIELD, format!("line {}: the program runs more than {MAX_RUN} blocks (a label calling itself?)", blocks[i].0)));
             }
             let (no, text) = (&blocks[i].0, &blocks[i].1);
-            let segs = [Seg { start: 0, line: *no }];
+            let segs = [Seg {
+                start: 0,
+                line: *no,
+            }];
             let loc = Loc::line(text, &segs);
             let body_at = text.len() - block_body(text).len();
             let body = &text[body_at..];
@@ -202,14 +244,28 @@ impl Heidenhain {
             }
             if let Some(rest) = u.strip_prefix("CALL LBL") {
                 let (name, rep) = match rest.find(" REP") {
-                    Some(p) => (label_name(rest[..p].trim()), number(rest[p + 4..].trim().split_whitespace().next().unwrap_or(""), false)),
+                    Some(p) => (
+                        label_name(rest[..p].trim()),
+                        number(
+                            rest[p + 4..].trim().split_whitespace().next().unwrap_or(""),
+                            false,
+                        ),
+                    ),
                     None => (label_name(rest.trim()), None),
                 };
                 let Some(&at) = self.labels.get(&name) else {
-                    return Err(loc.err(body_at, format!("CALL LBL {name}: the program has no label {name}")));
+                    return Err(loc.err(
+                        body_at,
+                        format!("CALL LBL {name}: the program has no label {name}"),
+                    ));
                 };
                 if depth >= MAX_DEPTH {
-                    return Err(loc.err(body_at, format!("CALL LBL {name}: labels call each other more than {MAX_DEPTH} deep")));
+                    return Err(loc.err(
+                        body_at,
+                        format!(
+                            "CALL LBL {name}: labels call each other more than {MAX_DEPTH} deep"
+                        ),
+                    ));
                 }
                 match rep {
                     Some(m) if at < i => {
@@ -230,10 +286,22 @@ impl Heidenhain {
 
     /// One block's statement.
     #[allow(clippy::too_many_arguments)]
-    fn block(&mut self, core: &mut Core, no: u32, body: &str, at: usize, loc: &Loc, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn block(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        body: &str,
+        at: usize,
+        loc: &Loc,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let u = body.to_ascii_uppercase();
         let words: Vec<&str> = body.split_whitespace().collect();
-        let first = words.first().map(|w| w.to_ascii_uppercase()).unwrap_or_default();
+        let first = words
+            .first()
+            .map(|w| w.to_ascii_uppercase())
+            .unwrap_or_default();
         let refuse = |msg: String| -> Result<()> { Err(loc.err(at, msg)) };
         match first.as_str() {
             "BEGIN" => {
@@ -325,7 +393,15 @@ impl Heidenhain {
     }
 
     /// `FN n: …`.
-    fn fn_statement(&mut self, no: u32, body: &str, at: usize, u: &str, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn fn_statement(
+        &mut self,
+        no: u32,
+        body: &str,
+        at: usize,
+        u: &str,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let n = u[2..].trim_start().split(':').next().unwrap_or("").trim();
         match n {
             "0" => {
@@ -384,7 +460,9 @@ impl Heidenhain {
             Some(r) if r.starts_with(['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W']) => (true, r),
             _ => (false, uw.as_str()),
         };
-        let Some(letter) = rest.chars().next() else { return Ok(None) };
+        let Some(letter) = rest.chars().next() else {
+            return Ok(None);
+        };
         let idx = match letter {
             'X' => 0,
             'Y' => 1,
@@ -394,7 +472,10 @@ impl Heidenhain {
             _ => return Ok(None),
         };
         let val = &rest[1..];
-        if val.is_empty() || !(val.starts_with(['+', '-', '.', 'Q']) || val.starts_with(|c: char| c.is_ascii_digit())) {
+        if val.is_empty()
+            || !(val.starts_with(['+', '-', '.', 'Q'])
+                || val.starts_with(|c: char| c.is_ascii_digit()))
+        {
             return Ok(None);
         }
         let v = match number(val, false) {
@@ -410,7 +491,10 @@ impl Heidenhain {
                         }
                     })?
                 } else {
-                    return Err(loc.err(at, format!("expected a number after {letter}, got {}", shown(val))));
+                    return Err(loc.err(
+                        at,
+                        format!("expected a number after {letter}, got {}", shown(val)),
+                    ));
                 }
             }
         };
@@ -428,7 +512,8 @@ impl Heidenhain {
                     i
                 } else {
                     let letter = (b'A' + (i - 5) as u8) as char;
-                    core.rotary_index(letter).ok_or_else(|| core.not_this_machine(loc, at, letter))?
+                    core.rotary_index(letter)
+                        .ok_or_else(|| core.not_this_machine(loc, at, letter))?
                 };
                 b.axes[idx] = Some(Word { value: v, at });
                 b.incremental[idx] = Some(inc);
@@ -439,9 +524,23 @@ impl Heidenhain {
 
     /// `L` and `LN` blocks.
     #[allow(clippy::too_many_arguments)]
-    fn linear(&mut self, core: &mut Core, no: u32, body: &str, at: usize, loc: &Loc, log: &mut Log, out: &mut Vec<Point>, ln: bool) -> Result<()> {
+    fn linear(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        body: &str,
+        at: usize,
+        loc: &Loc,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+        ln: bool,
+    ) -> Result<()> {
         let words: Vec<&str> = body.split_whitespace().skip(1).collect();
-        let mut b = Block { at, mode: Some(Mode::Feed), ..Block::default() };
+        let mut b = Block {
+            at,
+            mode: Some(Mode::Feed),
+            ..Block::default()
+        };
         self.axes(core, &words, &mut b, loc, at)?;
         let mut tv = [None::<f64>; 3];
         let mut machine = false;
@@ -459,7 +558,9 @@ impl Heidenhain {
             if ln {
                 for (i, n) in ["TX", "TY", "TZ"].iter().enumerate() {
                     if let Some(v) = uw.strip_prefix(n) {
-                        tv[i] = Some(number(v, false).ok_or_else(|| loc.err(at, format!("expected a number after {n}, got {}", shown(v))))?);
+                        tv[i] = Some(number(v, false).ok_or_else(|| {
+                            loc.err(at, format!("expected a number after {n}, got {}", shown(v)))
+                        })?);
                     }
                 }
             }
@@ -482,19 +583,38 @@ impl Heidenhain {
             prev = w;
         }
         if tv.iter().any(Option::is_some) {
-            let v = Vector3::new(tv[0].unwrap_or(0.0), tv[1].unwrap_or(0.0), tv[2].unwrap_or(0.0));
-            b.vector = Some(super::lex::unit(&v).ok_or_else(|| loc.err(at, "the tool vector TX TY TZ must not be zero"))?);
+            let v = Vector3::new(
+                tv[0].unwrap_or(0.0),
+                tv[1].unwrap_or(0.0),
+                tv[2].unwrap_or(0.0),
+            );
+            b.vector = Some(
+                super::lex::unit(&v)
+                    .ok_or_else(|| loc.err(at, "the tool vector TX TY TZ must not be zero"))?,
+            );
         }
         if machine || retract {
-            let axes: Vec<usize> = if retract { vec![0, 1, 2] } else { (0..3).filter(|&i| b.axes[i].is_some()).collect() };
+            let axes: Vec<usize> = if retract {
+                vec![0, 1, 2]
+            } else {
+                (0..3).filter(|&i| b.axes[i].is_some()).collect()
+            };
             for i in 3..5 {
                 if let Some(w) = b.axes[i] {
-                    core.pos[i] = if b.incremental[i] == Some(true) { core.pos[i] + w.value } else { w.value };
+                    core.pos[i] = if b.incremental[i] == Some(true) {
+                        core.pos[i] + w.value
+                    } else {
+                        w.value
+                    };
                 }
             }
             if !axes.is_empty() {
                 core.forget(&axes);
-                let what = if retract { "M140 retracts the tool along its axis" } else { "M91/M92 move in machine coordinates" };
+                let what = if retract {
+                    "M140 retracts the tool along its axis"
+                } else {
+                    "M91/M92 move in machine coordinates"
+                };
                 log.note("hei-machine", NoteKind::Break, no, || format!("line {no}: {what}, to positions the file does not relate to the part: the path breaks until each axis is given again"));
             }
             return Ok(());
@@ -507,11 +627,25 @@ impl Heidenhain {
     }
 
     /// A block of M-functions only.
-    fn m_only(&mut self, core: &mut Core, no: u32, words: &[&str], at: usize, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn m_only(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        words: &[&str],
+        at: usize,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         for w in words {
             let uw = w.to_ascii_uppercase();
             let Some(m) = uw.strip_prefix('M').and_then(|m| m.parse::<u32>().ok()) else {
-                return Err(loc.err(at, format!("{} is not a Heidenhain statement the reader knows", shown(w))));
+                return Err(loc.err(
+                    at,
+                    format!(
+                        "{} is not a Heidenhain statement the reader knows",
+                        shown(w)
+                    ),
+                ));
             };
             match m {
                 128 => core.set_tcp(true, no, "M128", log),
@@ -528,7 +662,10 @@ impl Heidenhain {
 
     /// The cycle last defined is called at the current position.
     fn cycle_called(&mut self, no: u32, log: &mut Log) {
-        let name = self.cycle.as_ref().map_or_else(|| "a cycle".to_string(), |(n, t)| format!("cycle {n} {t}"));
+        let name = self
+            .cycle
+            .as_ref()
+            .map_or_else(|| "a cycle".to_string(), |(n, t)| format!("cycle {n} {t}"));
         log.note("hei-cycle", NoteKind::Partial, no, || format!("line {no}: {name} is called at the current position: its moves are not drawn (the tool axis does not turn in them)"));
     }
 
@@ -557,9 +694,22 @@ impl Heidenhain {
 
     /// `C`, `CR`, `CT`, `CP`.
     #[allow(clippy::too_many_arguments)]
-    fn arc(&mut self, core: &mut Core, no: u32, body: &str, at: usize, loc: &Loc, log: &mut Log, out: &mut Vec<Point>, kind: &str) -> Result<()> {
+    fn arc(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        body: &str,
+        at: usize,
+        loc: &Loc,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+        kind: &str,
+    ) -> Result<()> {
         let words: Vec<&str> = body.split_whitespace().skip(1).collect();
-        let mut b = Block { at, ..Block::default() };
+        let mut b = Block {
+            at,
+            ..Block::default()
+        };
         self.axes(core, &words, &mut b, loc, at)?;
         let mut dr: Option<bool> = None;
         let mut radius = None;
@@ -575,13 +725,26 @@ impl Heidenhain {
                 "MAX" if prev.eq_ignore_ascii_case("F") => b.rapid_once = true,
                 _ => {}
             }
-            if kind == "CR" && uw.starts_with('R') && uw.len() > 1 && !matches!(uw.as_str(), "RL" | "RR" | "R0") {
-                radius = Some(number(&uw[1..], false).ok_or_else(|| loc.err(at, format!("expected the radius after R, got {}", shown(&uw[1..]))))?);
+            if kind == "CR"
+                && uw.starts_with('R')
+                && uw.len() > 1
+                && !matches!(uw.as_str(), "RL" | "RR" | "R0")
+            {
+                radius = Some(number(&uw[1..], false).ok_or_else(|| {
+                    loc.err(
+                        at,
+                        format!("expected the radius after R, got {}", shown(&uw[1..])),
+                    )
+                })?);
             }
             if let Some(v) = uw.strip_prefix("IPA") {
-                ipa = Some(number(v, false).ok_or_else(|| loc.err(at, format!("expected an angle after IPA, got {}", shown(v))))?);
+                ipa = Some(number(v, false).ok_or_else(|| {
+                    loc.err(at, format!("expected an angle after IPA, got {}", shown(v)))
+                })?);
             } else if let Some(v) = uw.strip_prefix("PA") {
-                pa = Some(number(v, false).ok_or_else(|| loc.err(at, format!("expected an angle after PA, got {}", shown(v))))?);
+                pa = Some(number(v, false).ok_or_else(|| {
+                    loc.err(at, format!("expected an angle after PA, got {}", shown(v)))
+                })?);
             }
             if uw.starts_with("PR") || uw.starts_with("IPR") {
                 return Err(loc.err(at, format!("{kind} with a polar radius ({uw}) is not read; post the arc with its end point")));
@@ -599,26 +762,48 @@ impl Heidenhain {
         let plane_of_pole = self.pole.map(|p| p.1);
         match kind {
             "C" | "CP" => {
-                let (centre, plane) = self.pole.ok_or_else(|| loc.err(at, format!("{kind} turns about the pole CC, but no CC comes before it")))?;
+                let (centre, plane) = self.pole.ok_or_else(|| {
+                    loc.err(
+                        at,
+                        format!("{kind} turns about the pole CC, but no CC comes before it"),
+                    )
+                })?;
                 core.plane = plane;
                 let ccw = dr.ok_or_else(|| loc.err(at, format!("{kind} needs its direction, DR+ (counter-clockwise) or DR− (clockwise)")))?;
                 b.mode = Some(if ccw { Mode::Ccw } else { Mode::Cw });
-                b.centre = [0, 1, 2].map(|i| Some(Word { value: centre[i], at }));
+                b.centre = [0, 1, 2].map(|i| {
+                    Some(Word {
+                        value: centre[i],
+                        at,
+                    })
+                });
                 b.centre_absolute = true;
                 if kind == "CP" {
                     let sweep = match (ipa, pa) {
                         (Some(a), _) => a,
                         (None, Some(a)) => {
                             let (u, v) = plane_axes(plane);
-                            let now = (core.pos[v] - centre[v]).atan2(core.pos[u] - centre[u]).to_degrees();
+                            let now = (core.pos[v] - centre[v])
+                                .atan2(core.pos[u] - centre[u])
+                                .to_degrees();
                             let mut d = a - now;
-                            if ccw { d = d.rem_euclid(360.0) } else { d = -(-d).rem_euclid(360.0) }
+                            if ccw {
+                                d = d.rem_euclid(360.0)
+                            } else {
+                                d = -(-d).rem_euclid(360.0)
+                            }
                             d
                         }
                         _ => return Err(loc.err(at, "CP needs its angle, IPA (incremental) or PA")),
                     };
                     if (sweep > 0.0) != ccw || sweep == 0.0 {
-                        return Err(loc.err(at, format!("CP's angle {sweep}° and its direction {} disagree", if ccw { "DR+" } else { "DR−" })));
+                        return Err(loc.err(
+                            at,
+                            format!(
+                                "CP's angle {sweep}° and its direction {} disagree",
+                                if ccw { "DR+" } else { "DR−" }
+                            ),
+                        ));
                     }
                     // The plane's two axes come from the rotation; only the third may be given.
                     let n = plane.normal();
@@ -631,15 +816,30 @@ impl Heidenhain {
                 }
             }
             "CR" => {
-                let r = radius.ok_or_else(|| loc.err(at, "CR needs its radius, R+ (up to half a turn) or R− (more)"))?;
-                let ccw = dr.ok_or_else(|| loc.err(at, "CR needs its direction, DR+ (counter-clockwise) or DR− (clockwise)"))?;
+                let r = radius.ok_or_else(|| {
+                    loc.err(
+                        at,
+                        "CR needs its radius, R+ (up to half a turn) or R− (more)",
+                    )
+                })?;
+                let ccw = dr.ok_or_else(|| {
+                    loc.err(
+                        at,
+                        "CR needs its direction, DR+ (counter-clockwise) or DR− (clockwise)",
+                    )
+                })?;
                 core.plane = plane_of_arc(&b, plane_of_pole.or(self.tool_plane));
                 b.mode = Some(if ccw { Mode::Ccw } else { Mode::Cw });
                 b.radius = Some(Word { value: r, at });
             }
             _ => {
                 // CT: tangential to the move before.
-                let t = core.tangent.ok_or_else(|| loc.err(at, "CT continues tangentially from the move before, but there is none"))?;
+                let t = core.tangent.ok_or_else(|| {
+                    loc.err(
+                        at,
+                        "CT continues tangentially from the move before, but there is none",
+                    )
+                })?;
                 let plane = plane_of_arc(&b, plane_of_pole.or(self.tool_plane));
                 core.plane = plane;
                 let n = Vector3::ith(plane.normal(), 1.0);
@@ -647,12 +847,18 @@ impl Heidenhain {
                 let mut e = s;
                 for i in 0..3 {
                     if let Some(w) = b.axes[i] {
-                        e[i] = if b.incremental[i] == Some(true) { s[i] + w.value } else { w.value };
+                        e[i] = if b.incremental[i] == Some(true) {
+                            s[i] + w.value
+                        } else {
+                            w.value
+                        };
                     }
                 }
                 let mut d = e - s;
                 d -= n * n.dot(&d);
-                let t = (t - n * n.dot(&t)).try_normalize(1e-12).ok_or_else(|| loc.err(at, "CT: the move before is normal to the plane of the arc"))?;
+                let t = (t - n * n.dot(&t)).try_normalize(1e-12).ok_or_else(|| {
+                    loc.err(at, "CT: the move before is normal to the plane of the arc")
+                })?;
                 let left = n.cross(&t);
                 let k = left.dot(&d);
                 if k.abs() < 1e-9 * d.norm().max(1.0) {
@@ -671,7 +877,16 @@ impl Heidenhain {
 
     /// `CYCL DEF …`, `CYCL CALL …`.
     #[allow(clippy::too_many_arguments)]
-    fn cycl(&mut self, core: &mut Core, no: u32, body: &str, at: usize, u: &str, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn cycl(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        body: &str,
+        at: usize,
+        u: &str,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         if u.starts_with("CYCL CALL") {
             self.cycle_called(no, log);
             return Ok(());
@@ -679,7 +894,12 @@ impl Heidenhain {
         let rest = u.strip_prefix("CYCL DEF").unwrap_or("").trim();
         let num = rest.split_whitespace().next().unwrap_or("");
         let (major, minor) = num.split_once('.').unwrap_or((num, "0"));
-        let major: u32 = major.parse().map_err(|_| loc.err(at, format!("expected a cycle number after CYCL DEF, got {}", shown(num))))?;
+        let major: u32 = major.parse().map_err(|_| {
+            loc.err(
+                at,
+                format!("expected a cycle number after CYCL DEF, got {}", shown(num)),
+            )
+        })?;
         let words: Vec<&str> = body.split_whitespace().skip(3).collect();
         match major {
             7 => {
@@ -751,20 +971,37 @@ impl Heidenhain {
 
     /// `PLANE …`.
     #[allow(clippy::too_many_arguments)]
-    fn plane(&mut self, core: &mut Core, no: u32, body: &str, at: usize, u: &str, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn plane(
+        &mut self,
+        core: &mut Core,
+        no: u32,
+        body: &str,
+        at: usize,
+        u: &str,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let words: Vec<&str> = u.split_whitespace().collect();
         let kind = words.get(1).copied().unwrap_or("");
         let get = |name: &str| -> Result<Option<f64>> {
             for w in &words[2..] {
                 if let Some(v) = w.strip_prefix(name) {
-                    if v.starts_with(['+', '-', '.']) || v.starts_with(|c: char| c.is_ascii_digit()) {
-                        return number(v, false).map(Some).ok_or_else(|| loc.err(at, format!("expected a number after {name}, got {}", shown(v))));
+                    if v.starts_with(['+', '-', '.']) || v.starts_with(|c: char| c.is_ascii_digit())
+                    {
+                        return number(v, false).map(Some).ok_or_else(|| {
+                            loc.err(
+                                at,
+                                format!("expected a number after {name}, got {}", shown(v)),
+                            )
+                        });
                     }
                 }
             }
             Ok(None)
         };
-        let need = |name: &str| -> Result<f64> { get(name)?.ok_or_else(|| loc.err(at, format!("PLANE {kind} needs {name}"))) };
+        let need = |name: &str| -> Result<f64> {
+            get(name)?.ok_or_else(|| loc.err(at, format!("PLANE {kind} needs {name}")))
+        };
         let deg = |x: f64| x.to_radians();
         let r = match kind {
             "RESET" => None,
@@ -803,7 +1040,11 @@ impl Heidenhain {
                 self.stay_angles(core, &m, u, no);
             }
             if self.tilt.is_some() {
-                let text = body.split_whitespace().take(5).collect::<Vec<_>>().join(" ");
+                let text = body
+                    .split_whitespace()
+                    .take(5)
+                    .collect::<Vec<_>>()
+                    .join(" ");
                 let z: Vector3<f64> = m.column(2).into();
                 log.note("hei-plane", NoteKind::Frame, no, || format!("line {no}: {text} tilts the working plane (tool axis ({:.6}, {:.6}, {:.6})): the points after it are read in it and the tool axis is its z axis (PLANE RESET cancels)", z.x, z.y, z.z));
             }
@@ -815,8 +1056,19 @@ impl Heidenhain {
     /// solved on the machine (the smallest tilt; `SEQ+`/`SEQ−` the tilting axis's sign).
     fn stay_angles(&mut self, core: &Core, m: &Matrix3<f64>, u: &str, no: u32) {
         let dir: Vector3<f64> = m.column(2).into();
-        let Ok(o) = core.model.orientations(&dir, BranchRule::SmallestTilt, None) else { return };
-        let seq = if u.contains("SEQ-") { Some(false) } else if u.contains("SEQ+") { Some(true) } else { None };
+        let Ok(o) = core
+            .model
+            .orientations(&dir, BranchRule::SmallestTilt, None)
+        else {
+            return;
+        };
+        let seq = if u.contains("SEQ-") {
+            Some(false)
+        } else if u.contains("SEQ+") {
+            Some(true)
+        } else {
+            None
+        };
         let pick = o
             .solutions
             .iter()
@@ -839,7 +1091,10 @@ impl Heidenhain {
     fn update_frame(&mut self, core: &mut Core) {
         let mut f = Frame::shift(self.datum);
         if let Some(t) = self.tilt {
-            f = f.then(&Frame { rotation: t, origin: Vector3::zeros() });
+            f = f.then(&Frame {
+                rotation: t,
+                origin: Vector3::zeros(),
+            });
         }
         if self.rot10 != 0.0 {
             let axis = match self.tool_plane.unwrap_or(Plane::Xy) {
@@ -847,7 +1102,10 @@ impl Heidenhain {
                 Plane::Zx => Axis::Y,
                 Plane::Yz => Axis::X,
             };
-            f = f.then(&Frame { rotation: rotation(axis, self.rot10.to_radians()), origin: Vector3::zeros() });
+            f = f.then(&Frame {
+                rotation: rotation(axis, self.rot10.to_radians()),
+                origin: Vector3::zeros(),
+            });
         }
         core.frame = f;
         core.tilted = self.tilt.is_some();
@@ -856,7 +1114,11 @@ impl Heidenhain {
 
 /// The plane of an arc: from its end words (two of X, Y, Z), else `default`, else XY.
 fn plane_of_arc(b: &Block, default: Option<Plane>) -> Plane {
-    match (b.axes[0].is_some(), b.axes[1].is_some(), b.axes[2].is_some()) {
+    match (
+        b.axes[0].is_some(),
+        b.axes[1].is_some(),
+        b.axes[2].is_some(),
+    ) {
         (true, true, false) => Plane::Xy,
         (true, false, true) => Plane::Zx,
         (false, true, true) => Plane::Yz,

@@ -102,7 +102,14 @@ struct Tok {
 }
 
 impl Iso {
-    pub(super) fn line(&mut self, core: &mut Core, text: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        core: &mut Core,
+        text: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let t = text.trim();
         if core.ended || self.percents >= 2 {
             if !t.is_empty() {
@@ -145,13 +152,24 @@ impl Iso {
         self.block(core, text, no, log, out)
     }
 
-    pub(super) fn finish(&mut self, core: &mut Core, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn finish(
+        &mut self,
+        core: &mut Core,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let held = std::mem::take(&mut self.held);
         self.started = true;
         self.replay(core, held, log, out)
     }
 
-    fn replay(&mut self, core: &mut Core, held: Vec<(u32, String)>, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn replay(
+        &mut self,
+        core: &mut Core,
+        held: Vec<(u32, String)>,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         for (n, l) in held {
             if core.ended {
                 log.skip("text after the end of the program", n);
@@ -167,7 +185,14 @@ impl Iso {
     }
 
     /// One block.
-    fn block(&mut self, core: &mut Core, text: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    fn block(
+        &mut self,
+        core: &mut Core,
+        text: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let segs = [Seg { start: 0, line: no }];
         let loc = Loc::line(text, &segs);
         let toks = lex(text, no)?;
@@ -194,6 +219,17 @@ impl Iso {
                 _ => {}
             }
         }
+        for t in &toks {
+            match t.letter {
+                'N' => log.skip("block numbers (N)", no),
+                'O' => log.skip("program numbers and names (O)", no),
+                'F' | 'E' => log.skip("feeds (F)", no),
+                'S' => log.skip("spindle speeds (S)", no),
+                'T' | 'H' | 'D' => log.skip("tool numbers and offsets (T, H, D)", no),
+                _ => {}
+            }
+        }
+
         if has(100) {
             let l = word('L').map(|w| w.value as i64);
             if matches!(l, Some(2) | Some(20)) {
@@ -208,7 +244,10 @@ impl Iso {
         }
 
         // Modal settings.
-        let mut b = Block { at: at0, ..Block::default() };
+        let mut b = Block {
+            at: at0,
+            ..Block::default()
+        };
         // Plane, unit and distance mode first: they apply to the whole block (`G28 G91 Z0`).
         const SETTINGS: [i64; 9] = [170, 180, 190, 200, 210, 900, 910, 901, 911];
         for t in &gs {
@@ -264,12 +303,19 @@ impl Iso {
                 }
                 800 => self.cycle = None,
                 540..=593 | 1100..=1290 => {
-                    let p = if code == 541 { word('P').map_or(0, |w| w.value as i64) } else { 0 };
+                    let p = if code == 541 {
+                        word('P').map_or(0, |w| w.value as i64)
+                    } else {
+                        0
+                    };
                     self.work_offset(core, (code, p), t.value, no, log);
                 }
                 280 | 300 => {
-                    let named: Vec<usize> = (0..3).filter(|&i| word(['X', 'Y', 'Z'][i]).is_some()).collect();
-                    let rotary: Vec<usize> = (3..5).filter(|&i| word(core.name(i)).is_some()).collect();
+                    let named: Vec<usize> = (0..3)
+                        .filter(|&i| word(['X', 'Y', 'Z'][i]).is_some())
+                        .collect();
+                    let rotary: Vec<usize> =
+                        (3..5).filter(|&i| word(core.name(i)).is_some()).collect();
                     let all = named.is_empty() && rotary.is_empty();
                     let axes = if all { vec![0, 1, 2] } else { named };
                     core.forget(&axes);
@@ -300,11 +346,28 @@ impl Iso {
                     self.update_frame(core);
                 }
                 531 | 536 => log.skip("tool axis direction control (G53.1, G53.6)", no),
-                50..=90 | 610 | 611 | 620 | 630 | 640 | 1870 | 930..=950 | 980 | 990 | 400 | 150 | 960 | 970 => {
-                    log.skip("path, feed and look-ahead modes (G5.1, G61, G64, G94, G98 …)", no)
-                }
+                50..=90
+                | 610
+                | 611
+                | 620
+                | 630
+                | 640
+                | 1870
+                | 930..=950
+                | 980
+                | 990
+                | 400
+                | 150
+                | 960
+                | 970 => log.skip(
+                    "path, feed and look-ahead modes (G5.1, G61, G64, G94, G98 …)",
+                    no,
+                ),
                 _ => {
-                    log.skip("G-codes the reader does not know (read as settings without motion)", no);
+                    log.skip(
+                        "G-codes the reader does not know (read as settings without motion)",
+                        no,
+                    );
                     log.note("iso-unknown-g", NoteKind::Partial, no, || {
                         format!("line {no}: G{} is not a code the reader knows; it is read as a setting without motion (listed under Skipped)", t.value)
                     });
@@ -321,9 +384,16 @@ impl Iso {
                 1290 => core.set_tcp(false, no, "", log),
                 // LinuxCNC's switchable-kinematics configurations (configs/sim/axis/vismach/
                 // 5axis demos): `M428 ;TCP:xyzac`, `M429 ;Restore Trivkins`.
-                4280 => core.set_tcp(true, no, "M428 (LinuxCNC tool-centre-point kinematics)", log),
+                4280 => core.set_tcp(
+                    true,
+                    no,
+                    "M428 (LinuxCNC tool-centre-point kinematics)",
+                    log,
+                ),
                 4290 => core.set_tcp(false, no, "", log),
-                910 | 920 => return self.machine_coordinates(core, &toks, &format!("M{}", t.value), no, log),
+                910 | 920 => {
+                    return self.machine_coordinates(core, &toks, &format!("M{}", t.value), no, log)
+                }
                 30 | 40 | 50 | 190 => log.skip("spindle (M3, M4, M5)", no),
                 60 => log.skip("tool changes (M6)", no),
                 70 | 80 | 90 => log.skip("coolant (M7, M8, M9)", no),
@@ -331,21 +401,13 @@ impl Iso {
                 _ => log.skip("other M-functions", no),
             }
         }
-        for t in &toks {
-            match t.letter {
-                'N' => log.skip("block numbers (N)", no),
-                'O' => log.skip("program numbers and names (O)", no),
-                'F' | 'E' => log.skip("feeds (F)", no),
-                'S' => log.skip("spindle speeds (S)", no),
-                'T' | 'H' | 'D' => log.skip("tool numbers and offsets (T, H, D)", no),
-                _ => {}
-            }
-        }
-
         // The move.
         let in_cycle = self.cycle.is_some() && b.mode.is_none();
         for t in &toks {
-            let w = Some(Word { value: t.value, at: t.num_at });
+            let w = Some(Word {
+                value: t.value,
+                at: t.num_at,
+            });
             match t.letter {
                 'X' => b.axes[0] = w,
                 'Y' => b.axes[1] = w,
@@ -355,7 +417,9 @@ impl Iso {
                     b.centre[i] = w;
                 }
                 'R' if !in_cycle => b.radius = w,
-                'P' if matches!(core.mode, Mode::Cw | Mode::Ccw) || matches!(b.mode, Some(Mode::Cw | Mode::Ccw)) => {
+                'P' if matches!(core.mode, Mode::Cw | Mode::Ccw)
+                    || matches!(b.mode, Some(Mode::Cw | Mode::Ccw)) =>
+                {
                     b.turns = (t.value.max(1.0) as u32).saturating_sub(1);
                 }
                 l => {
@@ -374,7 +438,8 @@ impl Iso {
                     given[1].map_or(0.0, |w| w.value),
                     given[2].map_or(0.0, |w| w.value),
                 );
-                let v = super::lex::unit(&v).ok_or_else(|| loc.err(at0, "the tool axis I J K of G43.5 must not be zero"))?;
+                let v = super::lex::unit(&v)
+                    .ok_or_else(|| loc.err(at0, "the tool axis I J K of G43.5 must not be zero"))?;
                 b.vector = Some(v);
             }
             b.centre = [None; 3];
@@ -393,7 +458,14 @@ impl Iso {
     }
 
     /// A new work offset: the first is the workpiece frame, another breaks the path.
-    fn work_offset(&mut self, core: &mut Core, code: (i64, i64), value: f64, no: u32, log: &mut Log) {
+    fn work_offset(
+        &mut self,
+        core: &mut Core,
+        code: (i64, i64),
+        value: f64,
+        no: u32,
+        log: &mut Log,
+    ) {
         if self.offset.is_some_and(|o| o != code) && self.any_point {
             core.break_next = true;
             log.note("iso-offset", NoteKind::Break, no, || {
@@ -404,7 +476,14 @@ impl Iso {
     }
 
     /// `G53`, `M91`, `M92`: the axes of the block move in machine coordinates.
-    fn machine_coordinates(&mut self, core: &mut Core, toks: &[Tok], what: &str, no: u32, log: &mut Log) -> Result<()> {
+    fn machine_coordinates(
+        &mut self,
+        core: &mut Core,
+        toks: &[Tok],
+        what: &str,
+        no: u32,
+        log: &mut Log,
+    ) -> Result<()> {
         let axes: Vec<usize> = (0..3)
             .filter(|&i| toks.iter().any(|t| t.letter == ['X', 'Y', 'Z'][i]))
             .collect();
@@ -423,7 +502,14 @@ impl Iso {
     }
 
     /// `G52`: a local shift.
-    fn local_shift(&mut self, core: &mut Core, toks: &[Tok], no: u32, _loc: &Loc, log: &mut Log) -> Result<()> {
+    fn local_shift(
+        &mut self,
+        core: &mut Core,
+        toks: &[Tok],
+        no: u32,
+        _loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         for t in toks {
             if let Some(i) = "XYZ".find(t.letter) {
                 self.local[i] = t.value;
@@ -440,7 +526,14 @@ impl Iso {
     }
 
     /// `G92`: the current position gets the block's coordinates.
-    fn g92(&mut self, core: &mut Core, toks: &[Tok], no: u32, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn g92(
+        &mut self,
+        core: &mut Core,
+        toks: &[Tok],
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         for t in toks {
             if let Some(i) = "XYZ".find(t.letter) {
                 if !core.known[i] {
@@ -463,13 +556,24 @@ impl Iso {
     }
 
     /// `G68`: rotation in the plane, or about `I J K`.
-    fn g68(&mut self, core: &mut Core, toks: &[Tok], no: u32, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn g68(
+        &mut self,
+        core: &mut Core,
+        toks: &[Tok],
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let get = |l: char| toks.iter().find(|t| t.letter == l).map(|t| t.value);
         let r = get('R').ok_or_else(|| {
             loc.err(toks[0].at, "G68 without R takes its angle from a setting of the control, which the file does not state; expected G68 X… Y… R…")
         })?;
         let cur = |i: usize| if core.known[i] { core.pos[i] } else { 0.0 };
-        let centre = Vector3::new(get('X').unwrap_or(cur(0)), get('Y').unwrap_or(cur(1)), get('Z').unwrap_or(cur(2)));
+        let centre = Vector3::new(
+            get('X').unwrap_or(cur(0)),
+            get('Y').unwrap_or(cur(1)),
+            get('Z').unwrap_or(cur(2)),
+        );
         let angle = r.to_radians();
         let (frame, about) = match (get('I'), get('J'), get('K')) {
             (None, None, None) => {
@@ -477,13 +581,32 @@ impl Iso {
                 let mut c = centre;
                 // Only the plane's two coordinates are the centre.
                 c[core.plane.normal()] = 0.0;
-                (Frame::rotation_about(axis, angle, c), format!("about {} through ({}, {}, {})", axis.letter(), c.x, c.y, c.z))
+                (
+                    Frame::rotation_about(axis, angle, c),
+                    format!(
+                        "about {} through ({}, {}, {})",
+                        axis.letter(),
+                        c.x,
+                        c.y,
+                        c.z
+                    ),
+                )
             }
             (i, j, k) => {
                 let v = Vector3::new(i.unwrap_or(0.0), j.unwrap_or(0.0), k.unwrap_or(0.0));
-                let v = super::lex::unit(&v).ok_or_else(|| loc.err(toks[0].at, "G68's axis I J K must not be zero"))?;
+                let v = super::lex::unit(&v)
+                    .ok_or_else(|| loc.err(toks[0].at, "G68's axis I J K must not be zero"))?;
                 let rot = Rotation3::from_axis_angle(&Unit::new_unchecked(v), angle).into_inner();
-                (Frame { rotation: rot, origin: centre - rot * centre }, format!("about ({}, {}, {}) through ({}, {}, {})", v.x, v.y, v.z, centre.x, centre.y, centre.z))
+                (
+                    Frame {
+                        rotation: rot,
+                        origin: centre - rot * centre,
+                    },
+                    format!(
+                        "about ({}, {}, {}) through ({}, {}, {})",
+                        v.x, v.y, v.z, centre.x, centre.y, centre.z
+                    ),
+                )
             }
         };
         self.rotation = Some(frame);
@@ -495,18 +618,38 @@ impl Iso {
     }
 
     /// `G68.2 X Y Z I J K`: the tilted working plane.
-    fn g68_2(&mut self, core: &mut Core, toks: &[Tok], no: u32, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn g68_2(
+        &mut self,
+        core: &mut Core,
+        toks: &[Tok],
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let get = |l: char| toks.iter().find(|t| t.letter == l).map(|t| t.value);
         if let Some(p) = get('P') {
             if p != 0.0 {
                 return Err(loc.err(toks[0].at, format!("G68.2 P{p} defines the plane another way than by Euler angles (P0), which the reader does not read; post the program with tool-centre-point output (G43.4) or as CL data")));
             }
         }
-        let o = Vector3::new(get('X').unwrap_or(0.0), get('Y').unwrap_or(0.0), get('Z').unwrap_or(0.0));
-        let (a, b, c) = (get('I').unwrap_or(0.0), get('J').unwrap_or(0.0), get('K').unwrap_or(0.0));
+        let o = Vector3::new(
+            get('X').unwrap_or(0.0),
+            get('Y').unwrap_or(0.0),
+            get('Z').unwrap_or(0.0),
+        );
+        let (a, b, c) = (
+            get('I').unwrap_or(0.0),
+            get('J').unwrap_or(0.0),
+            get('K').unwrap_or(0.0),
+        );
         // Euler angles Z, X′, Z″ (FANUC 30i, 5.44): R = Rz(α)·Rx(β)·Rz(γ).
-        let r = rotation(Axis::Z, a.to_radians()) * rotation(Axis::X, b.to_radians()) * rotation(Axis::Z, c.to_radians());
-        self.tilt = Some(Frame { rotation: r, origin: o });
+        let r = rotation(Axis::Z, a.to_radians())
+            * rotation(Axis::X, b.to_radians())
+            * rotation(Axis::Z, c.to_radians());
+        self.tilt = Some(Frame {
+            rotation: r,
+            origin: o,
+        });
         self.update_frame(core);
         log.note("iso-g68.2", NoteKind::Frame, no, || {
             format!("line {no}: G68.2 tilts the working plane: origin ({}, {}, {}), Euler angles {a}°, {b}°, {c}° (Z, X′, Z″); the points after it are read in that plane and the tool axis is its z axis (G69 cancels)", o.x, o.y, o.z)

@@ -143,7 +143,13 @@ impl Fields<'_> {
 }
 
 /// A coordinate `v` (token `tok` at `off`, named `name`) checked against [`MAX_COORDINATE`].
-pub(super) fn coordinate(loc: &Loc, off: usize, name: &str, tok: &str, v: f64) -> Result<f64, Error> {
+pub(super) fn coordinate(
+    loc: &Loc,
+    off: usize,
+    name: &str,
+    tok: &str,
+    v: f64,
+) -> Result<f64, Error> {
     if v.abs() <= MAX_COORDINATE {
         Ok(v)
     } else {

@@ -171,10 +171,14 @@ impl Format {
                 nc = true;
                 continue;
             }
-            let letters = l.find(|c: char| !c.is_ascii_alphabetic()).unwrap_or(l.len());
+            let letters = l
+                .find(|c: char| !c.is_ascii_alphabetic())
+                .unwrap_or(l.len());
             let after = l[letters..].trim_start();
             let after = after.strip_prefix('=').unwrap_or(after).trim_start();
-            let numeric = |s: &str| s.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '.'));
+            let numeric = |s: &str| {
+                s.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '.'))
+            };
             if letters == 1 && numeric(after) {
                 nc = true;
                 if siemens::is_statement(l) {
@@ -492,7 +496,13 @@ impl Log {
     }
 
     /// Records a note under `key` (one entry per key: the first text, counted).
-    pub(crate) fn note(&mut self, key: &'static str, kind: NoteKind, line: u32, text: impl FnOnce() -> String) {
+    pub(crate) fn note(
+        &mut self,
+        key: &'static str,
+        kind: NoteKind,
+        line: u32,
+        text: impl FnOnce() -> String,
+    ) {
         match self.notes.iter_mut().find(|(k, _)| *k == key) {
             Some((_, n)) => n.count = n.count.saturating_add(1),
             None => self.notes.push((

@@ -69,7 +69,8 @@ pub(super) enum Mode {
 pub(super) enum Way {
     /// As far as the numbers say.
     Literal,
-    /// The shorter way round: the equivalent angle (modulo 360°) nearest the current one.
+    /// The shorter way round: the equivalent angle (modulo 360°) nearest the current one;
+    /// half a turn exactly turns positively.
     Shortest,
     /// Turning positively (Siemens `ACP`).
     Positive,
@@ -82,7 +83,7 @@ impl Way {
     pub fn reach(self, value: f64, current: f64) -> f64 {
         match self {
             Way::Literal => value,
-            Way::Shortest => value + 360.0 * ((current - value) / 360.0).round(),
+            Way::Shortest => value + 360.0 * ((current - value) / 360.0 + 0.5).floor(),
             Way::Positive => value + 360.0 * ((current - value) / 360.0).ceil(),
             Way::Negative => value + 360.0 * ((current - value) / 360.0).floor(),
         }
@@ -240,7 +241,13 @@ impl Nc {
     }
 
     /// One line of the file.
-    pub(super) fn line(&mut self, text: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        text: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         match &mut self.dialect {
             Dialect::Iso(d) => d.line(&mut self.core, text, no, log, out),
             Dialect::Siemens(d) => d.line(&mut self.core, text, no, log, out),
@@ -266,7 +273,10 @@ impl Core {
 
     /// Index 3 or 4 of a rotary letter of this machine.
     pub fn rotary_index(&self, letter: char) -> Option<usize> {
-        self.letters.iter().position(|&l| l == letter).map(|i| i + 3)
+        self.letters
+            .iter()
+            .position(|&l| l == letter)
+            .map(|i| i + 3)
     }
 
     /// The error of a rotary word that is not one of the machine's.
@@ -315,15 +325,19 @@ impl Core {
     }
 
     /// Moves the tool as block `b` says (module docs), appending its points to `out`.
-    pub fn execute(&mut self, b: &Block, loc: &Loc, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub fn execute(
+        &mut self,
+        b: &Block,
+        loc: &Loc,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         if let Some(m) = b.mode {
             self.mode = m;
         }
         let arc_mode = matches!(self.mode, Mode::Cw | Mode::Ccw) && !b.rapid_once && !b.cycle;
-        let full_circle = arc_mode
-            && !b.moves()
-            && b.centre.iter().any(Option::is_some)
-            && b.radius.is_none();
+        let full_circle =
+            arc_mode && !b.moves() && b.centre.iter().any(Option::is_some) && b.radius.is_none();
         if !b.moves() && !full_circle {
             return Ok(());
         }
@@ -357,11 +371,18 @@ impl Core {
                 };
                 return Err(loc.err(
                     w.at,
-                    format!("expected {} within ±{MAX_COORDINATE} mm, got {got}", self.name(n)),
+                    format!(
+                        "expected {} within ±{MAX_COORDINATE} mm, got {got}",
+                        self.name(n)
+                    ),
                 ));
             }
             if n >= 3 && value.abs() > MAX_ANGLE {
-                let got = if incremental { format!("{value}°") } else { shown(&format!("{}", w.value)) };
+                let got = if incremental {
+                    format!("{value}°")
+                } else {
+                    shown(&format!("{}", w.value))
+                };
                 return Err(loc.err(
                     w.at,
                     format!("expected {} within ±{MAX_ANGLE}°, got {got}", self.name(n)),
@@ -441,35 +462,41 @@ impl Core {
         let nz = self.plane.normal();
         let normal = Vector3::ith(nz, 1.0);
         let (scale, _) = log.scale();
-        let centre = match (b.radius, b.centre.iter().any(Option::is_some)) {
-            (Some(r), _) => radius_centre(&p0, &p1, r.value, &normal, ccw)
-                .map_err(|msg| loc.err(r.at, msg))?,
-            (None, true) => {
-                let mut c = if b.centre_absolute { Vector3::zeros() } else { p0 };
-                for (i, w) in b.centre.iter().enumerate() {
-                    match w {
-                        Some(w) => c[i] = if b.centre_absolute { w.value } else { p0[i] + w.value },
-                        None if b.centre_absolute => c[i] = p0[i],
-                        None => {}
+        let centre =
+            match (b.radius, b.centre.iter().any(Option::is_some)) {
+                (Some(r), _) => radius_centre(&p0, &p1, r.value, &normal, ccw)
+                    .map_err(|msg| loc.err(r.at, msg))?,
+                (None, true) => {
+                    let mut c = if b.centre_absolute {
+                        Vector3::zeros()
+                    } else {
+                        p0
+                    };
+                    for (i, w) in b.centre.iter().enumerate() {
+                        match w {
+                            Some(w) => {
+                                c[i] = if b.centre_absolute {
+                                    w.value
+                                } else {
+                                    p0[i] + w.value
+                                }
+                            }
+                            None if b.centre_absolute => c[i] = p0[i],
+                            None => {}
+                        }
                     }
+                    c
                 }
-                c
-            }
-            (None, false) => {
-                return Err(loc.err(
+                (None, false) => return Err(loc.err(
                     b.at,
                     "an arc needs its centre (I, J, K or CC) or its radius (R or CR=); the block \
                      gives neither",
-                ))
-            }
-        };
+                )),
+            };
         if let Some(sweep) = b.sweep {
             // The end is the start turned about the centre (Heidenhain CP IPA).
-            let rot = Frame::rotation_about(
-                crate::geometry::Axis::ALL[nz],
-                sweep.to_radians(),
-                centre,
-            );
+            let rot =
+                Frame::rotation_about(crate::geometry::Axis::ALL[nz], sweep.to_radians(), centre);
             let along = p1[nz];
             p1 = rot.apply(&Vector3::new(p0[0], p0[1], p0[2]));
             p1[nz] = along;
@@ -479,7 +506,9 @@ impl Core {
         }
         let tol = log.options.chord_tolerance / scale;
         // A sweep of more than a turn ends where a smaller one does: the whole turns are added.
-        let turns = b.turns + b.sweep.map_or(0, |s| ((s.abs() - 1e-9) / 360.0).floor().max(0.0) as u32);
+        let turns = b.turns
+            + b.sweep
+                .map_or(0, |s| ((s.abs() - 1e-9) / 360.0).floor().max(0.0) as u32);
         // Would I J K read as absolute coordinates fit (Heidenhain's ISO programs write them so)?
         let absolute_fits = !b.centre_absolute && b.radius.is_none() && {
             let mut c = p0;
@@ -557,7 +586,11 @@ impl Core {
             );
             (self.rtype.tool_vector(pose), Some(angles))
         };
-        let motion = if self.break_next { Motion::Rapid } else { motion };
+        let motion = if self.break_next {
+            Motion::Rapid
+        } else {
+            motion
+        };
         self.break_next = false;
         out.push(Point {
             tip,
@@ -584,9 +617,11 @@ fn radius_centre(
     d -= normal * normal.dot(&d);
     let chord = d.norm();
     if chord < 1e-9 {
-        return Err("an arc given by its radius needs an end away from its start (a full circle \
+        return Err(
+            "an arc given by its radius needs an end away from its start (a full circle \
                     needs its centre)"
-            .into());
+                .into(),
+        );
     }
     let half = chord / 2.0;
     // The radius may fall short of half the chord by rounding of the written numbers.

@@ -59,9 +59,28 @@ use std::collections::HashMap;
 
 /// Keywords only Sinumerik uses, for [`super::Format::detect`].
 const KEYWORDS: [&str; 22] = [
-    "TRAORI", "TRAFOOF", "TRANS", "ATRANS", "AROT", "SUPA", "G500", "G642", "STOPRE", "MCALL",
-    "CYCLE800", "CYCLE832", "ORIWKS", "ORIAXES", "ORIVECT", "COMPCAD", "FFWON", "SOFT",
-    "WORKPIECE", "GOTOF", "GOTOB", "G710",
+    "TRAORI",
+    "TRAFOOF",
+    "TRANS",
+    "ATRANS",
+    "AROT",
+    "SUPA",
+    "G500",
+    "G642",
+    "STOPRE",
+    "MCALL",
+    "CYCLE800",
+    "CYCLE832",
+    "ORIWKS",
+    "ORIAXES",
+    "ORIVECT",
+    "COMPCAD",
+    "FFWON",
+    "SOFT",
+    "WORKPIECE",
+    "GOTOF",
+    "GOTOB",
+    "G710",
 ];
 
 /// Whether a (trimmed) line holds something only Sinumerik writes, for
@@ -86,7 +105,12 @@ pub(super) fn is_statement(l: &str) -> bool {
         prev = c;
     }
     let u = kept.to_ascii_uppercase();
-    if u.starts_with("%_N_") || u.contains("DEF REAL") || u.contains("DEF INT") || u.contains("MSG(") || u.contains("MSG (") {
+    if u.starts_with("%_N_")
+        || u.contains("DEF REAL")
+        || u.contains("DEF INT")
+        || u.contains("MSG(")
+        || u.contains("MSG (")
+    {
         return true;
     }
     let code = u.split(';').next().unwrap_or("");
@@ -138,11 +162,25 @@ pub struct Siemens {
 #[derive(Debug, Clone)]
 enum Tok<'a> {
     /// `X10`, `G0`: an address letter and its number.
-    Word { letter: char, value: f64, at: usize, num_at: usize },
+    Word {
+        letter: char,
+        value: f64,
+        at: usize,
+        num_at: usize,
+    },
     /// `name=value`.
-    Assign { name: String, value: &'a str, at: usize, value_at: usize },
+    Assign {
+        name: String,
+        value: &'a str,
+        at: usize,
+        value_at: usize,
+    },
     /// `name(args)`.
-    Call { name: String, args: &'a str, at: usize },
+    Call {
+        name: String,
+        args: &'a str,
+        at: usize,
+    },
     /// A bare keyword or name.
     Name { name: String, at: usize },
     /// `NAME:` at the start of a block.
@@ -150,7 +188,14 @@ enum Tok<'a> {
 }
 
 impl Siemens {
-    pub(super) fn line(&mut self, core: &mut Core, text: &str, no: u32, log: &mut Log, out: &mut Vec<Point>) -> Result<()> {
+    pub(super) fn line(
+        &mut self,
+        core: &mut Core,
+        text: &str,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         let t = text.trim();
         if core.ended {
             if !t.is_empty() {
@@ -167,6 +212,18 @@ impl Siemens {
         }
         let segs = [Seg { start: 0, line: no }];
         let loc = Loc::line(text, &segs);
+        // Program flow is refused at its keyword, before its condition is read as words.
+        let (first, first_off) = first_word(text);
+        let first = first.to_ascii_uppercase();
+        if FLOW.contains(&first.as_str()) {
+            return Err(loc.err(first_off, format!("{first} is program flow (a jump, loop or condition): the calculator reads the blocks in order; post the program with the moves written out")));
+        }
+        if matches!(first.as_str(), "CALL" | "PCALL" | "EXTCALL") {
+            return Err(loc.err(first_off, format!("{first} calls a subprogram: the calculator reads one program without its subprograms; post the program with them written out")));
+        }
+        if first == "PROC" {
+            return Err(loc.err(first_off, "PROC starts a subprogram whose values come from the program that calls it; read the program that calls it, posted with the moves written out"));
+        }
         let toks = lex(text, &loc)?;
         if toks.is_empty() {
             return Ok(());
@@ -178,7 +235,10 @@ impl Siemens {
                 return self.def(text, no);
             }
         }
-        let mut b = Block { at: first_at(&toks), ..Block::default() };
+        let mut b = Block {
+            at: first_at(&toks),
+            ..Block::default()
+        };
         let mut frame_stmt: Option<(String, usize)> = None;
         let mut frame_words: Vec<(char, f64, usize)> = Vec::new();
         let mut rpl: Option<f64> = None;
@@ -188,15 +248,37 @@ impl Siemens {
         for tok in &toks {
             match tok {
                 Tok::Label => {}
-                Tok::Word { letter, value, at, num_at } => {
+                Tok::Word {
+                    letter,
+                    value,
+                    at,
+                    num_at,
+                } => {
                     let (letter, value, at) = (*letter, *value, *at);
                     if frame_stmt.is_some() && "XYZ".contains(letter) {
                         frame_words.push((letter, value, at));
                         continue;
                     }
-                    self.word(core, &mut b, letter, value, at, *num_at, no, &loc, log, &mut machine_coords, &mut home)?;
+                    self.word(
+                        core,
+                        &mut b,
+                        letter,
+                        value,
+                        at,
+                        *num_at,
+                        no,
+                        &loc,
+                        log,
+                        &mut machine_coords,
+                        &mut home,
+                    )?;
                 }
-                Tok::Assign { name, value, at, value_at } => {
+                Tok::Assign {
+                    name,
+                    value,
+                    at,
+                    value_at,
+                } => {
                     let n = name.as_str();
                     if n == "RPL" && frame_stmt.is_some() {
                         rpl = Some(self.value(value, *value_at, &loc)?.0);
@@ -277,8 +359,15 @@ impl Siemens {
             return self.frame(core, &stmt, at, &frame_words, rpl, no, &loc, log);
         }
         if vector.iter().any(Option::is_some) {
-            let v = Vector3::new(vector[0].unwrap_or(0.0), vector[1].unwrap_or(0.0), vector[2].unwrap_or(0.0));
-            b.vector = Some(super::lex::unit(&v).ok_or_else(|| loc.err(b.at, "the tool vector A3 B3 C3 must not be zero"))?);
+            let v = Vector3::new(
+                vector[0].unwrap_or(0.0),
+                vector[1].unwrap_or(0.0),
+                vector[2].unwrap_or(0.0),
+            );
+            b.vector = Some(
+                super::lex::unit(&v)
+                    .ok_or_else(|| loc.err(b.at, "the tool vector A3 B3 C3 must not be zero"))?,
+            );
         }
         if home || machine_coords {
             let axes: Vec<usize> = (0..3).filter(|&i| b.axes[i].is_some()).collect();
@@ -289,7 +378,11 @@ impl Siemens {
             }
             if !axes.is_empty() {
                 core.forget(&axes);
-                let what = if home { "G74 returns" } else { "a move in machine coordinates (SUPA, G53, G153) takes" };
+                let what = if home {
+                    "G74 returns"
+                } else {
+                    "a move in machine coordinates (SUPA, G53, G153) takes"
+                };
                 log.note("sie-machine", NoteKind::Break, no, || {
                     format!("line {no}: {what} {} where the file does not relate to the part: the path breaks until each is given again", axes.iter().map(|&i| ["X", "Y", "Z"][i]).collect::<Vec<_>>().join(", "))
                 });
@@ -311,7 +404,20 @@ impl Siemens {
 
     /// An address word `letter value`.
     #[allow(clippy::too_many_arguments)]
-    fn word(&mut self, core: &mut Core, b: &mut Block, letter: char, value: f64, at: usize, num_at: usize, no: u32, loc: &Loc, log: &mut Log, machine_coords: &mut bool, home: &mut bool) -> Result<()> {
+    fn word(
+        &mut self,
+        core: &mut Core,
+        b: &mut Block,
+        letter: char,
+        value: f64,
+        at: usize,
+        num_at: usize,
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+        machine_coords: &mut bool,
+        home: &mut bool,
+    ) -> Result<()> {
         let w = Some(Word { value, at: num_at });
         match letter {
             'X' => b.axes[0] = w,
@@ -388,7 +494,12 @@ impl Siemens {
 
     /// [`Siemens::value`] and, for a rotary axis, how it reaches the position: `DC` the
     /// shorter way, `ACP` turning positively, `ACN` negatively.
-    fn value_way(&self, text: &str, at: usize, loc: &Loc) -> Result<(f64, Option<bool>, Option<Way>)> {
+    fn value_way(
+        &self,
+        text: &str,
+        at: usize,
+        loc: &Loc,
+    ) -> Result<(f64, Option<bool>, Option<Way>)> {
         let t = text.trim();
         let upper = t.to_ascii_uppercase();
         for (f, inc, way) in [
@@ -418,7 +529,11 @@ impl Siemens {
             None => (1.0, t.strip_prefix('+').unwrap_or(t).trim()),
         };
         let key = name.to_ascii_uppercase();
-        let is_name = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$') && !key.starts_with(|c: char| c.is_ascii_digit());
+        let is_name = !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+            && !key.starts_with(|c: char| c.is_ascii_digit());
         if is_name {
             return match self.vars.get(&key) {
                 Some(Var::Number(v)) => Ok(sign * v),
@@ -459,7 +574,9 @@ impl Siemens {
             }
             let v = match value {
                 None => Var::Number(0.0),
-                Some(v) => number(v, true).filter(|x| x.is_finite()).map_or(Var::Computed(no), Var::Number),
+                Some(v) => number(v, true)
+                    .filter(|x| x.is_finite())
+                    .map_or(Var::Computed(no), Var::Number),
             };
             self.vars.insert(name.to_ascii_uppercase(), v);
         }
@@ -468,7 +585,16 @@ impl Siemens {
 
     /// `name(args)`.
     #[allow(clippy::too_many_arguments)]
-    fn call(&mut self, core: &mut Core, name: &str, args: &str, at: usize, no: u32, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn call(
+        &mut self,
+        core: &mut Core,
+        name: &str,
+        args: &str,
+        at: usize,
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         match name {
             "MSG" | "WORKPIECE" | "CYCLE832" | "SETMS" | "SPOS" | "SPOSA" | "FGROUP" | "CPROT" | "TRAFOOF" | "SOFTA" | "BRISKA" | "G4" => {
                 log.skip("messages and settings (MSG, WORKPIECE, CYCLE832 …)", no);
@@ -512,24 +638,51 @@ impl Siemens {
 
     /// A frame statement with its words.
     #[allow(clippy::too_many_arguments)]
-    fn frame(&mut self, core: &mut Core, stmt: &str, at: usize, words: &[(char, f64, usize)], rpl: Option<f64>, no: u32, loc: &Loc, log: &mut Log) -> Result<()> {
+    fn frame(
+        &mut self,
+        core: &mut Core,
+        stmt: &str,
+        at: usize,
+        words: &[(char, f64, usize)],
+        rpl: Option<f64>,
+        no: u32,
+        loc: &Loc,
+        log: &mut Log,
+    ) -> Result<()> {
         let get = |l: char| words.iter().find(|w| w.0 == l).map(|w| w.1);
         let current = self.programmable.unwrap_or(Frame::IDENTITY);
         let frame = match stmt {
             "TRANS" | "ATRANS" => {
-                let v = Vector3::new(get('X').unwrap_or(0.0), get('Y').unwrap_or(0.0), get('Z').unwrap_or(0.0));
-                if stmt == "TRANS" { Frame::shift(v) } else { current.then(&Frame::shift(v)) }
+                let v = Vector3::new(
+                    get('X').unwrap_or(0.0),
+                    get('Y').unwrap_or(0.0),
+                    get('Z').unwrap_or(0.0),
+                );
+                if stmt == "TRANS" {
+                    Frame::shift(v)
+                } else {
+                    current.then(&Frame::shift(v))
+                }
             }
             "ROT" | "AROT" => {
                 let r = match rpl {
                     Some(a) => rotation(Axis::ALL[core.plane.normal()], a.to_radians()),
                     // RPY (MD10600 = 1): first about Z, then the new Y′, then X″.
-                    None => rotation(Axis::Z, get('Z').unwrap_or(0.0).to_radians())
-                        * rotation(Axis::Y, get('Y').unwrap_or(0.0).to_radians())
-                        * rotation(Axis::X, get('X').unwrap_or(0.0).to_radians()),
+                    None => {
+                        rotation(Axis::Z, get('Z').unwrap_or(0.0).to_radians())
+                            * rotation(Axis::Y, get('Y').unwrap_or(0.0).to_radians())
+                            * rotation(Axis::X, get('X').unwrap_or(0.0).to_radians())
+                    }
                 };
-                let f = Frame { rotation: r, origin: Vector3::zeros() };
-                if stmt == "ROT" { f } else { current.then(&f) }
+                let f = Frame {
+                    rotation: r,
+                    origin: Vector3::zeros(),
+                };
+                if stmt == "ROT" {
+                    f
+                } else {
+                    current.then(&f)
+                }
             }
             _ => {
                 if !words.is_empty() || rpl.is_some() {
@@ -550,10 +703,40 @@ impl Siemens {
     }
 }
 
+/// Keywords of program flow.
+const FLOW: [&str; 17] = [
+    "IF", "GOTOF", "GOTOB", "GOTO", "GOTOC", "GOTOS", "WHILE", "ENDWHILE", "FOR", "ENDFOR",
+    "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE", "ELSE", "ENDIF",
+];
+
+/// The first word of a block after its block number, and its byte offset.
+fn first_word(text: &str) -> (&str, usize) {
+    let mut i = text.len() - text.trim_start().len();
+    let b = text.as_bytes();
+    if matches!(b.get(i), Some(b'N' | b'n')) && b.get(i + 1).is_some_and(u8::is_ascii_digit) {
+        i += 1;
+        while i < b.len() && b[i].is_ascii_digit() {
+            i += 1;
+        }
+        while i < b.len() && matches!(b[i], b' ' | b'\t') {
+            i += 1;
+        }
+    }
+    let end = text[i..]
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .map_or(text.len(), |e| i + e);
+    (&text[i..end], i)
+}
+
 /// The byte offset of the first token.
 fn first_at(toks: &[Tok]) -> usize {
     match toks.first() {
-        Some(Tok::Word { at, .. } | Tok::Assign { at, .. } | Tok::Call { at, .. } | Tok::Name { at, .. }) => *at,
+        Some(
+            Tok::Word { at, .. }
+            | Tok::Assign { at, .. }
+            | Tok::Call { at, .. }
+            | Tok::Name { at, .. },
+        ) => *at,
         _ => 0,
     }
 }
@@ -579,7 +762,13 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
         }
         if !(c.is_ascii_alphabetic() || c == b'_' || c == b'$') {
             let got: String = line[i..].chars().take(1).collect();
-            return Err(loc.err(i, format!("expected a word (an address and a number, like X12.5, or X=…), got {}", shown(&got))));
+            return Err(loc.err(
+                i,
+                format!(
+                    "expected a word (an address and a number, like X12.5, or X=…), got {}",
+                    shown(&got)
+                ),
+            ));
         }
         let at = i;
         // An address letter with its number: `X10`, `G0X10`, `X-5.5`.
@@ -614,7 +803,12 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
                 }
                 v += 1;
             }
-            toks.push(Tok::Assign { name: id.to_ascii_uppercase(), value: &line[start..v], at, value_at: start });
+            toks.push(Tok::Assign {
+                name: id.to_ascii_uppercase(),
+                value: &line[start..v],
+                at,
+                value_at: start,
+            });
             i = v;
             continue;
         }
@@ -631,25 +825,46 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
                 v += 1;
             }
             let args = &line[k + 1..v.saturating_sub(1).max(k + 1)];
-            toks.push(Tok::Call { name: id.to_ascii_uppercase(), args, at });
+            toks.push(Tok::Call {
+                name: id.to_ascii_uppercase(),
+                args,
+                at,
+            });
             i = v;
             continue;
         }
-        if after == Some(b':') && toks.iter().all(|t| matches!(t, Tok::Word { letter: 'N', .. })) {
+        if after == Some(b':')
+            && toks
+                .iter()
+                .all(|t| matches!(t, Tok::Word { letter: 'N', .. }))
+        {
             toks.push(Tok::Label);
             i = k + 1;
             continue;
         }
         let letter = c.to_ascii_uppercase() as char;
-        let keyword = id.len() >= 2 && id[1..].starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
-        let is_g_keyword = id.len() >= 2 && letter == 'G' && id[1..].bytes().all(|c| c.is_ascii_digit()) && matches!(id.to_ascii_uppercase().as_str(), "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "G60");
+        let keyword =
+            id.len() >= 2 && id[1..].starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+        let is_g_keyword = id.len() >= 2
+            && letter == 'G'
+            && id[1..].bytes().all(|c| c.is_ascii_digit())
+            && matches!(
+                id.to_ascii_uppercase().as_str(),
+                "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "G60"
+            );
         if (keyword || c == b'_' || c == b'$') && !is_g_keyword {
-            toks.push(Tok::Name { name: id.to_ascii_uppercase(), at });
+            toks.push(Tok::Name {
+                name: id.to_ascii_uppercase(),
+                at,
+            });
             i = j;
             continue;
         }
         if !numeric(next) && !(next == Some(b' ') && numeric(b.get(i + 2).copied())) {
-            toks.push(Tok::Name { name: id.to_ascii_uppercase(), at });
+            toks.push(Tok::Name {
+                name: id.to_ascii_uppercase(),
+                at,
+            });
             i = j;
             continue;
         }
@@ -660,8 +875,18 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
         }
         let len = super::lex::number_len(&b[n..]);
         let tok = &line[n..n + len];
-        let value = number(tok, false).ok_or_else(|| loc.err(n, format!("expected a number after {letter}, got {}", shown(tok))))?;
-        toks.push(Tok::Word { letter, value, at, num_at: n });
+        let value = number(tok, false).ok_or_else(|| {
+            loc.err(
+                n,
+                format!("expected a number after {letter}, got {}", shown(tok)),
+            )
+        })?;
+        toks.push(Tok::Word {
+            letter,
+            value,
+            at,
+            num_at: n,
+        });
         i = n + len;
     }
     Ok(toks)
