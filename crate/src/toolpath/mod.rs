@@ -637,7 +637,7 @@ fn summarise(
     let mut best: Option<(usize, f64)> = None;
     let mut sum = 0.0;
     for (i, s) in cutting() {
-        if best.is_none_or(|(_, m)| s.delta > m) {
+        if best.map_or(true, |(_, m)| s.delta > m) {
             best = Some((i, s.delta));
         }
         sum += s.delta;

@@ -101,6 +101,9 @@ pub(super) fn is_statement(l: &str) -> bool {
             && (rest.is_empty() || l[word.len()..].starts_with(' '))
 }
 
+/// Points of an arc and their tool axes.
+type Chords = Vec<(Vector3<f64>, Vector3<f64>)>;
+
 /// The arc that `GOTO`s follow after a `CIRCLE/` (file unit, the statement's own frame).
 #[derive(Debug, Clone, Copy)]
 struct Circle {
@@ -726,7 +729,7 @@ impl Apt {
         loc: &Loc,
         at: usize,
         log: &Log,
-    ) -> Result<Option<Vec<(Vector3<f64>, Vector3<f64>)>>> {
+    ) -> Result<Option<Chords>> {
         let radial = |p: &Vector3<f64>| {
             let d = p - c.centre;
             (d - c.normal * c.normal.dot(&d)).norm()
@@ -889,7 +892,7 @@ impl Apt {
         let (scale, _) = log.scale();
         let f = self.output.then(&self.tracut);
         let tip = f.apply(p) * scale;
-        if let Some(i) = (0..3).find(|&i| !(tip[i].abs() <= MAX_COORDINATE)) {
+        if let Some(i) = (0..3).find(|&i| tip[i].abs() > MAX_COORDINATE || tip[i].is_nan()) {
             return Err(Error::field(
                 FIELD,
                 format!(

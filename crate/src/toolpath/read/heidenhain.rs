@@ -235,7 +235,7 @@ impl Heidenhain {
             let body = &text[body_at..];
             let u = body.to_ascii_uppercase();
             if u.starts_with("LBL") {
-                if depth > 0 && until.is_none() && label_name(u[3..].trim()) == "0" {
+                if depth > 0 && until.is_none() && label_name(u.trim_start_matches("LBL").trim()) == "0" {
                     return Ok(()); // the end of a subprogram
                 }
                 log.skip("labels (LBL)", *no);
@@ -247,7 +247,7 @@ impl Heidenhain {
                     Some(p) => (
                         label_name(rest[..p].trim()),
                         number(
-                            rest[p + 4..].trim().split_whitespace().next().unwrap_or(""),
+                            rest[p + 4..].split_whitespace().next().unwrap_or(""),
                             false,
                         ),
                     ),
@@ -1073,7 +1073,7 @@ impl Heidenhain {
             .solutions
             .iter()
             .filter(|c| c.in_travel)
-            .find(|c| seq.is_none_or(|pos| (c.m >= -1e-12) == pos))
+            .find(|c| seq.map_or(true, |pos| (c.m >= -1e-12) == pos))
             .or_else(|| o.chosen.map(|i| &o.solutions[i]));
         for q in [120, 121, 122] {
             self.q.insert(q, Q::Computed(no));

@@ -255,12 +255,9 @@ impl Motion {
 
     /// The motion of an API code (see [`Motion::code`]).
     pub fn from_code(c: f64) -> Option<Motion> {
-        match c {
-            c if c == 0.0 => Some(Motion::Rapid),
-            c if c == 1.0 => Some(Motion::Feed),
-            c if c == 2.0 => Some(Motion::Arc),
-            _ => None,
-        }
+        [Motion::Rapid, Motion::Feed, Motion::Arc]
+            .into_iter()
+            .find(|m| f64::from(m.code()) == c)
     }
 
     /// Rapids do not cut.

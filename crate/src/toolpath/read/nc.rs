@@ -363,7 +363,7 @@ impl Core {
             } else {
                 w.value
             };
-            if n < 3 && !((value * log.scale().0).abs() <= MAX_COORDINATE) {
+            if n < 3 && ((value * log.scale().0).abs() > MAX_COORDINATE || value.is_nan()) {
                 let got = if incremental || log.scale().0 != 1.0 {
                     format!("{} mm", value * log.scale().0)
                 } else {
@@ -564,7 +564,7 @@ impl Core {
     ) -> Result<()> {
         let (scale, _) = log.scale();
         let tip = self.frame.apply(p) * scale;
-        if let Some(i) = (0..3).find(|&i| !(tip[i].abs() <= MAX_COORDINATE)) {
+        if let Some(i) = (0..3).find(|&i| tip[i].abs() > MAX_COORDINATE || tip[i].is_nan()) {
             return Err(Error::field(
                 super::FIELD,
                 format!(

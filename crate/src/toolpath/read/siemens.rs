@@ -609,7 +609,7 @@ impl Siemens {
                 // _FR,_TC,_ST,_MODE,_X0,_Y0,_Z0,_A,_B,_C,_X1,_Y1,_Z1,_DIR…: a reset when the
                 // swivel data set is "0" or every offset and angle is 0.
                 let deselect = fields.get(1).is_some_and(|tc| *tc == "\"0\"");
-                let zero = (4..13).all(|i| fields.get(i).is_none_or(|f| f.is_empty() || number(f, true) == Some(0.0)));
+                let zero = (4..13).all(|i| fields.get(i).map_or(true, |f| f.is_empty() || number(f, true) == Some(0.0)));
                 if deselect || zero {
                     log.skip("swivel resets (CYCLE800 with no rotation)", no);
                     return Ok(());
@@ -860,7 +860,7 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             i = j;
             continue;
         }
-        if !numeric(next) && !(next == Some(b' ') && numeric(b.get(i + 2).copied())) {
+        if !(numeric(next) || next == Some(b' ') && numeric(b.get(i + 2).copied())) {
             toks.push(Tok::Name {
                 name: id.to_ascii_uppercase(),
                 at,
