@@ -235,7 +235,10 @@ impl Heidenhain {
             let body = &text[body_at..];
             let u = body.to_ascii_uppercase();
             if u.starts_with("LBL") {
-                if depth > 0 && until.is_none() && label_name(u.trim_start_matches("LBL").trim()) == "0" {
+                if depth > 0
+                    && until.is_none()
+                    && label_name(u.trim_start_matches("LBL").trim()) == "0"
+                {
                     return Ok(()); // the end of a subprogram
                 }
                 log.skip("labels (LBL)", *no);
@@ -246,10 +249,7 @@ impl Heidenhain {
                 let (name, rep) = match rest.find(" REP") {
                     Some(p) => (
                         label_name(rest[..p].trim()),
-                        number(
-                            rest[p + 4..].split_whitespace().next().unwrap_or(""),
-                            false,
-                        ),
+                        number(rest[p + 4..].split_whitespace().next().unwrap_or(""), false),
                     ),
                     None => (label_name(rest.trim()), None),
                 };
