@@ -140,16 +140,31 @@ function toolpathPoints(r) {
   for (let i = 0; i < n; i++) out.push(r() * 100, r() * 100, r() * 50, r() - 0.5, r() - 0.5, 1);
   return new Float64Array(out);
 }
-/** A short toolpath file as text (CSV, APT or NC for a C/A machine), sometimes with a broken line. */
+/** A path object: points and sometimes motion codes, angles for CAZ. */
+function toolpathPath(r) {
+  const points = toolpathPoints(r);
+  const n = points.length / 6;
+  const motions = r() < 0.5 ? new Float64Array(Array.from({ length: n }, () => small(0, 2)(r))) : undefined;
+  const withAngles = r() < 0.4;
+  return {
+    points,
+    ...(motions ? { motions } : {}),
+    ...(withAngles ? { angles: new Float64Array(Array.from({ length: 2 * n }, () => angle(r))), readFor: 'CAZ' } : {}),
+  };
+}
+/** A short toolpath file as text (CSV, APT, or NC in the three dialects for a C/A machine), sometimes with a broken line. */
 function toolpathText(r) {
   const n = small(0, 6)(r);
   const num = () => (r() * 200 - 100).toFixed(3);
-  const kind = small(0, 2)(r);
-  const lines = [];
+  const sg = () => { const v = num(); return v.startsWith('-') ? v : `+${v}`; };
+  const kind = small(0, 5)(r);
+  const lines = kind === 4 ? ['0 BEGIN PGM F MM', '1 CC X+0 Y+0'] : kind === 5 ? ['0 BEGIN PGM F INCH'] : [];
   for (let i = 0; i < n; i++) {
     if (kind === 0) lines.push([num(), num(), num(), (r() - 0.5).toFixed(3), (r() - 0.5).toFixed(3), '1'].join(','));
-    else if (kind === 1) lines.push(`GOTO/${[num(), num(), num(), (r() - 0.5).toFixed(3), (r() - 0.5).toFixed(3), '1'].join(',')}`);
-    else lines.push(`N${i} G1 X${num()} Y${num()} Z${num()} A${num()} C${num()}`);
+    else if (kind === 1) lines.push(pick([`GOTO/${[num(), num(), num(), (r() - 0.5).toFixed(3), (r() - 0.5).toFixed(3), '1'].join(',')}`, 'RAPID', `CIRCLE/0,0,0,0,0,1,${Math.abs(Number(num()))}`, 'MSYS/0,0,0,0,1,0,1,0,0', 'UNITS/INCHES'])(r));
+    else if (kind === 2) lines.push(`N${i} ${pick(['G0', 'G1', 'G2', 'G3', 'G91', 'G20', 'G68 R30', 'G28'])(r)} X${num()} Y${num()} Z${num()} A${num()} C${num()}${r() < 0.3 ? ` I${num()} J${num()}` : ''}`);
+    else if (kind === 3) lines.push(`N${i} ${pick(['G0', 'G1', 'TRAORI', 'TRANS', 'ROT Z30', 'R1=5'])(r)} X=${num()} Y${num()} Z${num()} A${num()} C${num()}`);
+    else lines.push(`${i + 2} ${pick(['L', 'C', 'CR', 'CC', 'PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY', 'M128'])(r)} X${sg()} Y${sg()} Z${sg()} A${sg()} C${sg()} R+5 DR${pick(['+', '-'])(r)} ${pick(['FMAX', 'F100', ''])(r)}`);
   }
   if (lines.length && r() < 0.3) {
     const i = Math.floor(r() * lines.length);
@@ -157,7 +172,13 @@ function toolpathText(r) {
   }
   return lines.join(pick(['\n', '\r\n', '\r'])(r));
 }
-const toolpathRead = { machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: maybe(pick(['auto', 'csv', 'apt', 'nc'])) };
+const toolpathRead = {
+  machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined),
+  format: maybe(pick(['auto', 'csv', 'apt', 'nc', 'siemens', 'heidenhain'])),
+  unit: maybe(pick(['auto', 'mm', 'inch'])),
+  aptFrame: maybe(pick(['apply', 'ignore'])),
+  chordTolerance: maybe((r) => 1e-4 + r() * 0.1),
+};
 // The reversal test: short, fast runs (a small circle at a high feed, a coarse step) so that a
 // case costs well under a millisecond unless a mutation takes the defaults back.
 const reversalCase = {
@@ -206,9 +227,9 @@ export const SPECS = {
   sshapeOvercut: { args: [{ tool, nu: small(14, 20), nv: small(2, 3) }] },
   sshapeDefects: { args: [{ machine, tool, model, dR: (r) => (r() - 0.5) * 0.04 }] },
   sshapeIdentify: { args: [sshapeIdentifyCase] },
-  toolpathAnalyse: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints] },
+  toolpathAnalyse: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, (r) => (r() < 0.5 ? toolpathPoints(r) : toolpathPath(r))] },
   toolpathParse: { args: [toolpathText, toolpathRead] },
-  toolpathWrite: { args: [{ machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: pick(['csv', 'apt', 'nc']) }, toolpathPoints, maybe((r) => new Float64Array(Array.from({ length: 2 * small(0, 8)(r) }, () => angle(r))))] },
+  toolpathWrite: { args: [{ machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: pick(['csv', 'apt', 'nc']) }, toolpathPath] },
   // A class: new, two pieces fed, finished.
   ToolpathReader: {
     args: [toolpathRead, toolpathText, toolpathText],
@@ -219,8 +240,8 @@ export const SPECS = {
       return reader.finish();
     },
   },
-  toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPoints, maybe((r) => TYPES.filter(() => r() < 0.3))] },
-  toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPoints] },
+  toolpathCompare: { args: [{ machine, length, tolerance: maybe((r) => r() * 0.05) }, toolpathPath, maybe((r) => TYPES.filter(() => r() < 0.3))] },
+  toolpathRefine: { args: [{ machine, length, tolerance: (r) => 0.001 + r() * 0.05 }, toolpathPath] },
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },

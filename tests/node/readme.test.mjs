@@ -93,7 +93,7 @@ test('README: the S-shape on Chanal et al.\'s machine', () => {
 test('README: the dome sample on the twelve types', () => {
   const p = toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
   assert.equal(p.count, 81);
-  const rows = toolpathCompare({ machine: { type: 'CBZ' }, tolerance: 0.01 }, p.points);
+  const rows = toolpathCompare({ machine: { type: 'CBZ' }, tolerance: 0.01 }, p.path);
   const row = (t) => rows.find((r) => r.type === t);
   // Passing 0.3° beside the vertical with 1° steps, K about Z swings by about
   // 2·atan(0.5/0.3) ≈ 118° on one side of the vertical: one flip before and one after it.

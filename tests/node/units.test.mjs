@@ -302,7 +302,7 @@ test('cubicTest: the B axis offset alone against its closed form; per-degree sen
 // A misspelt key is refused, for every input field of every export the schema declares.
 
 const toolpathText = readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8');
-const points = fa.toolpathParse(toolpathText, {}).points;
+const points = fa.toolpathParse(toolpathText, {}).path;
 const REVERSAL = readFileSync(new URL('../../public/samples/reversal-measured.csv', import.meta.url), 'utf8');
 /** A valid input of each export (first argument) and its other arguments. */
 const BASE = {

@@ -74,7 +74,7 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
             JsValue::UNDEFINED,
             JsValue::UNDEFINED,
         )
-    } else if value.is_object() && !value.is_function() {
+    } else if value.is_object() && !value.is_function() && !js_sys::Array::is_array(value) && !js_sys::ArrayBuffer::is_view(value) {
         let obj: &Object = value.unchecked_ref();
         for key in Object::keys(obj).iter() {
             let k = key.as_string().unwrap_or_default();
@@ -340,6 +340,23 @@ pub struct ToolpathAnalysis {
     pub poles: Vec<usize>,
     /// Indices of the rapid segments (segment i ends at point i + 1).
     pub rapids: Vec<usize>,
+    /// Each rapid move: its segment, the turns of K and M (degrees, signed) and the tool tip's
+    /// largest excursion from the straight line (mm), a positioning and collision note.
+    pub rapid_moves: Vec<ToolpathRapidMove>,
+}
+
+/// One rapid move (mm, degrees).
+#[derive(Serialize, Tsify)]
+#[serde(rename_all = "camelCase")]
+pub struct ToolpathRapidMove {
+    /// The segment (from point `segment` to `segment + 1`).
+    pub segment: usize,
+    /// The turn of K, degrees.
+    pub k_turn: f64,
+    /// The turn of M, degrees.
+    pub m_turn: f64,
+    /// The tool tip's largest excursion from the straight line, mm.
+    pub excursion: f64,
 }
 
 /// The path on the machine: its commands, each segment's nonlinear error and where, flips and
@@ -367,6 +384,11 @@ pub fn toolpath_analyse(
         flips: pick(|s| s.flip && !s.rapid),
         poles: pick(|s| s.pole && !s.rapid),
         rapids: pick(|s| s.rapid),
+        rapid_moves: a
+            .rapid_moves()
+            .into_iter()
+            .map(|r| ToolpathRapidMove { segment: r.segment, k_turn: r.k_turn.to_degrees(), m_turn: r.m_turn.to_degrees(), excursion: r.excursion })
+            .collect(),
         summary: a.summary.into(),
     })
 }

@@ -131,7 +131,7 @@ crate::inputs! {
             help: "How the toolpath file is written; NC blocks are read for the machine above.",
             kind: Kind::Choice(FileFormat::CHOICES),
             default: DefaultValue::Str("auto"),
-            group: "Toolpath",
+            group: "Reading the file",
         },
         /// The unit where the file states none.
         pub unit: read::UnitChoice = "unit" optional {
@@ -139,7 +139,7 @@ crate::inputs! {
             help: "A unit the file states (G20/G21, G70/G71, UNITS/, BEGIN PGM … INCH) is always used; this decides where it states none.",
             kind: Kind::Choice(read::UnitChoice::CHOICES),
             default: DefaultValue::Str("auto"),
-            group: "Toolpath",
+            group: "Reading the file",
         },
         /// How an APT output frame (MSYS/, CSYS/) is read.
         pub apt_frame: read::AptFrameChoice = "aptFrame" optional {
@@ -147,7 +147,7 @@ crate::inputs! {
             help: "Whether the GOTO/ points after an MSYS/ or CSYS/ are written in that frame (NX's reading: turned into the frame it is given in) or already in the machine's frame.",
             kind: Kind::Choice(read::AptFrameChoice::CHOICES),
             default: DefaultValue::Str("apply"),
-            group: "Toolpath",
+            group: "Reading the file",
         },
         /// Largest distance of an arc from its chords, mm.
         pub chord_tolerance: f64 = "chordTolerance" optional {
@@ -155,7 +155,7 @@ crate::inputs! {
             help: "Arcs (G2/G3, CIRCLE/, C/CR/CP) are cut into straight chords that stay this close to the arc, as the control moves along it.",
             kind: schema::positive(Quantity::SmallLength, 1.0),
             default: DefaultValue::Num(read::DEFAULT_CHORD_TOLERANCE),
-            group: "Toolpath",
+            group: "Reading the file",
         },
     }
 }
@@ -279,6 +279,37 @@ pub struct Analysis {
     pub segments: Vec<Segment>,
     /// Totals.
     pub summary: Summary,
+}
+
+/// One rapid move of a path on one machine: a positioning and collision note.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RapidMove {
+    /// The segment (from point `segment` to `segment + 1`).
+    pub segment: usize,
+    /// The turn of K, rad (signed).
+    pub k_turn: f64,
+    /// The turn of M, rad (signed).
+    pub m_turn: f64,
+    /// The tool tip's largest excursion from the straight line (the segment's δ), mm.
+    pub excursion: f64,
+}
+
+impl Analysis {
+    /// The rapid moves, in the order of the path.
+    pub fn rapid_moves(&self) -> Vec<RapidMove> {
+        let f = &self.following;
+        self.segments
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.rapid)
+            .map(|(i, s)| RapidMove {
+                segment: i,
+                k_turn: f.k[i + 1] - f.k[i],
+                m_turn: f.m[i + 1] - f.m[i],
+                excursion: s.delta,
+            })
+            .collect()
+    }
 }
 
 /// Totals of one machine on the path (a row of the ranking).

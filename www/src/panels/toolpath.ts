@@ -1,8 +1,10 @@
-// The "Toolpath" panel: the customer's five-axis path on the machine of the Machine section and
-// on the other eleven rotary-axis types of its kind, ranked by nonlinear error (Geng, Wu & Qiu
-// 2018, Section 5), and the path refined to a tolerance.
+// The "Toolpath" panel: the customer's five-axis program read as the machine reads it (its
+// dialect, unit, frames, rapids and arcs; see fiveaxis::toolpath::read), followed on the machine
+// of the Machine section and on the other eleven rotary-axis types of its kind, ranked by
+// nonlinear error on the cutting moves (Geng, Wu & Qiu 2018, Section 5), the rapids listed
+// apart, and the path refined to a tolerance.
 import type { Data } from 'plotly.js';
-import type { Machine, ParsedToolpath, ToolpathAnalysis, ToolpathRefined, ToolpathSummary } from '@engine';
+import type { Machine, ParsedToolpath, Report, ToolpathAnalysis, ToolpathPath, ToolpathRefined, ToolpathSummary } from '@engine';
 import { call, channel, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
 import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
@@ -24,6 +26,10 @@ const SAMPLES = [
   { value: 'impeller-swarf.apt', label: 'Impeller, swarf cut over the hub (APT, 751 points)' },
   { value: 'dome-past-the-pole.csv', label: 'Dome, a meridian 0.3° beside the top (CSV, 81 points)' },
 ];
+/** The fields that change how the file is read: a change reads it again. */
+const READING = ['tp-format', 'tp-unit', 'tp-aptFrame', 'tp-chordTolerance'];
+/** Rapids listed one by one, the largest excursions first. */
+const RAPIDS_LISTED = 8;
 
 export const toolpathPanel: Panel = {
   id: 'toolpath',
@@ -37,24 +43,30 @@ export const toolpathPanel: Panel = {
 interface Loaded {
   name: string;
   parsed: ParsedToolpath;
-  /** The file (to read NC blocks again for another machine). */
+  /** The file (to read it again for another machine or another reading). */
   source: Blob | string;
-  /** The machine it was read for. */
-  machineKey: string;
+  /** The machine and the reading options it was read with. */
+  key: string;
 }
+
+/** "1 234" */
+const count = (n: number) => n.toLocaleString('en-GB');
+const plural = (n: number, one: string, many = `${one}s`) => `${count(n)} ${n === 1 ? one : many}`;
 
 async function mount(root: HTMLElement, machine: MachineSection) {
   const schema = await loadSchema();
   const { form, results } = panelShell(
     root,
     'Your toolpath on every rotary-axis configuration',
-    'Drop a five-axis toolpath (APT CL data, CSV x, y, z, i, j, k, or NC blocks for the machine above). It is ' +
-      'followed on this machine and on the other eleven rotary-axis types of its kind, with the same travel: ' +
-      'between two points the control turns the rotary axes linearly, and the tool tip leaves the programmed ' +
-      'motion by δ (the nonlinear error). The ranking says which configuration machines the path more ' +
-      'accurately; flips (the rotary axes swinging round near their pole or at the end of their travel) are ' +
-      'flagged. δ is taken at one length L (the tool tip\'s distance from the axis it swings about), not point by ' +
-      'point. Geng, Wu & Qiu, Math. Problems in Engineering 2018, Section 5. The file stays in this browser.',
+    'Drop the program or CL file you would run (ISO G-code for Fanuc or Haas, Siemens 840D, Heidenhain conversational, ' +
+      'APT CL data from NX, CATIA or SolidWorks CAM, or a CSV of x, y, z, i, j, k). It is read as the machine reads it: ' +
+      'its dialect, unit and frames, rapids apart from cutting moves, arcs as the control moves along them. The cutting ' +
+      'moves are then followed on this machine (with the program\'s own rotary commands) and on the other eleven ' +
+      'rotary-axis types of its kind: between two points the control turns the rotary axes linearly, and the tool tip ' +
+      'leaves the programmed motion by δ (the nonlinear error). The ranking says which configuration machines the path ' +
+      'more accurately; flips are flagged, rapid positioning moves are listed apart. δ is taken at one length L (the ' +
+      'tool tip\'s distance from the axis it swings about). Geng, Wu & Qiu, Math. Problems in Engineering 2018, ' +
+      'Section 5. The file stays in this browser.',
   );
 
   // ---- inputs
@@ -62,11 +74,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   fileSet.append(el('legend', {}, 'Toolpath file'));
   const sample = selectField('tp-sample', 'Sample path', SAMPLES, SAMPLES[1].value, 'Written by scripts/samples.mjs; the README explains their ranking. The panel opens with the impeller.');
   const fileLabel = el('label', { for: 'tp-file', class: 'file-label' }, 'Or a file of your own (drop it on this box)');
-  const file = el('input', { type: 'file', id: 'tp-file', accept: '.apt,.cls,.cl,.csv,.txt,.nc,.ngc,.mpf,.tap,.iso,.h' });
+  const file = el('input', { type: 'file', id: 'tp-file', accept: '.apt,.cls,.cl,.clsf,.aptsource,.csv,.txt,.nc,.ngc,.mpf,.spf,.tap,.iso,.h,.ptp,.eia,.cnc,.min' });
   const fileMsg = el('p', { class: 'file-msg', id: 'tp-file-msg', role: 'status', 'aria-live': 'polite' });
   const progress = el('progress', { id: 'tp-progress', max: '1', value: '0', 'aria-label': 'Part of the file read' });
   progress.hidden = true;
-  fileSet.append(sample.root, fileLabel, file, progress, fileMsg);
+  /** What the reader found: dialect, unit, frames, notes, skipped kinds. */
+  const readBox = el('div', { class: 'read-report', id: 'tp-read' });
+  fileSet.append(sample.root, fileLabel, file, progress, fileMsg, readBox);
   form.append(fileSet);
   const fieldsOf = toolpathPanel.exports.flatMap((name) => schema.exports[name]);
   const inputs = renderFields(fieldsOf, 'tp', form, machine.context());
@@ -80,6 +94,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const verdict = verdictBox({ prefix: 'tp', tolerance: { adopt: tolField }, onTolerance: () => update() });
   const summary = el('dl', { class: 'summary', id: 'tp-summary', 'aria-live': 'polite' });
   const tableWrap = el('div', { class: 'table-wrap', id: 'tp-ranking' });
+  const rapidsBox = el('section', { class: 'rapids', id: 'tp-rapids' });
   const plot = (id: string) => {
     const wrap = el('div', { class: 'plot-wrap wide' });
     const p = el('div', { class: 'plot', id });
@@ -89,13 +104,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const along = plot('tp-delta');
   const path3d = plot('tp-path');
   const refineBox = el('div', { class: 'refine', id: 'tp-refine-box' });
-  const refineButton = el('button', { type: 'button', id: 'tp-refine' }, 'Insert the points that keep every segment within the tolerance');
+  const refineButton = el('button', { type: 'button', id: 'tp-refine' }, 'Insert the points that keep every cutting segment within the tolerance');
   const refineOut = el('p', { id: 'tp-refine-out', 'aria-live': 'polite' });
   const exportButton = el('button', { type: 'button', id: 'tp-export', disabled: '' }, 'Download the refined path');
   refineBox.append(refineButton, refineOut, exportButton);
   const plots = el('div', { class: 'plots' });
   plots.append(along.wrap, path3d.wrap);
-  results.append(verdict.root, summary, tableWrap, refineBox, plots);
+  results.append(verdict.root, summary, tableWrap, rapidsBox, refineBox, plots);
 
   let ranks = 0;
   let details = 0;
@@ -108,56 +123,108 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fileText = (text: string) => (fileMsg.textContent = text);
   /** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
   const tips: Record<string, string> = {
-    'Largest δ': 'δ: the nonlinear error of a segment, the largest distance of the tool tip from the motion programmed between two points of the path, when the control interpolates the rotary axes\' angles in a straight line (Geng, Wu & Qiu 2018, eqs 19–21).',
+    'Largest δ': 'δ: the nonlinear error of a cutting segment, the largest distance of the tool tip from the motion programmed between two points of the path, when the control interpolates the rotary axes\' angles in a straight line (Geng, Wu & Qiu 2018, eqs 19–21). Rapid moves do not cut and are not counted.',
     L: 'L: the distance of the tool tip from the axis it swings about (tool length, or the pivot distance).',
-    Flips: 'A flip: the rotary axes swing round (the other of the two solutions) between two points, the tool stopping meanwhile.',
+    Flips: 'A flip: the rotary axes swing round (the other of the two solutions) between two cutting points, the tool stopping meanwhile.',
   };
   const setSummary = (rows: [string, string][]) => {
     summary.replaceChildren();
     for (const [k, v] of rows) summary.append(el('dt', tips[k] ? { title: tips[k] } : {}, k), el('dd', {}, v));
   };
 
-  /** Reads a file in a worker; on a bad line the message names it and the last analysis stays
-   *  (greyed, still saying which file it came from). `get` fetches the file (a sample) or is it. */
+  /** The reading options now (the machine, format, unit, frame, chord tolerance), or null. */
+  const readOptions = () => {
+    const m = machine.current();
+    const own = inputs.read();
+    if (!m || !own) return null;
+    const options = {
+      machine: m as Machine,
+      format: own.format as 'auto',
+      unit: own.unit as 'auto',
+      aptFrame: own.aptFrame as 'apply',
+      ...(own.chordTolerance === undefined ? {} : { chordTolerance: own.chordTolerance as number }),
+    };
+    return { options, key: JSON.stringify(options) };
+  };
+
+  /** What the reader found, in the file box: the dialect line, the unit line, frames and notes. */
+  const showReport = (name: string, p: ParsedToolpath) => {
+    const r: Report = p.report;
+    readBox.replaceChildren();
+    const tcp = r.tcp ? `, tool-centre-point control: ${r.tcp}` : '';
+    readBox.append(el('p', { id: 'tp-dialect' }, `${r.dialect}, ${plural(r.blocks, 'block')}${tcp}.`));
+    readBox.append(el('p', { id: 'tp-unit' }, `Unit: ${r.unitReason}.`));
+    const moves = [`${plural(r.feeds, 'feed move')}`, `${plural(r.arcPoints, 'point')} on arcs`, `${plural(r.rapids, 'rapid')} (not cutting)`];
+    readBox.append(el('p', { id: 'tp-moves' }, `${count(p.count)} points: ${moves.join(', ')}.`));
+    if (r.frameChoice) {
+      const f = r.frameChoice;
+      const how = f.reading === 'apply' ? 'read in it (origin + R·p)' : 'left as written';
+      const line = el('p', { id: 'tp-frame', class: 'frame-found' }, `Output frame: ${f.statement} on line ${f.line}: ${f.frame}. The points are ${how}; change it in “APT output frame” below if your machine runs in the other frame.`);
+      readBox.append(line);
+    }
+    if (r.notes.length) {
+      const list = el('ul', { id: 'tp-notes' });
+      // Frames first, then what breaks the path, then the rest.
+      const order = ['frame', 'tcp', 'rotary', 'break', 'partial'];
+      for (const n of [...r.notes].sort((a, b) => order.indexOf(a.kind) - order.indexOf(b.kind))) {
+        list.append(el('li', { class: `note-${n.kind}` }, n.count > 1 ? `${n.text} (${n.count} times)` : n.text));
+      }
+      readBox.append(list);
+    }
+    if (r.skipped.length) {
+      const d = el('details', { id: 'tp-skipped' });
+      const total = r.skipped.reduce((s, k) => s + k.count, 0);
+      d.append(el('summary', {}, `Skipped, changing no geometry: ${plural(total, 'word or statement', 'words and statements')} of ${plural(r.skipped.length, 'kind')}`));
+      const ul = el('ul');
+      for (const s of r.skipped) ul.append(el('li', {}, `${s.what}: ${count(s.count)} (first on line ${s.firstLine})`));
+      d.append(ul);
+      readBox.append(d);
+    }
+    fileText(`Read ${name}: ${count(p.count)} points (${p.format.toUpperCase()}, ${count(p.linesRead)} lines).`);
+  };
+
+  /** Reads a file in a worker; on a bad line the message names it and the results are greyed
+   *  (still saying which file they came from). `get` fetches the file (a sample) or is it. */
   let loads = 0;
   const load = async (name: string, get: () => Promise<Blob | string>) => {
     const mine = ++loads; // taken first: a file chosen while a sample downloads wins
-    const m = machine.current();
-    const own = inputs.read();
-    if (!m || !own) return fileText(`${name}: fix the fields marked first.`);
+    const ro = readOptions();
+    if (!ro) return fileText(`${name}: fix the fields marked first.`);
     fileText(`Reading ${name}…`);
+    // Whatever shows the last file no longer answers: greyed until the new one is computed.
+    rankLater.cancel();
+    ranks++;
+    details++;
+    if (loaded) greyAll(`Reading ${name}…`);
     try {
       const source = await get();
       if (mine !== loads) return;
       progress.hidden = false;
       progress.value = 0;
-      const parsed = await readToolpath(source, { machine: m as Machine, format: own.format as 'auto' }, (f) => {
+      const parsed = await readToolpath(source, ro.options, (f) => {
         if (mine === loads) progress.value = f;
       });
       if (mine !== loads) return; // a newer file was chosen meanwhile
       progress.hidden = true;
-      loaded = { name, parsed, source, machineKey: JSON.stringify(m) };
-      fileText(`Read ${name}: ${parsed.count} points (${parsed.format.toUpperCase()}, ${parsed.linesRead} lines).` +
-        (parsed.format === 'nc' ? ' NC blocks: the tool axes come from their commands on this machine; each configuration then follows those axes by its own continuity.' : ''));
+      loaded = { name, parsed, source, key: ro.key };
+      showReport(name, parsed);
       update();
     } catch (err) {
       if (mine !== loads) return;
       progress.hidden = true;
       const e = showAtField(err, inputs.byPath, machine);
+      readBox.replaceChildren();
       fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
-      // What is still being computed for the last file must not make it look current again.
-      rankLater.cancel();
-      ranks++;
-      details++;
-      greyAll();
+      greyAll(loaded ? `Showing ${loaded.name}; ${name} could not be read.` : undefined);
     }
   };
 
   const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
-  const greyAll = () => {
-    verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
-    for (const p of [along.p, path3d.p]) stale(p, true);
+  const greyAll = (why?: string) => {
+    verdict.none(why ? `No verdict: ${why}` : 'No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+    for (const p of [along.p, path3d.p]) stale(p, true, why);
     tableWrap.classList.add('stale');
+    rapidsBox.classList.add('stale');
   };
   /** A refined path belongs to the inputs it was made with: any change drops it. */
   const dropRefined = () => {
@@ -187,7 +254,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!c) return;
     rankJob = () => {
       const { m, base, t, loaded: l } = c;
-      rankTypes(base, l.parsed.points).then((rows) => {
+      rankTypes(base, l.parsed.path).then((rows) => {
         if (mine === ranks) ranking(rows, String(m.type ?? ''), t, base.tolerance, l.name, l.parsed.lines);
       }, (e) => {
         if (mine !== ranks) return;
@@ -198,7 +265,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     rankLater();
   };
 
-  /** The detail of the configuration shown: δ along the path and the 3D path. */
+  /** The detail of the configuration shown: δ along the path, the 3D path, the rapids. */
   const detail = () => {
     const mine = ++details;
     const c = current();
@@ -206,7 +273,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const { m, base, t, loaded: l } = c;
     for (const tr of tableWrap.querySelectorAll<HTMLElement>('tbody tr')) tr.classList.toggle('shown', tr.dataset.type === t);
     verdict.pending();
-    runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, l.parsed.points).then((a) => {
+    runAnalyse({ ...base, machine: { ...(m as Machine), type: t as Machine['type'] } }, l.parsed.path).then((a) => {
       if (a === SUPERSEDED || mine !== details) return;
       showAnalysis(a, t, l.name, l.parsed);
     }, (e) => {
@@ -219,9 +286,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const update = () => {
     inputs.setContext(machine.context());
     dropRefined();
-    const m = machine.current();
-    // NC blocks are this machine's commands: another machine reads them again.
-    if (m && loaded && loaded.parsed.format === 'nc' && loaded.machineKey !== JSON.stringify(m)) {
+    // The file is read for the machine and the reading chosen: another one reads it again.
+    const ro = readOptions();
+    if (ro && loaded && loaded.key !== ro.key) {
       const { name, source } = loaded;
       void load(name, async () => source);
       return;
@@ -243,9 +310,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string, lines: Float64Array) => {
     const table = el('table', { class: 'ranking' });
-    table.append(el('caption', {}, `${name} on the twelve configurations of this kind, best first (tolerance ${show('errLength', tolerance)})`));
+    table.append(el('caption', {}, `${name} on the twelve configurations of this kind, best first, on the cutting moves (tolerance ${show('errLength', tolerance)})`));
     const head = el('tr');
-    for (const h of ['rank', 'type', 'largest δ', 'mean δ', '95 % of segments below', 'segments above the tolerance', 'flips', 'by the pole', 'travel K, M']) head.append(el('th', { scope: 'col' }, h));
+    for (const h of ['rank', 'type', 'largest δ', 'mean δ', '95 % of segments below', 'segments above the tolerance', 'flips', 'by the pole', 'travel K, M', 'rapids (apart)']) head.append(el('th', { scope: 'col' }, h));
     table.append(el('thead'));
     table.tHead?.append(head);
     const body = el('tbody');
@@ -254,11 +321,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       tr.dataset.type = r.type;
       if (r.type === own) tr.classList.add('own');
       if (r.type === shown) tr.classList.add('shown');
+      const mark = r.type === own ? (r.commanded ? ' (this machine, the program\'s commands)' : ' (this machine)') : '';
+      const rapids = r.rapids.count ? `${count(r.rapids.count)}, swings up to ${fmt.num(r.rapids.kSwing, 4)}°, ${fmt.num(r.rapids.mSwing, 4)}°` : 'none';
       const cells = r.unreachable
-        ? [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, `cannot follow the path: point ${r.unreachable.point + 1} (line ${lines[r.unreachable.point]}) is ${r.unreachable.message}`]
-        : [String(i + 1), `${r.type}${r.type === own ? ' (this machine)' : ''}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.num(r.kTravel, 4)}°, ${fmt.num(r.mTravel, 4)}°`];
+        ? [String(i + 1), `${r.type}${mark}`, `cannot follow the path: point ${r.unreachable.point + 1} (line ${lines[r.unreachable.point]}) is ${r.unreachable.message}`]
+        : [String(i + 1), `${r.type}${mark}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.num(r.kTravel, 4)}°, ${fmt.num(r.mTravel, 4)}°`, rapids];
       cells.forEach((c, j) => {
-        const td = el('td', r.unreachable && j === 2 ? { colspan: '7' } : {}, c);
+        const td = el('td', r.unreachable && j === 2 ? { colspan: '8' } : {}, c);
         tr.append(td);
       });
       tr.addEventListener('click', () => {
@@ -273,61 +342,139 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     tableWrap.classList.remove('stale');
   };
 
+  /** The rapid moves, apart: a positioning and collision note. */
+  const showRapids = (a: ToolpathAnalysis, t: string, parsed: ParsedToolpath) => {
+    rapidsBox.replaceChildren();
+    rapidsBox.classList.remove('stale');
+    const r = a.summary.rapids;
+    const [kl, ml] = [machine.context().k, machine.context().m];
+    rapidsBox.append(el('h3', {}, 'Rapid moves (positioning, not cutting)'));
+    if (!r.count) {
+      rapidsBox.append(el('p', { id: 'tp-rapids-line' }, 'The path has no rapid moves: every segment is judged.'));
+      return;
+    }
+    rapidsBox.append(el('p', { id: 'tp-rapids-line' },
+      `${plural(r.count, 'rapid move')} on ${t}, ${count(r.swings)} of them turning the rotary axes (up to ${fmt.num(r.kSwing, 4)}° of ${kl} and ${fmt.num(r.mSwing, 4)}° of ${ml}). ` +
+      `They are not in the ranking or the verdict. In the largest the tool tip leaves the straight line by ${show('errLength', r.max)} (line ${parsed.lines[r.maxSegment + 1]}): check the clearance there.`));
+    const moves = [...a.rapidMoves].sort((x, y) => y.excursion - x.excursion).slice(0, RAPIDS_LISTED);
+    const table = el('table', { class: 'rapid-moves' });
+    table.append(el('caption', {}, `The ${plural(moves.length, 'rapid')} with the largest tip excursion`));
+    const head = el('tr');
+    for (const h of ['line', `${kl} turns`, `${ml} turns`, 'tip excursion']) head.append(el('th', { scope: 'col' }, h));
+    table.append(el('thead'));
+    table.tHead?.append(head);
+    const body = el('tbody');
+    for (const mv of moves) {
+      const tr = el('tr');
+      for (const c of [String(parsed.lines[mv.segment + 1]), `${fmt.num(mv.kTurn, 4)}°`, `${fmt.num(mv.mTurn, 4)}°`, show('errLength', mv.excursion)]) tr.append(el('td', {}, c));
+      body.append(tr);
+    }
+    table.append(body);
+    rapidsBox.append(table);
+  };
+
   const showAnalysis = (a: ToolpathAnalysis, t: string, name: string, parsed: ParsedToolpath) => {
     const s = a.summary;
     judgeAnalysis(a, t, name, parsed);
+    showRapids(a, t, parsed);
     note(along.p, null);
     setSummary([
-      ['File', `${name} (${parsed.count} points, ${parsed.format.toUpperCase()})`],
-      ['Configuration', t],
-      ['Largest δ', s.segments ? `${show('errLength', s.max)} (segment ${s.maxSegment + 1})` : '—'],
-      ['Segments above the tolerance', `${s.above} of ${s.segments}`],
+      ['File', `${name} (${count(parsed.count)} points, ${parsed.report.dialect}, ${parsed.report.unit === 'inch' ? 'inches' : 'mm'})`],
+      ['Configuration', `${t}${s.commanded ? ' (the program\'s own commands)' : ''}`],
+      ['Largest δ', s.segments ? `${show('errLength', s.max)} (segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]})` : '—'],
+      ['Cutting segments above the tolerance', `${s.above} of ${s.segments}`],
+      ['Rapids (apart)', String(s.rapids.count)],
       ['Flips', String(s.flips)],
       ['L', `${fmt.num(a.length)} mm`],
     ]);
     if (s.unreachable) note(along.p, `${t} cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}`);
-    const x = Array.from({ length: a.delta.length }, (_, i) => i + 1);
+    // δ along the path: the cutting segments solid, the rapids dotted apart (not judged).
+    const n = a.delta.length;
+    const rapid = new Uint8Array(n);
+    for (const i of a.rapids) rapid[i] = 1;
+    const x = Array.from({ length: n }, (_, i) => i + 1);
+    const cut = Array.from(a.delta, (d, i) => (rapid[i] ? null : D(d)));
+    const fast = Array.from(a.delta, (d, i) => (rapid[i] ? D(d) : null));
     const flips = a.flips.map((i) => i + 1);
     const data: Data[] = [
-      { x, y: Array.from(a.delta, D), type: 'scatter', mode: 'lines', name: 'δ', line: { color: '#1f77b4', width: 1 }, hovertemplate: 'segment %{x}<br>δ %{y:.4g}<extra></extra>' },
-      { x: [1, Math.max(1, x.length)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
+      { x, y: cut, type: 'scatter', mode: 'lines', name: 'δ, cutting', connectgaps: false, line: { color: '#1f77b4', width: 1 }, hovertemplate: 'segment %{x}<br>δ %{y:.4g}<extra></extra>' },
+      { x: [1, Math.max(1, n)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
     ];
     if (flips.length) data.push({ x: flips, y: a.flips.map((i) => D(a.delta[i])), type: 'scatter', mode: 'markers', name: 'flip', marker: { color: '#d62728', size: 9, symbol: 'x' } });
-    draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} segments above the tolerance, ${s.flips} flips`, data,
+    if (a.rapids.length) data.push({ x, y: fast, type: 'scatter', mode: 'lines+markers', name: 'rapid (not cutting, not judged)', connectgaps: false, line: { color: '#999', width: 1, dash: 'dot' }, marker: { color: '#999', size: 4 }, hovertemplate: 'rapid, segment %{x}<br>tip excursion %{y:.4g}<extra></extra>' });
+    draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} cutting segments above the tolerance, ${s.flips} flips, ${s.rapids.count} rapids apart`, data,
       { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }) }, 'toolpath-delta');
-    // The path, each point coloured by the δ of the segment that ends there.
-    const p = parsed.points;
-    const n = a.delta.length + 1;
-    const px = Array.from({ length: n }, (_, i) => p[6 * i]);
-    const py = Array.from({ length: n }, (_, i) => p[6 * i + 1]);
-    const pz = Array.from({ length: n }, (_, i) => p[6 * i + 2]);
-    const c = [0, ...Array.from(a.delta, D)];
-    draw(path3d.p, `The path on ${t}<br>coloured by δ of the segment ending at each point`, [{
-      type: 'scatter3d', mode: 'lines+markers', x: px, y: py, z: pz,
-      line: { color: c, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: c, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
+    // The path: cutting moves coloured by the δ of the segment that ends at each point, rapids
+    // dashed grey. Gaps (null) separate the pieces of each trace.
+    const p = parsed.path.points;
+    const count3 = n + 1;
+    const cx: (number | null)[] = [];
+    const cy: (number | null)[] = [];
+    const cz: (number | null)[] = [];
+    const cc: (number | null)[] = [];
+    const rx: (number | null)[] = [];
+    const ry: (number | null)[] = [];
+    const rz: (number | null)[] = [];
+    const at = (i: number) => [p[6 * i], p[6 * i + 1], p[6 * i + 2]];
+    for (let i = 0; i < count3; i++) {
+      const rapidIn = i > 0 && rapid[i - 1] === 1;
+      const rapidOut = i < n && rapid[i] === 1;
+      const [px, py, pz] = at(i);
+      if (rapidIn) {
+        rx.push(px, null);
+        ry.push(py, null);
+        rz.push(pz, null);
+      }
+      if (rapidOut) {
+        rx.push(px);
+        ry.push(py);
+        rz.push(pz);
+      }
+      // A cutting piece starts at a point not reached by a cutting move.
+      if (rapidIn || i === 0) {
+        cx.push(null);
+        cy.push(null);
+        cz.push(null);
+        cc.push(null);
+      }
+      cx.push(px);
+      cy.push(py);
+      cz.push(pz);
+      cc.push(i > 0 && !rapidIn ? D(a.delta[i - 1]) : 0);
+    }
+    const traces3d: Data[] = [{
+      type: 'scatter3d', mode: 'lines+markers', name: 'cutting', x: cx, y: cy, z: cz, connectgaps: false,
+      line: { color: cc, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: cc, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
       hovertemplate: 'x %{x:.3f}<br>y %{y:.3f}<br>z %{z:.3f}<extra></extra>',
-    } as Data], { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto' }, margin: { l: 0, r: 0, b: 0 } }, 'toolpath-3d');
+    } as Data];
+    if (rx.length) traces3d.push({ type: 'scatter3d', mode: 'lines', name: 'rapid', x: rx, y: ry, z: rz, connectgaps: false, line: { color: '#888', width: 2, dash: 'dash' }, hoverinfo: 'skip' } as Data);
+    draw(path3d.p, `The path on ${t}<br>cutting coloured by δ of the segment ending at each point, rapids dashed`, traces3d,
+      { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto' }, margin: { l: 0, r: 0, b: 0 }, showlegend: rx.length > 0 }, 'toolpath-3d');
   };
 
-  /** The verdict: the engine's largest deviation along the path against the tolerance. */
+  /** The verdict: the engine's largest deviation along the cutting moves against the tolerance. */
   const judgeAnalysis = (a: ToolpathAnalysis, t: string, name: string, parsed: ParsedToolpath) => {
     const s = a.summary;
     const tol = show('errLength', a.tolerance);
     const on = `${name} on ${t}`;
-    const flips = s.flips ? [`${s.flips} flip${s.flips > 1 ? 's' : ''} of the rotary axes (a swing round, marked on the plot): the tool stops and turns there.`] : [];
+    const notes = [
+      ...(s.flips ? [`${s.flips} flip${s.flips > 1 ? 's' : ''} of the rotary axes while cutting (a swing round, marked on the plot): the tool stops and turns there.`] : []),
+      ...(s.rapids.count ? [`${plural(s.rapids.count, 'rapid positioning move')} not cutting, not judged: listed apart below.`] : []),
+      ...(s.commanded ? ['This machine follows the program\'s own rotary commands (its branch and its turns).'] : []),
+    ];
     if (s.unreachable) {
-      return verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes: flips,
+      return verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
         sentence: `${on}: this configuration cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}.` });
     }
-    if (!s.segments) return verdict.none(`No verdict: ${name} has fewer than two points.`);
-    const worst = `${show('errLength', s.max)} (segment ${s.maxSegment + 1}, from line ${parsed.lines[s.maxSegment]} of the file)`;
+    if (!s.segments) return verdict.none(`No verdict: ${name} has no cutting moves${s.rapids.count ? ` (${plural(s.rapids.count, 'rapid')} only)` : ''}.`);
+    const worst = `${show('errLength', s.max)} (cutting segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]} of the file)`;
     if (s.max <= a.tolerance) {
-      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes: flips,
-        sentence: `${on}: largest nonlinear error ${worst}, every one of the ${s.segments} segments within the ${tol} tolerance.` });
+      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
+        sentence: `${on}: largest nonlinear error ${worst}, every one of the ${count(s.segments)} cutting segments within the ${tol} tolerance.` });
     }
-    verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes: flips,
-      sentence: `${on}: largest nonlinear error ${worst}, above the ${tol} tolerance; ${s.above} of ${s.segments} segments are above it. ` +
-        'Insert points with the button below to keep every segment within it.' });
+    verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
+      sentence: `${on}: largest nonlinear error ${worst}, above the ${tol} tolerance; ${s.above} of ${count(s.segments)} cutting segments are above it. ` +
+        'Insert points with the button below to keep every cutting segment within it.' });
   };
 
   refineButton.addEventListener('click', async () => {
@@ -337,13 +484,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const mine = ++refines;
     refineOut.textContent = 'Refining…';
     try {
-      const r = await call('toolpathRefine', { ...base, machine: { ...base.machine, type: t as Machine['type'] } }, l.parsed.points);
+      const r = await call('toolpathRefine', { ...base, machine: { ...base.machine, type: t as Machine['type'] } }, l.parsed.path);
       if (mine !== refines || loaded !== l) return; // the inputs or the file changed meanwhile
       refined = { type: t, r, from: l };
       const unfixed = r.unfixed.length
-        ? ` ${r.unfixed.length} segment${r.unfixed.length > 1 ? 's' : ''} (from point${r.unfixed.length > 1 ? 's' : ''} ${r.unfixed.slice(0, 5).map((i) => i + 1).join(', ')}${r.unfixed.length > 5 ? ' …' : ''}) cannot be fixed by points: the rotary axes swing round there (the end of their travel).`
+        ? ` ${r.unfixed.length} segment${r.unfixed.length > 1 ? 's' : ''} (from point${r.unfixed.length > 1 ? 's' : ''} ${r.unfixed.slice(0, 5).map((i) => i + 1).join(', ')}${r.unfixed.length > 5 ? ' …' : ''}) cannot be fixed by points: the rotary axes swing round there (the end of their travel, or a change of branch the program commands).`
         : '';
-      refineOut.textContent = `${r.added} points inserted into ${l.name} for ${t}: the largest δ is now ${show('errLength', r.max)} (${r.k.length} points in all).${unfixed}`;
+      refineOut.textContent = `${r.added} points inserted into ${l.name} for ${t}: the largest δ of a cutting segment is now ${show('errLength', r.max)} (${r.k.length} points in all; rapids left as they are).${unfixed}`;
       exportButton.removeAttribute('disabled');
     } catch (err) {
       if (mine !== refines) return;
@@ -356,15 +503,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const m = machine.current();
     if (!m || !refined) return;
     const { r, type, from } = refined;
-    const format = from.parsed.format as 'csv' | 'apt' | 'nc';
-    if (format === 'nc' && type !== String(m.type)) {
+    // NC dialects are written as ISO blocks for this machine; CL data as it came.
+    const nc = ['nc', 'siemens', 'heidenhain'].includes(from.parsed.format);
+    const format = nc ? 'nc' : (from.parsed.format as 'csv' | 'apt');
+    if (nc && type !== String(m.type)) {
       refineOut.textContent = `NC blocks are written for this machine (${String(m.type)}) only: choose it in the ranking, or set the machine to ${type}.`;
       return;
     }
     const angles = new Float64Array(2 * r.k.length);
     for (let i = 0; i < r.k.length; i++) (angles[2 * i] = r.k[i]), (angles[2 * i + 1] = r.m[i]);
+    const path: ToolpathPath = { points: r.points, motions: r.motions, angles: nc ? angles : null, readFor: nc ? type : null };
     try {
-      const text = await call('toolpathWrite', { machine: { ...(m as Machine), type: type as Machine['type'] }, format }, r.points, format === 'nc' ? angles : undefined);
+      const text = await call('toolpathWrite', { machine: { ...(m as Machine), type: type as Machine['type'] }, format }, path);
       const stem = from.name.replace(/\.[^.]*$/, '');
       download(`${stem}-refined-${type}.${format}`, text, 'text/plain');
     } catch (err) {
@@ -405,7 +555,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   form.addEventListener('input', (e) => {
     const id = (e.target as HTMLElement).id;
     if (id === 'tp-file' || id === 'tp-sample' || id === 'tp-type') return;
-    if (id === 'tp-format' && loaded) return fileText('The format applies to the next file read.');
+    // A reading option reads the file again (update() sees the key change).
+    if (READING.includes(id) && !loaded) return;
     update();
   });
   form.addEventListener('change', (e) => {

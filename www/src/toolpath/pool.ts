@@ -1,7 +1,7 @@
 // The toolpath workers: as many as the processor has cores (at most 6, each holds a copy of the
 // path), the twelve types shared among them. Also on `window.fiveaxisToolpath` for the console
 // and the benchmark (scripts/bench.mjs).
-import type { ParsedToolpath, ToolpathCase, ToolpathReadInput, ToolpathSummary } from '@engine';
+import type { ParsedToolpath, ToolpathCase, ToolpathPath, ToolpathReadInput, ToolpathSummary } from '@engine';
 import { EngineError } from '../engine/client';
 import { callStarted } from '../engine/idle';
 
@@ -73,10 +73,10 @@ export function readToolpath(file: Blob | string, options: ToolpathReadInput, pr
  * `workers` workers, in the engine's order (`fiveaxis::toolpath::rank`: the types that follow the
  * whole path first, by largest δ, then mean δ; then the others, the farthest along first).
  */
-export async function rankTypes(input: ToolpathCase, points: Float64Array, types = TYPES, count = WORKERS): Promise<ToolpathSummary[]> {
+export async function rankTypes(input: ToolpathCase, path: ToolpathPath | Float64Array, types = TYPES, count = WORKERS): Promise<ToolpathSummary[]> {
   const n = Math.max(1, Math.min(count, types.length));
   const shares = Array.from({ length: n }, (_, i) => types.filter((_, j) => j % n === i));
-  const parts = await Promise.all(shares.map((share, i) => run<ToolpathSummary[]>(i, { op: 'summaries', input, points, types: share })));
+  const parts = await Promise.all(shares.map((share, i) => run<ToolpathSummary[]>(i, { op: 'summaries', input, path, types: share })));
   // In the types' order first, so that ties keep it, as the engine's stable sort does.
   const rows = parts.flat().sort((a, b) => TYPES.indexOf(a.type) - TYPES.indexOf(b.type));
   const stop = (r: ToolpathSummary) => r.unreachable?.point ?? Infinity;

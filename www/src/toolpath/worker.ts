@@ -2,7 +2,7 @@
 // A toolpath worker: reads a file piece by piece (so that a large file never becomes one string,
 // and the page shows progress), and computes the ranking rows of the types it is given. The page
 // keeps a few of them (./pool.ts), one per processor core.
-// Messages in: { id, op: 'read', file, options } | { id, op: 'summaries', input, points, types };
+// Messages in: { id, op: 'read', file, options } | { id, op: 'summaries', input, path, types };
 // out: { id, progress } while reading, then { id, ok, result | error }.
 import init, * as engine from '@engine';
 
@@ -29,7 +29,8 @@ async function read(id: number, file: Blob, options: engine.ToolpathReadInput) {
     }
     reader.feed(decoder.decode());
     const result = reader.finish() as engine.ParsedToolpath;
-    const transfer = [result.points.buffer, result.lines.buffer, ...(result.angles ? [result.angles.buffer] : [])] as ArrayBuffer[];
+    const p = result.path;
+    const transfer = [p.points.buffer, p.motions.buffer, result.lines.buffer, ...(p.angles ? [p.angles.buffer] : [])] as ArrayBuffer[];
     post({ id, ok: true, result }, transfer);
   } finally {
     reader.free();
@@ -39,11 +40,11 @@ async function read(id: number, file: Blob, options: engine.ToolpathReadInput) {
 self.onmessage = async (event: MessageEvent) => {
   const msg = event.data as
     | { id: number; op: 'read'; file: Blob; options: engine.ToolpathReadInput }
-    | { id: number; op: 'summaries'; input: engine.ToolpathCase; points: Float64Array; types: string[] };
+    | { id: number; op: 'summaries'; input: engine.ToolpathCase; path: engine.ToolpathPath; types: string[] };
   try {
     await ready;
     if (msg.op === 'read') return await read(msg.id, msg.file, msg.options);
-    post({ id: msg.id, ok: true, result: engine.toolpathCompare(msg.input, msg.points, msg.types as engine.RotaryType[]) });
+    post({ id: msg.id, ok: true, result: engine.toolpathCompare(msg.input, msg.path, msg.types as engine.RotaryType[]) });
   } catch (err) {
     post({ id: msg.id, ok: false, error: err instanceof Error ? err.message : String(err) });
   }

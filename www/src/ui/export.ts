@@ -16,7 +16,7 @@ interface Trace {
 }
 interface Graph extends HTMLElement {
   data?: Trace[];
-  layout?: { xaxis?: { title?: { text?: string } }; yaxis?: { title?: { text?: string } }; title?: { text?: string }; meta?: { csvX?: string; csvY?: string } } & Record<string, unknown>;
+  layout?: { xaxis?: { title?: { text?: string } }; yaxis?: { title?: { text?: string } }; title?: { text?: string }; meta?: { csvX?: string; csvY?: string; titles?: Record<string, string> } } & Record<string, unknown>;
 }
 
 function cell(v: unknown): string {
@@ -37,12 +37,17 @@ export function graphCsv(gd: Graph): string {
   // A polar trace is exported as angle and value (its `customdata` when the radius is a scaled
   // drawing of it); `layout.meta.csvX`/`csvY` name them.
   const data = (gd.data ?? []).map((t) => (t.theta ? { ...t, x: t.theta, y: t.customdata ?? t.r } : t));
-  const xt = plain(gd.layout?.meta?.csvX ?? gd.layout?.xaxis?.title?.text, 'x');
-  const yt = plain(gd.layout?.meta?.csvY ?? gd.layout?.yaxis?.title?.text, 'y');
+  // Titles as drawn with the data's units (`meta.titles`, kept by plot.ts's draw), not the
+  // ticks' relabelling in mm.
+  const titles = gd.layout?.meta?.titles ?? {};
+  const xt = plain(gd.layout?.meta?.csvX ?? titles.xaxis ?? gd.layout?.xaxis?.title?.text, 'x');
+  const yt = plain(gd.layout?.meta?.csvY ?? titles.yaxis ?? gd.layout?.yaxis?.title?.text, 'y');
   /** The unit column of a trace: its own y axis's title (plots with several y axes). */
   const yOf = (t: Trace) => {
-    const axis = t.yaxis && t.yaxis !== 'y' ? (gd.layout?.[`yaxis${t.yaxis.slice(1)}`] as { title?: { text?: string } } | undefined) : undefined;
-    return axis?.title?.text ? plain(axis.title.text, yt) : yt;
+    if (!t.yaxis || t.yaxis === 'y') return yt;
+    const key = `yaxis${t.yaxis.slice(1)}`;
+    const text = titles[key] ?? (gd.layout?.[key] as { title?: { text?: string } } | undefined)?.title?.text;
+    return text ? plain(text, yt) : yt;
   };
   const lines: string[] = [];
   const heat = data.find((t) => t.type === 'heatmap' || t.type === 'surface');

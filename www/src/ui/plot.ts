@@ -148,8 +148,15 @@ function inMm<T extends { title?: unknown }>(target: T | undefined, values: numb
   if (!target || !text || !text.includes('(µm)') || (target as { tickvals?: unknown }).tickvals) return target;
   const finite = values.filter(Number.isFinite);
   if (!finite.length) return target;
-  const lo = Math.min(0, ...finite) / 1000;
-  const hi = Math.max(0, ...finite) / 1000;
+  // A loop, not a spread: a plot may hold 10^6 values, more than a call takes as arguments.
+  let lo = 0;
+  let hi = 0;
+  for (const v of finite) {
+    if (v < lo) lo = v;
+    if (v > hi) hi = v;
+  }
+  lo /= 1000;
+  hi /= 1000;
   if (Math.max(-lo, hi) * 1000 < MM_FROM) return target;
   const ticks = niceTicks(lo, hi);
   const title = typeof t === 'string' ? t.replace('(µm)', '(mm)') : { ...t, text: text.replace('(µm)', '(mm)') };
@@ -223,7 +230,16 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   const titleLayout = { text, font: { size: 13 }, yref: 'paper', y: 1, yanchor: 'bottom', pad: { b: 8 + 17 * (lines - 1) } } as Partial<Layout['title']>;
   const margin = { ...baseLayout.margin, ...layout.margin, t: (layout.margin?.t ?? 0) + 14 + 17 * lines + MODEBAR };
   const traces = data.map(plainColorbar);
-  const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin }, traces), el);
+  // The axes' titles as drawn, with the data's units: a CSV names its columns from these, not
+  // from titles relabelled in mm for the ticks (the data stays in µm).
+  const titles: Record<string, string> = {};
+  for (const [key, a] of Object.entries(layout)) {
+    const t = /^[xy]axis\d*$/.test(key) ? (a as { title?: string | { text?: string } } | undefined)?.title : undefined;
+    const text = typeof t === 'string' ? t : t?.text;
+    if (text) titles[key] = text;
+  }
+  const meta = { titles, ...((layout as { meta?: object }).meta) };
+  const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin, meta } as Partial<Layout>, traces), el);
   await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
   stale(el, false);
