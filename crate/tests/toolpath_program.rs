@@ -84,7 +84,7 @@ const PROGRAM: &str = "%\n\
 fn the_headline_is_the_worst_cutting_segment_and_the_rapid_swing_is_apart() {
     let m = trunnion(true);
     let (points, report) = read_all(PROGRAM, Format::Nc, Some(&m));
-    assert_eq!(report.rapids, 2);
+    assert_eq!(report.rapids, 1);
     let parts = Parts::of(&points);
     let path = parts.path(caz_type());
     let model = m.without_errors().build().unwrap();

@@ -44,7 +44,8 @@ fn g0_g1_and_g3_give_rapid_feed_and_arc_points() {
     let n = chords(10.0, FRAC_PI_2, 0.001);
     assert_eq!(n, 56);
     assert_eq!(p.len(), 3 + n + 1);
-    assert_eq!((r.rapids, r.feeds, r.arc_points), (2, 2, n));
+    // The moves between the points: the first point is where the tool starts.
+    assert_eq!((r.rapids, r.feeds, r.arc_points), (1, 2, n));
     assert_eq!((p[0].line, p[0].motion), (4, Motion::Rapid));
     assert_eq!(p[0].tip, Vector3::new(0.0, 0.0, 10.0));
     assert_eq!((p[1].motion, p[2].motion), (Motion::Feed, Motion::Feed));

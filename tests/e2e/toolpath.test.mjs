@@ -41,7 +41,7 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
     // The page's workers share the types among them; the order is the engine's own ranking.
     const dome = fa.toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
-    const engineOrder = fa.toolpathCompare({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, dome.points).map((r) => r.type);
+    const engineOrder = fa.toolpathCompare({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, dome.path).map((r) => r.type);
     assert.deepEqual(rows.map((r) => r.type), engineOrder);
     assert.match(await page.textContent('#tp-file-msg'), /81 points \(CSV/);
     // The machine is the default CBZ table: δ along its 80 segments, two flips marked.
@@ -62,7 +62,7 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     const back = fa.toolpathParse(text, { format: 'auto' });
     assert.equal(back.format, 'csv');
     assert.equal(back.count, 81 + added);
-    const check = fa.toolpathAnalyse({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, back.points);
+    const check = fa.toolpathAnalyse({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, back.path);
     assert.ok(check.summary.max <= 0.0100001, `refined max ${check.summary.max}`);
     assert.equal(check.summary.above, 0);
     // A refined path belongs to its inputs: another tolerance drops it.

@@ -74,7 +74,11 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
             JsValue::UNDEFINED,
             JsValue::UNDEFINED,
         )
-    } else if value.is_object() && !value.is_function() && !js_sys::Array::is_array(value) && !js_sys::ArrayBuffer::is_view(value) {
+    } else if value.is_object()
+        && !value.is_function()
+        && !js_sys::Array::is_array(value)
+        && !js_sys::ArrayBuffer::is_view(value)
+    {
         let obj: &Object = value.unchecked_ref();
         for key in Object::keys(obj).iter() {
             let k = key.as_string().unwrap_or_default();
@@ -387,7 +391,12 @@ pub fn toolpath_analyse(
         rapid_moves: a
             .rapid_moves()
             .into_iter()
-            .map(|r| ToolpathRapidMove { segment: r.segment, k_turn: r.k_turn.to_degrees(), m_turn: r.m_turn.to_degrees(), excursion: r.excursion })
+            .map(|r| ToolpathRapidMove {
+                segment: r.segment,
+                k_turn: r.k_turn.to_degrees(),
+                m_turn: r.m_turn.to_degrees(),
+                excursion: r.excursion,
+            })
             .collect(),
         summary: a.summary.into(),
     })

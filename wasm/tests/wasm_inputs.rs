@@ -523,7 +523,11 @@ fn cubic_identify_and_design_refuse_unknown_inputs() {
 
 #[wasm_bindgen_test]
 fn a_toolpath_path_object_is_checked_key_by_key() {
-    let points = || js_sys::Float64Array::from(&[0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 10.0, 0.0, 0.0, 0.0, 0.0, 1.0][..]);
+    let points = || {
+        js_sys::Float64Array::from(
+            &[0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 10.0, 0.0, 0.0, 0.0, 0.0, 1.0][..],
+        )
+    };
     let obj = |extra: &[(&str, JsValue)]| {
         let o = js_sys::Object::new();
         js_sys::Reflect::set(&o, &"points".into(), &points()).unwrap();
@@ -533,19 +537,58 @@ fn a_toolpath_path_object_is_checked_key_by_key() {
         JsValue::from(o)
     };
     let input = || jv(&json!({ "machine": { "type": "CAZ" } }));
-    let m = error_message(fa::toolpath_analyse(input(), obj(&[("motion", jv(&json!([0, 1])))])));
+    let m = error_message(fa::toolpath_analyse(
+        input(),
+        obj(&[("motion", jv(&json!([0, 1])))]),
+    ));
     assert!(m.starts_with("path.motion: unknown key"), "{m}");
-    let m = error_message(fa::toolpath_analyse(input(), obj(&[("motions", jv(&json!([0, 7])))])));
-    assert!(m.starts_with("motions[1]: expected 0 (rapid), 1 (feed) or 2 (arc), got 7"), "{m}");
-    let m = error_message(fa::toolpath_analyse(input(), obj(&[("motions", jv(&json!([0])))])));
-    assert!(m.starts_with("motions: expected one motion per point (2), got 1"), "{m}");
-    let m = error_message(fa::toolpath_analyse(input(), obj(&[("angles", jv(&json!([0, 0, 0, 0])))])));
+    let m = error_message(fa::toolpath_analyse(
+        input(),
+        obj(&[("motions", jv(&json!([0, 7])))]),
+    ));
+    assert!(
+        m.starts_with("motions[1]: expected 0 (rapid), 1 (feed) or 2 (arc), got 7"),
+        "{m}"
+    );
+    let m = error_message(fa::toolpath_analyse(
+        input(),
+        obj(&[("motions", jv(&json!([0])))]),
+    ));
+    assert!(
+        m.starts_with("motions: expected one motion per point (2), got 1"),
+        "{m}"
+    );
+    let m = error_message(fa::toolpath_analyse(
+        input(),
+        obj(&[("angles", jv(&json!([0, 0, 0, 0])))]),
+    ));
     assert!(m.starts_with("readFor: expected the type"), "{m}");
-    let m = error_message(fa::toolpath_analyse(input(), obj(&[("angles", jv(&json!([0, 0, 0]))), ("readFor", "CAZ".into())])));
+    let m = error_message(fa::toolpath_analyse(
+        input(),
+        obj(&[("angles", jv(&json!([0, 0, 0]))), ("readFor", "CAZ".into())]),
+    ));
     assert!(m.starts_with("angles: expected 4 numbers"), "{m}");
     // A rapid first, then a feed, with the program's commands: the machine's row follows them.
-    let ok = fa::toolpath_analyse(input(), obj(&[("motions", jv(&json!([0, 0]))), ("angles", jv(&json!([0, 0, 0, 0]))), ("readFor", "CAZ".into())])).unwrap();
+    let ok = fa::toolpath_analyse(
+        input(),
+        obj(&[
+            ("motions", jv(&json!([0, 0]))),
+            ("angles", jv(&json!([0, 0, 0, 0]))),
+            ("readFor", "CAZ".into()),
+        ]),
+    )
+    .unwrap();
     let summary = js_sys::Reflect::get(&ok, &"summary".into()).unwrap();
-    assert_eq!(js_sys::Reflect::get(&summary, &"commanded".into()).unwrap().as_bool(), Some(true));
-    assert_eq!(js_sys::Reflect::get(&summary, &"segments".into()).unwrap().as_f64(), Some(0.0));
+    assert_eq!(
+        js_sys::Reflect::get(&summary, &"commanded".into())
+            .unwrap()
+            .as_bool(),
+        Some(true)
+    );
+    assert_eq!(
+        js_sys::Reflect::get(&summary, &"segments".into())
+            .unwrap()
+            .as_f64(),
+        Some(0.0)
+    );
 }

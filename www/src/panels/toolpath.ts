@@ -152,18 +152,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const r: Report = p.report;
     readBox.replaceChildren();
     const tcp = r.tcp ? `, tool-centre-point control: ${r.tcp}` : '';
-    readBox.append(el('p', { id: 'tp-dialect' }, `${r.dialect}, ${plural(r.blocks, 'block')}${tcp}.`));
-    readBox.append(el('p', { id: 'tp-unit' }, `Unit: ${r.unitReason}.`));
-    const moves = [`${plural(r.feeds, 'feed move')}`, `${plural(r.arcPoints, 'point')} on arcs`, `${plural(r.rapids, 'rapid')} (not cutting)`];
-    readBox.append(el('p', { id: 'tp-moves' }, `${count(p.count)} points: ${moves.join(', ')}.`));
+    readBox.append(el('p', { id: 'tp-read-dialect' }, `${r.dialect}, ${plural(r.blocks, 'block')}${tcp}.`));
+    readBox.append(el('p', { id: 'tp-read-unit' }, `Unit: ${r.unitReason}.`));
+    const moves = [`${plural(r.feeds, 'feed move')}`, `${plural(r.arcPoints, 'chord')} of arcs`, `${plural(r.rapids, 'rapid')} (not cutting)`];
+    readBox.append(el('p', { id: 'tp-read-moves' }, `${count(p.count)} points; the moves between them: ${moves.join(', ')}.`));
     if (r.frameChoice) {
       const f = r.frameChoice;
       const how = f.reading === 'apply' ? 'read in it (origin + R·p)' : 'left as written';
-      const line = el('p', { id: 'tp-frame', class: 'frame-found' }, `Output frame: ${f.statement} on line ${f.line}: ${f.frame}. The points are ${how}; change it in “APT output frame” below if your machine runs in the other frame.`);
+      const line = el('p', { id: 'tp-read-frame', class: 'frame-found' }, `Output frame: ${f.statement} on line ${f.line}: ${f.frame}. The points are ${how}; change it in “APT output frame” below if your machine runs in the other frame.`);
       readBox.append(line);
     }
     if (r.notes.length) {
-      const list = el('ul', { id: 'tp-notes' });
+      const list = el('ul', { id: 'tp-read-notes' });
       // Frames first, then what breaks the path, then the rest.
       const order = ['frame', 'tcp', 'rotary', 'break', 'partial'];
       for (const n of [...r.notes].sort((a, b) => order.indexOf(a.kind) - order.indexOf(b.kind))) {
@@ -172,7 +172,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       readBox.append(list);
     }
     if (r.skipped.length) {
-      const d = el('details', { id: 'tp-skipped' });
+      const d = el('details', { id: 'tp-read-skipped' });
       const total = r.skipped.reduce((s, k) => s + k.count, 0);
       d.append(el('summary', {}, `Skipped, changing no geometry: ${plural(total, 'word or statement', 'words and statements')} of ${plural(r.skipped.length, 'kind')}`));
       const ul = el('ul');
@@ -322,10 +322,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       if (r.type === own) tr.classList.add('own');
       if (r.type === shown) tr.classList.add('shown');
       const mark = r.type === own ? (r.commanded ? ' (this machine, the program\'s commands)' : ' (this machine)') : '';
-      const rapids = r.rapids.count ? `${count(r.rapids.count)}, swings up to ${fmt.num(r.rapids.kSwing, 4)}°, ${fmt.num(r.rapids.mSwing, 4)}°` : 'none';
+      const rapids = r.rapids.count ? `${count(r.rapids.count)}, swings up to ${fmt.turn(r.rapids.kSwing)}, ${fmt.turn(r.rapids.mSwing)}` : 'none';
       const cells = r.unreachable
         ? [String(i + 1), `${r.type}${mark}`, `cannot follow the path: point ${r.unreachable.point + 1} (line ${lines[r.unreachable.point]}) is ${r.unreachable.message}`]
-        : [String(i + 1), `${r.type}${mark}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.num(r.kTravel, 4)}°, ${fmt.num(r.mTravel, 4)}°`, rapids];
+        : [String(i + 1), `${r.type}${mark}`, show('errLength', r.max), show('errLength', r.mean), show('errLength', r.p95), `${r.above} of ${r.segments}`, String(r.flips), String(r.poles), `${fmt.turn(r.kTravel)}, ${fmt.turn(r.mTravel)}`, rapids];
       cells.forEach((c, j) => {
         const td = el('td', r.unreachable && j === 2 ? { colspan: '8' } : {}, c);
         tr.append(td);
@@ -354,7 +354,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     rapidsBox.append(el('p', { id: 'tp-rapids-line' },
-      `${plural(r.count, 'rapid move')} on ${t}, ${count(r.swings)} of them turning the rotary axes (up to ${fmt.num(r.kSwing, 4)}° of ${kl} and ${fmt.num(r.mSwing, 4)}° of ${ml}). ` +
+      `${plural(r.count, 'rapid move')} on ${t}, ${count(r.swings)} of them turning the rotary axes (up to ${fmt.turn(r.kSwing)} of ${kl} and ${fmt.turn(r.mSwing)} of ${ml}). ` +
       `They are not in the ranking or the verdict. In the largest the tool tip leaves the straight line by ${show('errLength', r.max)} (line ${parsed.lines[r.maxSegment + 1]}): check the clearance there.`));
     const moves = [...a.rapidMoves].sort((x, y) => y.excursion - x.excursion).slice(0, RAPIDS_LISTED);
     const table = el('table', { class: 'rapid-moves' });
@@ -366,7 +366,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const body = el('tbody');
     for (const mv of moves) {
       const tr = el('tr');
-      for (const c of [String(parsed.lines[mv.segment + 1]), `${fmt.num(mv.kTurn, 4)}°`, `${fmt.num(mv.mTurn, 4)}°`, show('errLength', mv.excursion)]) tr.append(el('td', {}, c));
+      for (const c of [String(parsed.lines[mv.segment + 1]), fmt.turn(mv.kTurn), fmt.turn(mv.mTurn), show('errLength', mv.excursion)]) tr.append(el('td', {}, c));
       body.append(tr);
     }
     table.append(body);
@@ -401,9 +401,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       { x: [1, Math.max(1, n)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
     ];
     if (flips.length) data.push({ x: flips, y: a.flips.map((i) => D(a.delta[i])), type: 'scatter', mode: 'markers', name: 'flip', marker: { color: '#d62728', size: 9, symbol: 'x' } });
-    if (a.rapids.length) data.push({ x, y: fast, type: 'scatter', mode: 'lines+markers', name: 'rapid (not cutting, not judged)', connectgaps: false, line: { color: '#999', width: 1, dash: 'dot' }, marker: { color: '#999', size: 4 }, hovertemplate: 'rapid, segment %{x}<br>tip excursion %{y:.4g}<extra></extra>' });
+    // The rapids on their own axis (right): their excursions do not set the cutting δ's scale.
+    if (a.rapids.length) data.push({ x, y: fast, yaxis: 'y2', type: 'scatter', mode: 'markers', name: 'rapid, tip excursion (right axis; not cutting, not judged)', marker: { color: '#888', size: 6, symbol: 'circle-open' }, hovertemplate: 'rapid, segment %{x}<br>tip excursion %{y:.4g}<extra></extra>' });
+    const layout2 = a.rapids.length
+      ? { yaxis2: { ...axis(titled('rapid tip excursion', 'errLength'), { rangemode: 'tozero' }), overlaying: 'y', side: 'right', showgrid: false },
+          legend: { orientation: 'h', x: 0, y: -0.3, xanchor: 'left', yanchor: 'top' } }
+      : {};
     draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} cutting segments above the tolerance, ${s.flips} flips, ${s.rapids.count} rapids apart`, data,
-      { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }) }, 'toolpath-delta');
+      { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ, cutting', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }), ...layout2 } as Parameters<typeof draw>[3], 'toolpath-delta');
     // The path: cutting moves coloured by the δ of the segment that ends at each point, rapids
     // dashed grey. Gaps (null) separate the pieces of each trace.
     const p = parsed.path.points;
@@ -449,7 +454,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } as Data];
     if (rx.length) traces3d.push({ type: 'scatter3d', mode: 'lines', name: 'rapid', x: rx, y: ry, z: rz, connectgaps: false, line: { color: '#888', width: 2, dash: 'dash' }, hoverinfo: 'skip' } as Data);
     draw(path3d.p, `The path on ${t}<br>cutting coloured by δ of the segment ending at each point, rapids dashed`, traces3d,
-      { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto' }, margin: { l: 0, r: 0, b: 0 }, showlegend: rx.length > 0 }, 'toolpath-3d');
+      { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto', camera: { eye: { x: 1.6, y: 1.6, z: 1.2 } } }, margin: { l: 0, r: 0, b: 0 }, showlegend: rx.length > 0 }, 'toolpath-3d');
   };
 
   /** The verdict: the engine's largest deviation along the cutting moves against the tolerance. */

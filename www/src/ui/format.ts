@@ -23,6 +23,12 @@ export function vector(v: ArrayLike<number>, digits = 4): string {
   return `(${Array.from(v, (x) => num(Math.abs(x) < 1e-15 ? 0 : x, digits)).join(', ')})`;
 }
 
+/** An axis turn or position in degrees to 0.0001° (what controls take), "0°" for rounding
+ *  noise. */
+export function turn(v: number): string {
+  return `${Number(v.toFixed(4)) || 0}°`;
+}
+
 export function degrees(v: number, digits = 5): string {
   return `${num(v, digits)}°`;
 }

@@ -453,11 +453,11 @@ pub struct Report {
     pub unit_reason: String,
     /// Tool-centre-point control: where it was switched on (`"G43.4 on line 12"`), or `None`.
     pub tcp: Option<String>,
-    /// Points reached by rapid, feed and arc moves.
+    /// Rapid moves (into each point after the first: the moves between the points).
     pub rapids: usize,
-    /// Points reached by straight feed moves.
+    /// Straight feed moves.
     pub feeds: usize,
-    /// Points on arcs (chords' ends).
+    /// Chords of arcs.
     pub arc_points: usize,
     /// Frames, breaks and partial readings, in the order first met.
     pub notes: Vec<Note>,
@@ -647,7 +647,7 @@ pub struct Parser {
     line: u32,
     /// Points produced so far.
     points: u64,
-    /// Points reached by each motion so far: rapid, feed, arc.
+    /// Moves of each motion so far (into the points after the first): rapid, feed, arc.
     motions: [usize; 3],
 }
 
@@ -825,8 +825,11 @@ impl Parser {
         if new == 0 {
             return;
         }
-        for p in &out[before..] {
-            self.motions[usize::from(p.motion.code())] += 1;
+        // The moves: into every point but the file's first.
+        for (i, p) in out[before..].iter().enumerate() {
+            if self.points + i as u64 > 0 {
+                self.motions[usize::from(p.motion.code())] += 1;
+            }
         }
         let from = self.points;
         self.points += new as u64;
