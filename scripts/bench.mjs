@@ -139,11 +139,45 @@ wasm['cubic: identification of 18 measured zones, 100 times'] = time(
   (r) => r.rms,
 );
 
+// Reading: the same texts as crate/examples/bench.rs (clsf, iso), target under 0.5 s as wasm.
+function clsf(n) {
+  let s = 'TOOL PATH/BENCH,TOOL,T1\nMSYS/0.0000,0.0000,0.0000,1.0000000,0.0000000,0.0000000,0.0000000,1.0000000,0.0000000\n';
+  for (let i = 0; i < n - 2; i++) {
+    if (i % 200 === 0) s += 'RAPID\n';
+    else if (i % 200 === 2) s += 'FEDRAT/MMPM,1500.0000\n';
+    else {
+      const t = ((30 + 20 * Math.sin(0.003 * i)) * Math.PI) / 180;
+      const a = ((0.002 * i) * Math.PI / 180) * 57;
+      s += `GOTO/${(100 * Math.sin(0.001 * i)).toFixed(4)},${(100 * Math.cos(0.0013 * i)).toFixed(4)},${(1e-3 * i).toFixed(4)},${(Math.sin(t) * Math.cos(a)).toFixed(7)},${(Math.sin(t) * Math.sin(a)).toFixed(7)},${Math.cos(t).toFixed(7)}\n`;
+    }
+  }
+  return s;
+}
+function iso(n) {
+  let s = '%\nO1000\nG90 G21 G17\nG43.4 H1\nG0 X0 Y0 Z50 A0 C0\n';
+  for (let i = 0; i < n - 6; i++) {
+    if (i % 100 === 50) s += `N${i} G2 X${(100 * Math.sin(0.001 * i) + 1).toFixed(4)} Y${(100 * Math.cos(0.0013 * i)).toFixed(4)} R50.\n`;
+    else s += `N${i} G1 X${(100 * Math.sin(0.001 * i)).toFixed(4)} Y${(100 * Math.cos(0.0013 * i)).toFixed(4)} Z${(1e-3 * i).toFixed(4)} A${(-30 - 20 * Math.sin(0.003 * i)).toFixed(4)} C${(0.11 * i).toFixed(4)}\n`;
+  }
+  return `${s}M30\n%\n`;
+}
+const readSum = (p) => {
+  const pts = p.path.points;
+  let sum = p.count;
+  for (let i = 0; i < p.count; i++) sum += pts[6 * i] + pts[6 * i + 1] + pts[6 * i + 2];
+  return sum;
+};
+// The file's bytes, as the page's worker passes them (the engine decodes them).
+const cl = new TextEncoder().encode(clsf(22_000));
+wasm['toolpath read: CLSF, 22000 statements'] = time(10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
+const ncBytes = new TextEncoder().encode(iso(16_000));
+wasm['toolpath read: ISO program, 16000 blocks'] = time(10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
+
 console.error('building and running the native benchmark (cargo run --release --example bench) ...');
 const out = execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8' });
 const native = Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
 
-const rows = Object.keys(native).filter((name) => !name.startsWith('toolpath')).map((name) => {
+const rows = Object.keys(native).filter((name) => !name.startsWith('toolpath:')).map((name) => {
   const n = native[name];
   const w = wasm[name];
   const agree = w ? Math.abs(w.check - n.check) <= 1e-9 * Math.max(1, Math.abs(n.check)) : false;
@@ -161,6 +195,9 @@ console.table(rows);
 const rev = 'reversal: default test with and without friction (2 simulations)';
 if (native[rev] && wasm[rev]) {
   console.log(`reversal: one simulation ${(wasm[rev].ms / 2).toFixed(1)} ms as wasm (target <= 50 ms), ${(native[rev].ms / 2).toFixed(1)} ms native`);
+}
+for (const name of ['toolpath read: CLSF, 22000 statements', 'toolpath read: ISO program, 16000 blocks']) {
+  if (wasm[name]) console.log(`${name}: ${wasm[name].ms.toFixed(0)} ms as wasm (target < 500 ms)`);
 }
 
 // The toolpath ranking in headless Chromium: the built page's workers (www/src/toolpath/pool.ts),

@@ -75,7 +75,7 @@ quick() {
     sshape) echo "--lib --test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify --test sshape_any_machine --test sshape_eq14_vs_chain" ;;
     volumetric) echo "--lib --test mutants_volumetric --test volumetric_map --test volumetric_paper" ;;
     reversal) echo "--lib --test mutants_reversal --test reversal_friction --test reversal_motion" ;;
-    toolpath) echo "--lib --test mutants_toolpath --test mutants_toolpath_parse --test toolpath_parse --test toolpath_compare" ;;
+    toolpath) echo "--lib --test mutants_toolpath --test mutants_toolpath_parse --test toolpath_parse --test toolpath_compare --test toolpath_read_iso --test toolpath_read_siemens --test toolpath_read_heidenhain --test toolpath_read_apt --test toolpath_program --test toolpath_real_files" ;;
     identify) echo "--lib --test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
     machine) echo "--lib --test mutants_machine --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;
   esac

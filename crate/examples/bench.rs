@@ -9,6 +9,7 @@ use fiveaxis::cubic::identify::{identify_zones, CubicIdentifyInput};
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
+use fiveaxis::schema::Inputs;
 use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
 use fiveaxis::sshape::{identify, overcut::ToolPath};
 use fiveaxis::volumetric;
@@ -105,6 +106,64 @@ pub fn bench_path(n: usize) -> Vec<[f64; 6]> {
         .collect()
 }
 
+/// A CLSF of `n` statements as NX writes it (MSYS/, RAPID, FEDRAT/, six-number GOTOs), same
+/// formula as scripts/bench.mjs.
+pub fn clsf(n: usize) -> String {
+    let mut s = String::from(
+        "TOOL PATH/BENCH,TOOL,T1\nMSYS/0.0000,0.0000,0.0000,1.0000000,0.0000000,0.0000000,0.0000000,1.0000000,0.0000000\n",
+    );
+    for i in 0..n.saturating_sub(2) {
+        let x = i as f64;
+        if i % 200 == 0 {
+            s.push_str("RAPID\n");
+        } else if i % 200 == 2 {
+            s.push_str("FEDRAT/MMPM,1500.0000\n");
+        } else {
+            let (t, a) = (
+                (30.0 + 20.0 * (0.003 * x).sin()).to_radians(),
+                (0.002 * x).to_radians() * 57.0,
+            );
+            s.push_str(&format!(
+                "GOTO/{:.4},{:.4},{:.4},{:.7},{:.7},{:.7}\n",
+                100.0 * (0.001 * x).sin(),
+                100.0 * (0.0013 * x).cos(),
+                1e-3 * x,
+                t.sin() * a.cos(),
+                t.sin() * a.sin(),
+                t.cos()
+            ));
+        }
+    }
+    s
+}
+
+/// An ISO program of `n` blocks for an A/C machine (G43.4, G1 X Y Z A C, an arc every 100
+/// blocks), same formula as scripts/bench.mjs.
+pub fn iso(n: usize) -> String {
+    let mut s = String::from("%\nO1000\nG90 G21 G17\nG43.4 H1\nG0 X0 Y0 Z50 A0 C0\n");
+    for i in 0..n.saturating_sub(6) {
+        let x = i as f64;
+        if i % 100 == 50 {
+            s.push_str(&format!(
+                "N{i} G2 X{:.4} Y{:.4} R50.\n",
+                100.0 * (0.001 * x).sin() + 1.0,
+                100.0 * (0.0013 * x).cos()
+            ));
+        } else {
+            s.push_str(&format!(
+                "N{i} G1 X{:.4} Y{:.4} Z{:.4} A{:.4} C{:.4}\n",
+                100.0 * (0.001 * x).sin(),
+                100.0 * (0.0013 * x).cos(),
+                1e-3 * x,
+                -30.0 - 20.0 * (0.003 * x).sin(),
+                0.11 * x
+            ));
+        }
+    }
+    s.push_str("M30\n%\n");
+    s
+}
+
 /// Best of `repeat` runs, milliseconds, and the last result's checksum.
 fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
     // One untimed run first, as the WebAssembly side does (scripts/bench.mjs).
@@ -173,6 +232,50 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let per = evaluations as f64 / segments.max(1) as f64;
     println!(
         "{{\"name\":\"toolpath: 10^6 points on the 12 types\",\"ms\":{ms:.3},\"check\":{check:.12e},\"evaluations\":{per:.3}}}"
+    );
+    // Reading: a 22,000-statement CLSF and a 16,000-block ISO program (target: under 0.5 s as
+    // wasm), checksums the count and the sum of the tips.
+    let trunnion =
+        fiveaxis::machine::Machine::from_value(&preset("A/C trunnion table")?, "machine")?;
+    let sum = |r: &fiveaxis::error::Result<(
+        Vec<fiveaxis::toolpath::read::Point>,
+        fiveaxis::toolpath::read::Report,
+    )>| {
+        r.as_ref().map_or(f64::NAN, |(p, _)| {
+            p.len() as f64 + p.iter().map(|q| q.tip.x + q.tip.y + q.tip.z).sum::<f64>()
+        })
+    };
+    let cl = clsf(22_000);
+    report(
+        "toolpath read: CLSF, 22000 statements",
+        time(
+            10,
+            || {
+                fiveaxis::toolpath::read::read_bytes(
+                    cl.as_bytes(),
+                    fiveaxis::toolpath::read::Format::Apt,
+                    None,
+                    Default::default(),
+                )
+            },
+            sum,
+        ),
+    );
+    let nc = iso(16_000);
+    report(
+        "toolpath read: ISO program, 16000 blocks",
+        time(
+            10,
+            || {
+                fiveaxis::toolpath::read::read_bytes(
+                    nc.as_bytes(),
+                    fiveaxis::toolpath::read::Format::Nc,
+                    Some(&trunnion),
+                    Default::default(),
+                )
+            },
+            sum,
+        ),
     );
     // Volumetric: 10^6 exact poses on Tan & Lim's machine with error motions of every kind
     // (the same input as scripts/bench.mjs).

@@ -120,3 +120,24 @@ test('the sample toolpaths are what scripts/samples.mjs writes', async () => {
     assert.equal(read(`${dir}/${name}`, 'utf8'), read(new URL(`../../public/samples/${name}`, import.meta.url), 'utf8'), name);
   }
 });
+
+test('a toolpath file read from its bytes: UTF-8, Windows-1252 with a note, images refused', () => {
+  const machine = { type: 'CAZ' };
+  // UTF-8 split inside "Ø" (C3 98) between two pieces: the same points as the whole text.
+  const text = 'G0 X0 Y0 Z0 (Ø6)\nG1 X1\n';
+  const bytes = new TextEncoder().encode(text);
+  const cut = bytes.indexOf(0xc3) + 1;
+  const reader = new fa.ToolpathReader({ machine });
+  reader.feed(bytes.slice(0, cut));
+  reader.feed(bytes.slice(cut));
+  const p = reader.finish();
+  assert.equal(p.count, 2);
+  assert.equal(p.report.notes.length, 0);
+  // A comment with µ as the byte 0xB5 (Windows-1252) on line 2: read, and said so.
+  const legacy = new Uint8Array([...new TextEncoder().encode('G0 X0 Y0 Z0\n(Abweichung '), 0xb5, ...new TextEncoder().encode('m)\nG1 X1\n')]);
+  const q = fa.toolpathParse(legacy, { machine });
+  assert.equal(q.count, 2);
+  assert.match(q.report.notes[0].text, /^line 2: the file is not UTF-8 text; it is read as Windows-1252/);
+  // A PNG image dropped as a toolpath.
+  assert.throws(() => fa.toolpathParse(new Uint8Array([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0, 0]), {}), /^Error: toolpath: the file is a PNG image, not a toolpath/);
+});

@@ -232,11 +232,18 @@ export const SPECS = {
   toolpathWrite: { args: [{ machine: (r) => (r() < 0.5 ? { type: 'CAZ' } : undefined), format: pick(['csv', 'apt', 'nc']) }, toolpathPath] },
   // A class: new, two pieces fed, finished.
   ToolpathReader: {
-    args: [toolpathRead, toolpathText, toolpathText],
-    run: ([options, a, b]) => {
+    args: [toolpathRead, toolpathText, toolpathText, (r) => r() < 0.5],
+    // Text or bytes (sometimes a byte that is not UTF-8, sometimes an image's signature).
+    run: ([options, a, b, asBytes]) => {
       const reader = new fa.ToolpathReader(options);
-      reader.feed(a);
-      reader.feed(b);
+      const bytes = (t) => {
+        const e = new TextEncoder().encode(t);
+        if (e.length && t.length % 7 === 3) e[t.length % e.length] = 0xb5;
+        if (t.length % 11 === 5) return new Uint8Array([0x89, 0x50, 0x4e, 0x47, ...e]);
+        return e;
+      };
+      reader.feed(asBytes ? bytes(a) : a);
+      reader.feed(asBytes ? bytes(b) : b);
       return reader.finish();
     },
   },

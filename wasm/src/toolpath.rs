@@ -572,15 +572,23 @@ impl ToolpathReader {
         })
     }
 
-    /// Reads the next piece of the file; returns the lines read so far. (The piece is taken as a
-    /// `JsValue` and checked: wasm-bindgen does not check that a `&str` argument is a string.)
+    /// Reads the next piece of the file, its text or its bytes (a `Uint8Array`: UTF-8, else
+    /// Windows-1252; the cheaper way, as no string is copied); returns the lines read so far.
+    /// (The piece is taken as a `JsValue` and checked: wasm-bindgen does not check that a `&str`
+    /// argument is a string.)
     pub fn feed(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     ) -> Result<u32, JsError> {
-        let text = text
-            .as_string()
-            .ok_or_else(|| js_error(Error::field("text", "expected a piece of the file's text")))?;
+        if let Some(bytes) = text.dyn_ref::<js_sys::Uint8Array>() {
+            return self.feed_bytes(&bytes.to_vec());
+        }
+        let text = text.as_string().ok_or_else(|| {
+            js_error(Error::field(
+                "text",
+                "expected a piece of the file: its text or its bytes (Uint8Array)",
+            ))
+        })?;
         self.feed_str(&text)
     }
 
@@ -592,23 +600,34 @@ impl ToolpathReader {
 }
 
 impl ToolpathReader {
+    /// The parser, made for the format of the file's first piece when it is to be recognised.
+    fn parser(&mut self, first: impl FnOnce() -> Format) -> Result<&mut Parser, JsError> {
+        if self.parser.is_none() {
+            let format = self.options.format.format().unwrap_or_else(first);
+            self.parser = Some(
+                Parser::new(format, Some(&self.options.machine), self.options.options())
+                    .map_err(js_error)?,
+            );
+        }
+        self.parser
+            .as_mut()
+            .ok_or_else(|| js_error("toolpath: no parser"))
+    }
+
     fn feed_str(&mut self, text: &str) -> Result<u32, JsError> {
-        let parser = match &mut self.parser {
-            Some(p) => p,
-            None => {
-                let format = self
-                    .options
-                    .format
-                    .format()
-                    .unwrap_or_else(|| Format::detect(text));
-                self.parser.insert(
-                    Parser::new(format, Some(&self.options.machine), self.options.options())
-                        .map_err(js_error)?,
-                )
-            }
-        };
-        parser.feed(text, &mut self.points).map_err(js_error)?;
-        Ok(parser.lines())
+        let mut out = std::mem::take(&mut self.points);
+        let parser = self.parser(|| Format::detect(text))?;
+        let r = parser.feed(text, &mut out).map(|()| parser.lines());
+        self.points = out;
+        r.map_err(js_error)
+    }
+
+    fn feed_bytes(&mut self, bytes: &[u8]) -> Result<u32, JsError> {
+        let mut out = std::mem::take(&mut self.points);
+        let parser = self.parser(|| Format::detect(&String::from_utf8_lossy(bytes)))?;
+        let r = parser.feed_bytes(bytes, &mut out).map(|()| parser.lines());
+        self.points = out;
+        r.map_err(js_error)
     }
 
     fn finish_points(&mut self) -> Result<JsValue, JsError> {
@@ -656,17 +675,24 @@ impl ToolpathReader {
     }
 }
 
-/// Reads a whole toolpath text at once (see [`ToolpathReader`]).
+/// Reads a whole toolpath file at once, its text or its bytes (see [`ToolpathReader`]).
 #[wasm_bindgen(js_name = toolpathParse, unchecked_return_type = "ParsedToolpath")]
 pub fn toolpath_parse(
-    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolpathReadInput")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text = text
-        .as_string()
-        .ok_or_else(|| js_error(Error::field("text", "expected the file's text")))?;
     let mut r = ToolpathReader::new(options)?;
-    r.feed_str(&text)?;
+    if let Some(bytes) = text.dyn_ref::<js_sys::Uint8Array>() {
+        r.feed_bytes(&bytes.to_vec())?;
+    } else {
+        let text = text.as_string().ok_or_else(|| {
+            js_error(Error::field(
+                "text",
+                "expected the file: its text or its bytes (Uint8Array)",
+            ))
+        })?;
+        r.feed_str(&text)?;
+    }
     r.finish_points()
 }
 

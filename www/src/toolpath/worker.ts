@@ -9,11 +9,12 @@ import init, * as engine from '@engine';
 const ready = init();
 const post = (msg: unknown, transfer: Transferable[] = []) => (self as DedicatedWorkerGlobalScope).postMessage(msg, transfer);
 
-/** Reads `file` through the engine's ToolpathReader, posting the fraction of bytes read. */
+/** Reads `file` through the engine's ToolpathReader, its bytes as they come (the engine decodes
+ *  them: UTF-8, else Windows-1252, and refuses an image or an archive by its first bytes),
+ *  posting the fraction of bytes read. */
 async function read(id: number, file: Blob, options: engine.ToolpathReadInput) {
   const reader = new engine.ToolpathReader(options);
   try {
-    const decoder = new TextDecoder();
     const source = file.stream().getReader();
     let bytes = 0;
     let shown = 0;
@@ -21,13 +22,12 @@ async function read(id: number, file: Blob, options: engine.ToolpathReadInput) {
       const { value, done } = await source.read();
       if (done) break;
       bytes += value.byteLength;
-      reader.feed(decoder.decode(value, { stream: true }));
+      reader.feed(value);
       if (bytes - shown > file.size / 50) {
         shown = bytes;
         post({ id, progress: bytes / Math.max(1, file.size) });
       }
     }
-    reader.feed(decoder.decode());
     const result = reader.finish() as engine.ParsedToolpath;
     const p = result.path;
     const transfer = [p.points.buffer, p.motions.buffer, result.lines.buffer, ...(p.angles ? [p.angles.buffer] : [])] as ArrayBuffer[];

@@ -255,14 +255,15 @@ impl Apt {
         if self.fini {
             return Ok(());
         }
-        if let Some(p) = line.find("$$") {
+        let comment = comment_start(line);
+        if let Some(p) = comment {
             self.comment(&line[p + 2..], no, log)?;
             if line[..p].trim().is_empty() && self.segs.is_empty() {
                 return Ok(());
             }
         }
-        let code = line.find("$$").map_or(line, |p| &line[..p]);
-        let body = code.trim_end();
+        let code = comment.map_or(line, |p| &line[..p]);
+        let body = code.trim_ascii_end();
         if let Some(piece) = body.strip_suffix('$') {
             if self.stmt.len() + piece.len() > MAX_LINE {
                 return Err(Error::field(
@@ -423,14 +424,14 @@ impl Apt {
         out: &mut Vec<Point>,
     ) -> Result<()> {
         let loc = Loc { text, segs };
-        let Some(start) = text.find(|c: char| !c.is_whitespace()) else {
+        let Some(start) = text.bytes().position(|c| !c.is_ascii_whitespace()) else {
             return Ok(());
         };
         let no = loc.line_of(start);
         log.blocks += 1;
         let rest = &text[start..];
         let slash = rest.find('/');
-        let major_text = slash.map_or(rest, |s| &rest[..s]).trim();
+        let major_text = slash.map_or(rest, |s| &rest[..s]).trim_ascii();
         if !major_text.starts_with(|c: char| c.is_ascii_alphabetic()) {
             let tok = rest
                 .split(|c: char| c.is_whitespace() || c == ',' || c == '/')
@@ -444,15 +445,28 @@ impl Apt {
                 ),
             ));
         }
-        let major = major_text.to_ascii_uppercase();
+        // In upper case without allocating for the usual short words (a statement a line, 10⁴
+        // to 10⁶ of them).
+        let mut buf = [0u8; 32];
+        let owned;
+        let major: &str = if major_text.len() <= buf.len() && major_text.is_ascii() {
+            for (b, c) in buf.iter_mut().zip(major_text.bytes()) {
+                *b = c.to_ascii_uppercase();
+            }
+            std::str::from_utf8(&buf[..major_text.len()]).unwrap_or("")
+        } else {
+            owned = major_text.to_ascii_uppercase();
+            &owned
+        };
         // The word alone (PARTNO text, PPRINT text): the first run of letters.
-        let first: String = major
-            .chars()
-            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == '-')
-            .collect();
+        let first_len = major
+            .bytes()
+            .position(|c| !(c.is_ascii_alphanumeric() || c == b'_' || c == b'-'))
+            .unwrap_or(major.len());
+        let first = &major[..first_len];
         // The statements that take numbers need their `/` right after the word.
         if matches!(
-            first.as_str(),
+            first,
             "GOTO"
                 | "FROM"
                 | "GODLTA"
@@ -473,15 +487,15 @@ impl Apt {
         }
         let args_at = start + slash.map_or(rest.len(), |s| s + 1);
         let args = &text[args_at..];
-        if matches!(major.as_str(), "TOOL PATH" | "TLDATA" | "MSYS" | "PAINT") {
+        if !self.nx && matches!(major, "TOOL PATH" | "TLDATA" | "MSYS" | "PAINT") {
             self.nx = true;
         }
-        match first.as_str() {
+        match first {
             "FINI" => {
                 self.fini = true;
                 Ok(())
             }
-            "GOTO" | "FROM" | "GODLTA" => self.goto(&first, args, args_at, no, &loc, log, out),
+            "GOTO" | "FROM" | "GODLTA" => self.goto(first, args, args_at, no, &loc, log, out),
             "TLAXIS" => {
                 let f = numbers(args, args_at, &loc, "TLAXIS", 0, 3)?;
                 if f.1 != 3 {
@@ -523,25 +537,25 @@ impl Apt {
                 Ok(())
             }
             "FEDRAT" => {
-                for w in args.split(',').map(|w| w.trim().to_ascii_uppercase()) {
-                    match w.as_str() {
-                        "IPM" | "IPR" => log.hint_unit(
-                            LengthUnit::Inch,
-                            no,
-                            &format!("FEDRAT/{w} (a feed in inches)"),
-                        ),
-                        "MMPM" | "MMPR" => log.hint_unit(
-                            LengthUnit::Mm,
-                            no,
-                            &format!("FEDRAT/{w} (a feed in millimetres)"),
-                        ),
-                        _ => {}
+                for w in args.split(',').map(str::trim) {
+                    let is = |u: &str| w.eq_ignore_ascii_case(u);
+                    let unit = if is("IPM") || is("IPR") {
+                        Some((LengthUnit::Inch, "inches"))
+                    } else if is("MMPM") || is("MMPR") {
+                        Some((LengthUnit::Mm, "millimetres"))
+                    } else {
+                        None
+                    };
+                    if let Some((u, words)) = unit {
+                        log.hint_unit(u, no, || {
+                            format!("FEDRAT/{} (a feed in {words})", w.to_ascii_uppercase())
+                        });
                     }
                 }
                 log.skip("feeds (FEDRAT)", no);
                 Ok(())
             }
-            "MSYS" | "CSYS" | "TRACUT" => self.matrix(&first, args, args_at, &loc, log),
+            "MSYS" | "CSYS" | "TRACUT" => self.matrix(first, args, args_at, &loc, log),
             "CYCLE" => {
                 let kind = args
                     .split(',')
@@ -890,7 +904,11 @@ impl Apt {
         out: &mut Vec<Point>,
     ) -> Result<()> {
         let (scale, _) = log.scale();
-        let f = self.output.then(&self.tracut);
+        let f = if self.tracut.is_identity() {
+            self.output
+        } else {
+            self.output.then(&self.tracut)
+        };
         let tip = f.apply(p) * scale;
         if let Some(i) = (0..3).find(|&i| tip[i].abs() > MAX_COORDINATE || tip[i].is_nan()) {
             return Err(Error::field(
@@ -940,9 +958,9 @@ fn numbers<'a>(
     let mut f = Fields::new();
     let mut n = 0;
     let mut piece_start = at;
-    for piece in args.split(',') {
-        let lead = piece.len() - piece.trim_start().len();
-        let (off, tok) = (piece_start + lead, piece.trim());
+    for piece in fields(args) {
+        let lead = piece.len() - piece.trim_ascii_start().len();
+        let (off, tok) = (piece_start + lead, piece.trim_ascii());
         piece_start += piece.len() + 1;
         if n < 6 {
             let v = super::lex::number(tok, true).ok_or_else(|| {
@@ -959,7 +977,7 @@ fn numbers<'a>(
         }
         n += 1;
     }
-    if args.trim().is_empty() {
+    if args.trim_ascii().is_empty() {
         n = 0;
     }
     if n < min {
@@ -969,6 +987,38 @@ fn numbers<'a>(
         ));
     }
     Ok((f, n))
+}
+
+/// Where a `$$` comment starts in `line` (a byte loop: the reader's hottest search).
+fn comment_start(line: &str) -> Option<usize> {
+    let b = line.as_bytes();
+    let mut i = 0;
+    while let Some(p) = b[i..].iter().position(|&c| c == b'$') {
+        let at = i + p;
+        if b.get(at + 1) == Some(&b'$') {
+            return Some(at);
+        }
+        i = at + 1;
+    }
+    None
+}
+
+/// The comma-separated fields of `args` (a byte loop, as [`comment_start`]).
+fn fields(args: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(args);
+    std::iter::from_fn(move || {
+        let r = rest?;
+        match r.bytes().position(|c| c == b',') {
+            Some(p) => {
+                rest = Some(&r[p + 1..]);
+                Some(&r[..p])
+            }
+            None => {
+                rest = None;
+                Some(r)
+            }
+        }
+    })
 }
 
 /// The byte offset of each comma-separated field of `args` (starting at `at`), at its first

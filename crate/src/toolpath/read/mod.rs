@@ -48,6 +48,7 @@
 //! start is skipped. A [`Point`] takes 88 bytes, so 10⁶ points take 88 MB.
 
 pub mod apt;
+mod bytes;
 pub mod csv;
 pub mod frame;
 pub mod heidenhain;
@@ -534,10 +535,11 @@ impl Log {
         self.units.stated = Some((unit, line));
     }
 
-    /// The file implies `unit` (a feed unit) on `line`; used only where it states none.
-    pub(crate) fn hint_unit(&mut self, unit: LengthUnit, line: u32, what: &str) {
+    /// The file implies `unit` (a feed unit) on `line`, `what` says by what; used only where
+    /// it states none. Only the first hint counts (`what` is not even made after it).
+    pub(crate) fn hint_unit(&mut self, unit: LengthUnit, line: u32, what: impl FnOnce() -> String) {
         if self.units.hint.is_none() {
-            self.units.hint = Some((unit, line, what.to_string()));
+            self.units.hint = Some((unit, line, what()));
         }
     }
 
@@ -546,7 +548,17 @@ impl Log {
     pub(crate) fn scale(&self) -> (f64, bool) {
         match self.units.stated {
             Some((u, _)) => (u.mm(), true),
-            None => (self.unstated_unit().0.mm(), false),
+            None => (self.unstated().mm(), false),
+        }
+    }
+
+    /// The unit used where the file states none ([`Log::unstated_unit`] without its reason:
+    /// asked for every point).
+    fn unstated(&self) -> LengthUnit {
+        match (self.options.unit, &self.units.hint) {
+            (UnitChoice::Mm, _) | (UnitChoice::Auto, None) => LengthUnit::Mm,
+            (UnitChoice::Inch, _) => LengthUnit::Inch,
+            (UnitChoice::Auto, Some((u, _, _))) => *u,
         }
     }
 
@@ -633,6 +645,20 @@ pub fn read(
     Ok((out, report))
 }
 
+/// Parses a whole file's bytes ([`Parser::feed_bytes`]): the points and the report.
+pub fn read_bytes(
+    bytes: &[u8],
+    format: Format,
+    machine: Option<&Machine>,
+    options: ReadOptions,
+) -> Result<(Vec<Point>, Report)> {
+    let mut parser = Parser::new(format, machine, options)?;
+    let mut out = Vec::new();
+    parser.feed_bytes(bytes, &mut out)?;
+    let report = parser.finish(&mut out)?;
+    Ok((out, report))
+}
+
 /// A streaming toolpath reader (module docs): feed it the text in chunks, then finish.
 #[derive(Debug, Clone)]
 pub struct Parser {
@@ -649,6 +675,8 @@ pub struct Parser {
     points: u64,
     /// Moves of each motion so far (into the points after the first): rapid, feed, arc.
     motions: [usize; 3],
+    /// Bytes to text, for [`Parser::feed_bytes`].
+    decoder: bytes::Decoder,
 }
 
 #[derive(Debug, Clone)]
@@ -686,6 +714,7 @@ impl Parser {
             line: 0,
             points: 0,
             motions: [0; 3],
+            decoder: bytes::Decoder::default(),
         })
     }
 
@@ -708,7 +737,9 @@ impl Parser {
             self.after_cr = false;
             rest = rest.strip_prefix('\n').unwrap_or(rest);
         }
-        while let Some(pos) = rest.find(['\n', '\r']) {
+        // Bytes, not chars: a line end is one byte in UTF-8, and a byte loop is what WebAssembly
+        // runs fast (a char-set search decodes every character).
+        while let Some(pos) = rest.bytes().position(|b| b == b'\n' || b == b'\r') {
             let cr = rest.as_bytes()[pos] == b'\r';
             let (line, tail) = (&rest[..pos], &rest[pos + 1..]);
             if self.carry.is_empty() {
@@ -736,11 +767,43 @@ impl Parser {
         Ok(())
     }
 
+    /// Reads the next piece of the file's bytes ([`Parser::feed`] of their text): UTF-8, else
+    /// Windows-1252 from the first byte that is not (a note says from which line); a file that
+    /// is not text (an image, a PDF, an archive, UTF-16) is refused by its first bytes.
+    pub fn feed_bytes(&mut self, chunk: &[u8], out: &mut Vec<Point>) -> Result<()> {
+        let was_legacy = self.decoder.legacy_from().is_some();
+        let start = self.decoder.offset();
+        let text = self.decoder.decode(chunk)?;
+        if let (false, Some(at)) = (was_legacy, self.decoder.legacy_from()) {
+            // The line of the first byte that is not UTF-8: the lines before this piece, and
+            // the line ends of the piece's UTF-8 part.
+            let head = usize::try_from(at - start).unwrap_or(0).min(text.len());
+            let ends = text.as_bytes()[..head]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count();
+            self.note_legacy(self.line + 1 + ends as u32);
+        }
+        self.feed(&text, out)
+    }
+
+    /// The note of a file read as Windows-1252 from `line`.
+    fn note_legacy(&mut self, line: u32) {
+        self.log.note("encoding", NoteKind::Partial, line, || {
+            format!("line {line}: the file is not UTF-8 text; it is read as Windows-1252 from here (µ as the byte 0xB5), as Windows editors write it")
+        });
+    }
+
     /// Reads the last line (if the text does not end with a line end) and ends the file: the
     /// report. A statement still waiting for its continuation, or a file without any point, is
     /// an error. Points read where the file states no unit are scaled to the unit decided now
     /// (module docs): `out` must still hold them.
     pub fn finish(&mut self, out: &mut Vec<Point>) -> Result<Report> {
+        let tail = self.decoder.finish();
+        if !tail.is_empty() {
+            self.note_legacy(self.line + 1);
+            self.feed(&tail, out)?;
+        }
         if !self.carry.is_empty() {
             let last = std::mem::take(&mut self.carry);
             self.line(&last, out)?;
@@ -766,7 +829,7 @@ impl Parser {
         // Points read where no unit was stated: scaled when the unit decided differs from the
         // one they were read in (a later hint).
         let any_unstated = !self.log.units.unstated.is_empty();
-        let now = self.log.unstated_unit().0.mm();
+        let now = self.log.unstated().mm();
         let first = self.points - out.len() as u64;
         for &(from, to, read_in) in &self.log.units.unstated {
             let k = now / read_in;
