@@ -66,7 +66,7 @@ async function drop(page, name, text) {
 const maxX = (page) => page.evaluate(() => Math.max(...document.getElementById('tp-path').data[0].x.filter((v) => v !== null)));
 
 test('toolpath panel: a Heidenhain program and an inch CLSF, read and ranked as the machine reads them', async () => {
-  await withPage({ viewport: { width: 1400, height: 1800 } }, async ({ page, url }) => {
+  await withPage({ acceptDownloads: true, viewport: { width: 1400, height: 1800 } }, async ({ page, url }) => {
     await page.goto(url);
     await page.click('#tab-toolpath');
     await page.waitForSelector('#panel-toolpath[data-ready=true]');
@@ -106,6 +106,24 @@ test('toolpath panel: a Heidenhain program and an inch CLSF, read and ranked as 
       return [d[0].y, d.find((t) => /^rapid/.test(t.name)).y].map((y) => Array.from(y, (v) => v === null));
     });
     for (const i of a.rapids) assert.ok(cut[i] && !rapid[i], `segment ${i}`);
+    // Its CSV: every value with its quantity and unit, in µm as drawn (the rapids' axis shows mm
+    // ticks: 18 mm), equal to the engine's δ.
+    const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#tp-delta ~ .plot-tools button[data-export=csv]').click()]);
+    const rows = readFileSync(await csv.path(), 'utf8').trim().split('\n').map((l) => l.split(/,(?=(?:[^"]*"[^"]*")*[^"]*$)/));
+    assert.deepEqual(rows[0], ['trace', 'segment (from point n to n + 1)', 'value', 'quantity (unit)']);
+    const values = (name) => rows.filter((r) => r[0].replace(/"/g, '') === name).map((r) => [Number(r[1]) - 1, Number(r[2]), r[3].replace(/"/g, '')]);
+    const cutting = values('δ, cutting');
+    assert.equal(cutting.length, a.delta.length - a.rapids.length);
+    for (const [i, v, unit] of cutting) {
+      assert.equal(unit, 'δ, cutting (µm)');
+      assert.ok(Math.abs(v - a.delta[i] * 1000) < 1e-9 * Math.max(1, v), `segment ${i}: ${v} µm vs ${a.delta[i]} mm`);
+    }
+    const rapids = values('rapid, tip excursion (right axis; not cutting, not judged)');
+    assert.deepEqual(rapids.map((r) => r[0]), a.rapids);
+    for (const [i, v, unit] of rapids) {
+      assert.equal(unit, 'rapid tip excursion (µm)');
+      assert.ok(Math.abs(v - a.delta[i] * 1000) < 1e-9 * Math.max(1, v));
+    }
     await page.screenshot({ path: `${ARTIFACTS}toolpath-heidenhain.png`, fullPage: true });
 
     // The inch CLSF: inches from its feed unit, as the page says; the path in inches.

@@ -30,7 +30,9 @@ const plain = (t: string | undefined, fallback: string) => (t ?? fallback).repla
 
 /**
  * CSV of a Plotly graph's data. Line and bar traces: one x column, then one column per trace
- * (traces sharing the same x), or long form (trace, x, y) when their x differ. Heat maps: the
+ * (traces sharing the same x), or long form (trace, x, value, the quantity and unit of its own
+ * axis; gaps left out) when their x differ. Units are those of the data as drawn (µm), not the
+ * ticks' relabelling in mm. Heat maps: the
  * first row holds the x values, each further row a y value then z along x.
  */
 export function graphCsv(gd: Graph): string {
@@ -73,10 +75,14 @@ export function graphCsv(gd: Graph): string {
     const xs = Array.from(series[0].x ?? []);
     xs.forEach((x, i) => lines.push([x, ...series.map((t) => Array.from(t.y ?? [])[i])].map(cell).join(',')));
   } else {
-    lines.push(['trace', xt, yt].map(cell).join(','));
+    // Long form: each row says what its value is and in which unit (its trace's own y axis).
+    lines.push(['trace', xt, 'value', 'quantity (unit)'].map(cell).join(','));
     for (const [i, t] of series.entries()) {
       const xs = Array.from(t.x ?? []);
-      Array.from(t.y ?? []).forEach((y, j) => lines.push([plain(t.name, `trace ${i + 1}`), xs[j], y].map(cell).join(',')));
+      const of = yOf(t);
+      Array.from(t.y ?? []).forEach((y, j) => {
+        if (y !== null && y !== undefined) lines.push([plain(t.name, `trace ${i + 1}`), xs[j], y, of].map(cell).join(','));
+      });
     }
   }
   return lines.join('\n') + '\n';
