@@ -567,7 +567,10 @@ fn a_toolpath_path_object_is_checked_key_by_key() {
         input(),
         obj(&[("angles", jv(&json!([0, 0, 0]))), ("readFor", "CAZ".into())]),
     ));
-    assert!(m.starts_with("angles: expected 4 numbers"), "{m}");
+    assert!(
+        m.starts_with("angles: expected [K, M] per point, got 3 numbers"),
+        "{m}"
+    );
     // A rapid first, then a feed, with the program's commands: the machine's row follows them.
     let ok = fa::toolpath_analyse(
         input(),

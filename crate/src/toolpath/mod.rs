@@ -417,6 +417,13 @@ impl<'a> Path<'a> {
                     format!("expected [K, M] per point ({n}), got {}", c.angles.len()),
                 ));
             }
+            if let Some(i) = c
+                .angles
+                .iter()
+                .position(|a| !a.iter().all(|x| x.is_finite()))
+            {
+                return Err(Error::field(format!("angles[{i}]"), "must be finite"));
+            }
         }
         Ok(())
     }

@@ -111,7 +111,7 @@ impl Iso {
         out: &mut Vec<Point>,
     ) -> Result<()> {
         let t = text.trim();
-        if core.ended || self.percents >= 2 {
+        if self.percents >= 2 {
             if !t.is_empty() {
                 log.skip("text after the end of the program", no);
             }
@@ -163,6 +163,7 @@ impl Iso {
         self.replay(core, held, log, out)
     }
 
+    /// Reads the lines held before the first `%` as blocks.
     fn replay(
         &mut self,
         core: &mut Core,
@@ -175,11 +176,9 @@ impl Iso {
                 log.skip("text after the end of the program", n);
                 continue;
             }
-            let before = out.len();
+            // The points carry their own lines; the parser counts them with the line that
+            // released them.
             self.block(core, &l, n, log, out)?;
-            // Points written while replaying are counted by the parser only for the line that
-            // released them; they carry their own lines.
-            let _ = before;
         }
         Ok(())
     }

@@ -631,18 +631,14 @@ pub fn parse(text: &str, format: Format, machine: Option<&Machine>) -> Result<Ve
     Ok(read(text, format, machine, ReadOptions::default())?.0)
 }
 
-/// Parses a whole text: the points and the report.
+/// Parses a whole text: the points and the report ([`read_bytes`] of its UTF-8).
 pub fn read(
     text: &str,
     format: Format,
     machine: Option<&Machine>,
     options: ReadOptions,
 ) -> Result<(Vec<Point>, Report)> {
-    let mut parser = Parser::new(format, machine, options)?;
-    let mut out = Vec::new();
-    parser.feed(text, &mut out)?;
-    let report = parser.finish(&mut out)?;
-    Ok((out, report))
+    read_bytes(text.as_bytes(), format, machine, options)
 }
 
 /// Parses a whole file's bytes ([`Parser::feed_bytes`]): the points and the report.

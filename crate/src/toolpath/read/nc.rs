@@ -248,6 +248,14 @@ impl Nc {
         log: &mut Log,
         out: &mut Vec<Point>,
     ) -> Result<()> {
+        // After the end (`M30`, `M2`, `RET`) nothing is read; Heidenhain runs its blocks at the
+        // end of the file and ends there.
+        if self.core.ended && !matches!(self.dialect, Dialect::Heidenhain(_)) {
+            if !text.trim().is_empty() {
+                log.skip("text after the end of the program", no);
+            }
+            return Ok(());
+        }
         match &mut self.dialect {
             Dialect::Iso(d) => d.line(&mut self.core, text, no, log, out),
             Dialect::Siemens(d) => d.line(&mut self.core, text, no, log, out),

@@ -197,12 +197,6 @@ impl Siemens {
         out: &mut Vec<Point>,
     ) -> Result<()> {
         let t = text.trim();
-        if core.ended {
-            if !t.is_empty() {
-                log.skip("text after the end of the program", no);
-            }
-            return Ok(());
-        }
         if t.is_empty() || t.starts_with(';') {
             return Ok(());
         }
