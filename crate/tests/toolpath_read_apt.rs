@@ -256,3 +256,35 @@ fn undocumented_and_source_forms_are_refused() {
         at(&error(text, A, None), 1, column, part);
     }
 }
+
+#[test]
+fn catia_spacing_multax_and_tlaxis() {
+    // CATIA writes a blank after the slash and between the numbers; MULTAX/ ON switches to
+    // six-number GOTOs (the count of numbers is read in any case), TLAXIS sets the axis of the
+    // three-number ones.
+    let text = "PARTNO PART1\n\
+                MULTAX/ ON\n\
+                TLAXIS/  0.000000,  0.000000,  1.000000\n\
+                GOTO  /   10.00000,  20.00000,  30.00000\n\
+                GOTO  /   10.00000,  20.00000,  25.00000,  0.000000, -0.600000,  0.800000\n\
+                MULTAX/ OFF\n\
+                GOTO  /   11.00000,  20.00000,  25.00000\n";
+    let (p, r) = read_all(text, A, None);
+    assert_eq!(
+        p.iter().map(|q| q.tip).collect::<Vec<_>>(),
+        [
+            Vector3::new(10.0, 20.0, 30.0),
+            Vector3::new(10.0, 20.0, 25.0),
+            Vector3::new(11.0, 20.0, 25.0),
+        ]
+    );
+    close_vec(&p[0].axis, &Vector3::z(), 1e-15, "TLAXIS");
+    close_vec(
+        &p[1].axis,
+        &Vector3::new(0.0, -0.6, 0.8),
+        1e-15,
+        "six numbers",
+    );
+    close_vec(&p[2].axis, &Vector3::new(0.0, -0.6, 0.8), 1e-15, "kept");
+    assert_eq!(skipped(&r, "MULTAX"), 2);
+}
