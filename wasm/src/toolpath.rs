@@ -191,12 +191,14 @@ pub(crate) fn points(value: &JsValue) -> Result<PathInput, JsError> {
         let t = RotaryType::parse(&name).map_err(|e| bad("readFor", e.message))?;
         Some((v.chunks_exact(2).map(|c| [c[0], c[1]]).collect(), t))
     };
-    Ok(PathInput {
+    let input = PathInput {
         tips,
         axes,
         motions,
         commands,
-    })
+    };
+    input.path().check().map_err(js_error)?;
+    Ok(input)
 }
 
 fn case(value: &JsValue) -> Result<ToolpathCase, JsError> {

@@ -399,8 +399,8 @@ impl<'a> Path<'a> {
         }
     }
 
-    /// Checks the lengths of the motions and commands against the axes.
-    fn check(&self) -> Result<()> {
+    /// Checks the motions and commands against the axes: one per point, commands finite.
+    pub fn check(&self) -> Result<()> {
         let n = self.axes.len();
         if let Some(m) = self.motions {
             if m.len() != n {
