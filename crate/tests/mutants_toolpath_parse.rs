@@ -254,19 +254,19 @@ fn nc_words_keywords_and_slashes() {
     );
 }
 
-/// ±100000 mm and ±3600° are accepted, in inch the position reached in mm counts:
+/// ±100000 mm and ±360000° are accepted, in inch the position reached in mm counts:
 /// 3937.0078 in = 99999.998 mm is in range, 3937.0079 in = 100000.0007 mm is not.
 #[test]
 fn nc_positions_at_their_limits() {
     let m = caz_head();
     let p = parse(
-        "G1 X100000 Y-100000 Z0 C3600 A-3600\n",
+        "G1 X100000 Y-100000 Z0 C360000 A-360000\n",
         Format::Nc,
         Some(&m),
     )
     .unwrap();
     assert_eq!(p[0].tip, Vector3::new(1e5, -1e5, 0.0));
-    assert_eq!(p[0].angles, Some([3600.0, -3600.0]));
+    assert_eq!(p[0].angles, Some([360000.0, -360000.0]));
     let p = parse("G20 X3937.0078 Y0 Z0\n", Format::Nc, Some(&m)).unwrap();
     assert!((p[0].tip.x - 3937.0078 * 25.4).abs() < 1e-9);
     at(
@@ -276,9 +276,9 @@ fn nc_positions_at_their_limits() {
         "expected X within ±100000 mm",
     );
     // Incremental: the position reached, exactly at the limit.
-    let p = parse("X0 Y0 Z0\nG91 C3000\nC600\n", Format::Nc, Some(&m)).unwrap();
-    assert_eq!(p[1].angles, Some([3000.0, 0.0]));
-    assert_eq!(p[2].angles, Some([3600.0, 0.0]));
+    let p = parse("X0 Y0 Z0\nG91 C300000\nC60000\n", Format::Nc, Some(&m)).unwrap();
+    assert_eq!(p[1].angles, Some([300000.0, 0.0]));
+    assert_eq!(p[2].angles, Some([360000.0, 0.0]));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -444,16 +444,16 @@ fn a_number_out_of_range() {
         Vector3::new(-1e5, 1e5, 0.0)
     );
     at(
-        &error("X0 Y0 Z0 C4000 A0\n", Format::Nc, Some(&m)),
+        &error("X0 Y0 Z0 C400000 A0\n", Format::Nc, Some(&m)),
         1,
         11,
-        "expected C within ±3600°, got \"4000\"",
+        "expected C within ±360000°, got \"400000\"",
     );
     at(
-        &error("A-3600.1\n", Format::Nc, Some(&m)),
+        &error("A-360000.1\n", Format::Nc, Some(&m)),
         1,
         2,
-        "expected A within ±3600°",
+        "expected A within ±360000°",
     );
     at(
         &error("X1\nX100001\n", Format::Nc, Some(&m)),
@@ -463,10 +463,10 @@ fn a_number_out_of_range() {
     );
     // Incremental and inch: the position reached counts, in mm.
     at(
-        &error("G91 C3000\nC700\n", Format::Nc, Some(&m)),
+        &error("G91 C300000\nC60100\n", Format::Nc, Some(&m)),
         2,
         2,
-        "expected C within ±3600°, got 3700°",
+        "expected C within ±360000°, got 360100°",
     );
     at(
         &error("G20 X4000\n", Format::Nc, Some(&m)),

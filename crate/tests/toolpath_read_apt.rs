@@ -189,7 +189,11 @@ fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
 #[test]
 fn circle_arcs_turn_counter_clockwise_about_their_axis_and_clockwise_in_nx() {
     // Creo: CIRCLE/0,0,0,0,0,1,10 then the end (0, 10): counter-clockwise, the first quadrant.
-    let (p, r) = read_all("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n", A, None);
+    let (p, r) = read_all(
+        "UNITS/MM\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n",
+        A,
+        None,
+    );
     assert_eq!(r.arc_points, chords(10.0, FRAC_PI_2, 0.001));
     assert!(p[1..].iter().all(|q| q.motion == Motion::Arc
         && q.tip.x > -1e-9
@@ -197,7 +201,7 @@ fn circle_arcs_turn_counter_clockwise_about_their_axis_and_clockwise_in_nx() {
         && (q.tip.norm() - 10.0).abs() < 1e-9));
     // NX (TOOL PATH/ present): clockwise about (0, 0, 1), three quarters through (0, −10); the
     // 11-number form with its last four numbers not used.
-    let text = "TOOL PATH/P,TOOL,T\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10.0000,0.0600,0.5000,0.0000,0.0000\nGOTO/0,10,0\n";
+    let text = "UNITS/MM\nTOOL PATH/P,TOOL,T\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10.0000,0.0600,0.5000,0.0000,0.0000\nGOTO/0,10,0\n";
     let (p, r) = read_all(text, A, None);
     assert_eq!(r.arc_points, chords(10.0, 3.0 * FRAC_PI_2, 0.001));
     assert!(p
@@ -205,7 +209,7 @@ fn circle_arcs_turn_counter_clockwise_about_their_axis_and_clockwise_in_nx() {
         .any(|q| (q.tip - Vector3::new(0.0, -10.0, 0.0)).norm() < 0.2));
     // Several GOTOs on the circle follow it; one off it is a straight move.
     let (p, _) = read_all(
-        "GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/-10,0,0\nGOTO/-20,0,0\n",
+        "UNITS/MM\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/-10,0,0\nGOTO/-20,0,0\n",
         A,
         None,
     );
@@ -221,6 +225,46 @@ fn circle_arcs_turn_counter_clockwise_about_their_axis_and_clockwise_in_nx() {
     assert!(p[1..]
         .iter()
         .all(|q| (q.tip.norm() - 5.0).abs() < 1e-9 && q.motion == Motion::Arc));
+}
+
+/// An arc read before the file's unit is known (no UNITS/, the FEDRAT/IPM hint comes after it)
+/// still keeps its chords within the tolerance once the points turn out to be inches: r = 1 in
+/// = 25.4 mm, a quarter turn, 1 µm: ⌈(π/2) / (2·acos(1 − 0.001/25.4))⌉ = 89 chords.
+#[test]
+fn an_arc_before_the_unit_hint_keeps_the_tolerance_in_the_unit_decided_later() {
+    let (p, r) = read_all(
+        "GOTO/1,0,0\nCIRCLE/0,0,0,0,0,1,1\nGOTO/0,1,0\nFEDRAT/IPM,20\nGOTO/0,2,0\n",
+        A,
+        None,
+    );
+    assert_eq!(r.unit, LengthUnit::Inch);
+    assert_eq!(chords(25.4, FRAC_PI_2, 0.001), 89);
+    let arc: Vec<_> = p.iter().filter(|q| q.motion == Motion::Arc).collect();
+    assert_eq!(arc.len(), 89);
+    // Each chord's middle lies within 1 µm of the 25.4 mm circle.
+    let mut last = p[0].tip;
+    for q in &arc {
+        let mid = (last + q.tip) / 2.0;
+        assert!(
+            25.4 - mid.norm() <= 0.001 + 1e-12,
+            "sagitta {}",
+            25.4 - mid.norm()
+        );
+        last = q.tip;
+    }
+    assert_eq!(p.last().map(|q| q.tip), Some(Vector3::new(0.0, 50.8, 0.0)));
+}
+
+/// A unit statement in the middle of the file: the last position stays where it physically is
+/// (10 mm, then 1 inch more: 35.4 mm).
+#[test]
+fn a_unit_change_keeps_the_last_position_where_it_is() {
+    let (p, _) = read_all(
+        "UNITS/MM\nGOTO/10,0,0\nUNITS/INCHES\nGODLTA/1,0,0\n",
+        A,
+        None,
+    );
+    assert!((p[1].tip.x - 35.4).abs() < 1e-9, "{}", p[1].tip.x);
 }
 
 #[test]

@@ -437,3 +437,177 @@ fn contours_the_control_builds_are_refused_when_run() {
     let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 FMAX\n2 M30\n3 LBL 9\n4 FN 9: IF +Q1 EQU +0 GOTO LBL 9\n5 LBL 0\n6 END PGM T MM\n", H, Some(&m));
     assert_eq!(p.len(), 1);
 }
+
+/// `CYCL CALL POS X Y Z FMAX` moves to the position, then runs the cycle there (TNC 640
+/// cycle programming manual, "CYCL CALL POS"): the moves after it start from the last hole.
+#[test]
+fn cycl_call_pos_moves_to_its_position() {
+    let m = caz_head();
+    let text = program(&[
+        "CYCL DEF 200 DRILLING",
+        "L X+0 Y+0 Z+10 R0 FMAX",
+        "CYCL CALL POS X+20 Y+30 Z+0 FMAX",
+        "CYCL CALL POS X+40 Y+30 Z+0 FMAX",
+        "L Z+5 F500",
+        "L X+60",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    let got: Vec<_> = p.iter().map(|q| (q.tip, q.motion)).collect();
+    assert_eq!(
+        got,
+        [
+            (Vector3::new(0.0, 0.0, 10.0), Motion::Rapid),
+            (Vector3::new(20.0, 30.0, 0.0), Motion::Rapid),
+            (Vector3::new(40.0, 30.0, 0.0), Motion::Rapid),
+            (Vector3::new(40.0, 30.0, 5.0), Motion::Feed),
+            (Vector3::new(60.0, 30.0, 5.0), Motion::Feed),
+        ]
+    );
+    assert!(
+        note(
+            &r,
+            "cycle 200 DRILLING is called at the position the block gives"
+        )
+        .count
+            == 2
+    );
+}
+
+/// `CALL LBL 1 REP 2/2`, as the TNC stores and shows a repeat (remaining/total; the
+/// repository's own real file `heid_handwritten_cut.h` line 49 has `REP 20/20`): the section
+/// runs once, then twice more. A REP without a number is refused as such.
+#[test]
+fn call_lbl_rep_in_the_stored_form_n_slash_n() {
+    let m = caz_head();
+    for rep in ["REP 2/2", "REP2", "REP 2"] {
+        let text = program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "LBL 1",
+            "L IX+10 F500",
+            &format!("CALL LBL 1 {rep}"),
+        ]);
+        let (p, _) = read_all(&text, H, Some(&m));
+        let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
+        assert_eq!(xs, [0.0, 10.0, 20.0, 30.0], "{rep}");
+    }
+    let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", "CALL LBL 1 REP X"]);
+    let e = error(&text, H, Some(&m));
+    assert!(
+        e.contains("REP must be followed by the number of repeats"),
+        "{e}"
+    );
+    // An empty section repeated 4 000 000 000 times: clamped to the TNC's 65 534 and ended.
+    let text = program(&["L X+0 Y+0 Z+0 FMAX", "LBL 1", "CALL LBL 1 REP 4000000000"]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    assert_eq!(p.len(), 1);
+}
+
+/// A datum shift programmed after PLANE acts along the tilted axes (TNC7 user's manual,
+/// "working plane coordinate system WPL-CS": transformations programmed after tilting);
+/// one programmed before is along the workpiece's. PLANE SPATIAL SPB+90: x' = (0, 0, −1),
+/// so a shift X+10 after it moves the datum to (0, 0, −10).
+#[test]
+fn a_datum_shift_after_plane_is_along_the_tilted_axes() {
+    let m = caz_head();
+    let after = program(&[
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN MB MAX FMAX SEQ+ TABLE ROT",
+        "CYCL DEF 7.0 DATUM SHIFT",
+        "CYCL DEF 7.1 X+10",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&after, H, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(0.0, 0.0, -10.0),
+        1e-12,
+        "after PLANE",
+    );
+    assert!(
+        note(&r, "CYCL DEF 7 DATUM SHIFT moves the datum by (10, 0, 0)")
+            .text
+            .contains("along the tilted plane's axes")
+    );
+    let before = program(&[
+        "TRANS DATUM AXIS X+10",
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN MB MAX FMAX SEQ+ TABLE ROT",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, _) = read_all(&before, H, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(10.0, 0.0, 0.0),
+        1e-12,
+        "before PLANE",
+    );
+}
+
+/// Under M128 in a tilted plane, rotary words give the tool axis (5-axis moves in the plane);
+/// an LN vector is the tool direction in the tilted frame. Before M128 the plane's z holds.
+#[test]
+fn m128_in_a_tilted_plane_follows_the_rotary_words_and_vectors() {
+    let m = caz_head();
+    let text = program(&[
+        "PLANE SPATIAL SPA+30 SPB+0 SPC+0 STAY",
+        "L X+0 Y+0 Z+10 R0 FMAX",
+        "M128",
+        "L X+10 A+45 C+0 F500",
+        "LN X+20 Y+0 Z+10 TX+0 TY+0 TZ+1 F500",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    // SPA+30: Rx(30°), z' = (0, −0.5, 0.866); A30 C0 on this head gives the same.
+    let plane_z = Vector3::new(0.0, -0.5, 3f64.sqrt() / 2.0);
+    close_vec(&p[0].axis, &plane_z, 1e-12, "the plane's z");
+    close_vec(&p[1].axis, &caz(0.0, 45.0), 1e-12, "A+45 under M128");
+    close_vec(&p[2].axis, &plane_z, 1e-12, "TZ+1 in the tilted frame");
+    assert_eq!(note(&r, "give the tool axis from here").line, 5);
+}
+
+/// Statements the TNC writes that the reader now reads: `M140 MB MAX` on its own (a retract:
+/// the path breaks), `PRESET SELECT` (another preset: a break), `F MAX` (not a feed); and two
+/// it refuses, naming them: `TRANS DATUM TABLE` (the shift is in a table) and
+/// `FUNCTION TCPM … AXIS SPAT` (A B C are spatial angles there).
+#[test]
+fn m140_preset_select_f_max_and_what_is_refused() {
+    let m = caz_head();
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "L X+10 F500",
+        "M140 MB MAX",
+        "L X+20 Y+0 F MAX",
+        "L Z+5 FMAX",
+        "PRESET SELECT #5",
+        "L X+0 Y+0 Z+0 F MAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    assert_eq!(note(&r, "M140 retracts").kind, NoteKind::Break);
+    assert_eq!(note(&r, "PRESET SELECT").kind, NoteKind::Break);
+    // After M140 X Y Z are unknown until Z+5 (block 5): then (20, 0, 5).
+    assert_eq!(p[2].tip, Vector3::new(20.0, 0.0, 5.0));
+    assert_eq!(skipped(&r, "feeds (F)"), 1, "only F500");
+    assert!(p[3].motion == Motion::Rapid && p[3].tip == Vector3::zeros());
+    for (stmt, part) in [
+        ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM TABLE"),
+        ("FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS", "AXIS SPAT"),
+    ] {
+        let e = error(&program(&[stmt, "L X+0 Y+0 Z+0 FMAX"]), H, Some(&m));
+        assert!(e.starts_with("line 2") && e.contains(part), "{e}");
+    }
+}
+
+/// Detection looks at statements, not comments: a Fanuc program with `(TOOL CALL T1 …)` and a
+/// Sinumerik one starting `;TOOL CALL T1` are not Heidenhain.
+#[test]
+fn detection_ignores_keywords_in_comments() {
+    assert_eq!(
+        Format::detect("%\nO1000 (TOOL CALL T1 D10 FLAT)\nG90 G21 G17\nG0 X0 Y0 Z10\n"),
+        Format::Nc
+    );
+    assert_ne!(
+        Format::detect(";TOOL CALL T1\nG71 G90\nTRAORI\nG0 X0 Y0 Z10\n"),
+        Format::Heidenhain
+    );
+    assert_eq!(
+        Format::detect("1 TOOL CALL 5 Z S3000\n"),
+        Format::Heidenhain
+    );
+}

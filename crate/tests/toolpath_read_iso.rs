@@ -489,3 +489,93 @@ fn a_work_offset_changed_later_breaks_the_path() {
     assert_eq!(p[2].motion, Motion::Rapid);
     assert_eq!(note(&r, "another work offset").line, 4);
 }
+
+/// G0 is modal (group 01) whatever non-modal code shares its block (LinuxCNC g-code.adoc, G53:
+/// "G0 or G1 must be active"; FANUC group 00 codes are one-shot): after `G53 G0 Z0` or
+/// `G0 G28 G91 Z0` the blocks without a G code are rapids, as Fusion's Haas and Fanuc posts
+/// write them.
+#[test]
+fn g0_stays_in_force_after_a_block_with_g28_g53_or_g52() {
+    let m = caz_head();
+    for retract in [
+        "G53 G0 Z0",
+        "G0 G28 G91 Z0",
+        "G28 G0 G91 Z0",
+        "G0 G52 X0 Y0",
+    ] {
+        let text = format!(
+            "G90 G21 G17 G54\nG1 X0 Y0 Z10 F500\nG1 Z0\nX10\n{retract}\nG90 X50 Y50\nZ5\nZ1\n"
+        );
+        let (p, _) = read_all(&text, Format::Nc, Some(&m));
+        let last = p.last().unwrap();
+        assert_eq!(last.tip.z, 1.0, "{retract}");
+        assert_eq!(last.motion, Motion::Rapid, "{retract}: Z1 after it");
+    }
+}
+
+/// Haas G154 P1…P99 are work offsets (Haas NGC manual: "G154 Select Work Coordinates P1-P99"),
+/// like G54: another one breaks the path. G50.1 cancels mirroring (FANUC: G50.1 X0 Y0): a safe
+/// start line with it is read, its X0 Y0 name axes and move nothing.
+#[test]
+fn g154_p_is_a_work_offset_and_g50_1_cancels() {
+    let m = caz_head();
+    let text = "G90 G21 G17 G40 G49 G80 G50.1 X0 Y0\nG54\nG0 X0 Y0 Z10\nG1 Z0 F500\nG154 P1\nG0 X0 Y0 Z10\nG1 Z0\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    assert_eq!(p[0].line, 3, "G50.1's X0 Y0 is not a position");
+    assert_eq!(
+        note(&r, "G154 selects another work offset").kind,
+        NoteKind::Break
+    );
+    assert_eq!(skipped(&r, "G50, G50.1"), 1);
+    // G51.1 mirrors: still refused.
+    at(&error("G51.1 X0\n", Format::Nc, Some(&m)), 1, 1, "mirrors");
+}
+
+/// A shift and a tilted plane defined in one unit stay where they are after the unit changes:
+/// G52 X10 in mm, then G20: after G69 (which rebuilds the frame) X0 is still 10 mm from the
+/// workpiece origin.
+#[test]
+fn a_shift_stays_where_it_is_when_the_unit_changes() {
+    let m = caz_head();
+    let text = "G21 G90\nG52 X10 Y0 Z0\nG20\nG69\nG0 X0 Y0 Z0\nX1\n";
+    let (p, _) = read_all(text, Format::Nc, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(10.0, 0.0, 0.0),
+        1e-9,
+        "G52 X10 mm in inches",
+    );
+    close_vec(&p[1].tip, &Vector3::new(35.4, 0.0, 0.0), 1e-9, "then X1 in");
+}
+
+/// G99 (FANUC: return to the R point level) ends a drilling cycle on its R plane, so the next
+/// move starts there; G98 returns to the level it started from.
+#[test]
+fn a_g99_cycle_ends_on_its_r_plane() {
+    let m = caz_head();
+    let g99 = "G90 G21\nG0 X0 Y0 Z50\nG99 G81 X10 Y0 Z-5 R2 F100\nX20\nG80\nG0 Z50\n";
+    let (p, _) = read_all(g99, Format::Nc, Some(&m));
+    let zs: Vec<f64> = p.iter().map(|q| q.tip.z).collect();
+    // (0,0,50); the hole at (10,0): reached at 50, up on R = 2; the next hole from R.
+    assert_eq!(zs, [50.0, 50.0, 2.0, 2.0, 2.0, 50.0]);
+    let g98 = g99.replace("G99", "G98");
+    let (p, _) = read_all(&g98, Format::Nc, Some(&m));
+    assert!(p.iter().all(|q| q.tip.z == 50.0));
+}
+
+/// In a tilted plane (G68.2) with G43.4 on, a block that turns the rotary axes gives the tool
+/// axis from them (the control follows the commands), not the plane's z; a note says so.
+#[test]
+fn rotary_words_under_tcp_in_a_tilted_plane_give_the_tool_axis() {
+    let m = caz_head();
+    let text =
+        "G21 G90\nG68.2 X0 Y0 Z0 I0 J30 K0\nG43.4 H1\nG0 X0 Y0 Z10 A30 C0\nG1 X10 A45 C0 F500\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    // G68.2 I0 J30 K0: Rz(0)·Rx(30°)·Rz(0): z' = (0, −sin 30°, cos 30°).
+    let plane_z = Vector3::new(0.0, -0.5, 3f64.sqrt() / 2.0);
+    // The first block turns A and C too: from it on the commands give the axis.
+    close_vec(&p[0].axis, &caz(0.0, 30.0), 1e-12, "A30 C0");
+    close_vec(&p[1].axis, &caz(0.0, 45.0), 1e-12, "A45 C0");
+    assert!((p[1].axis - plane_z).norm() > 0.1);
+    assert_eq!(note(&r, "give the tool axis from here").line, 4);
+}

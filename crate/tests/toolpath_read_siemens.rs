@@ -234,3 +234,69 @@ fn program_flow_calls_and_other_forms_are_refused() {
         at(&error(text, S, Some(&m)), line, column, part);
     }
 }
+
+/// `G74 X1=0 Z1=0` (reference point approach) and `G75 FP=2 X=0 Y=0 Z=0` (fixed point
+/// approach: "the programmed position values … are ignored, but must still be written"; the
+/// axes go to a point stored in machine data, MD30600) take the named axes where the file does
+/// not say: the path breaks, and the moves after them start from unknown positions. `G0` in a
+/// block with `SUPA` stays in force after it (modal group 1).
+#[test]
+fn g74_g75_break_the_path_and_g0_with_supa_stays_modal() {
+    let m = caz_head();
+    let text = "G71 G90\nG0 X0 Y0 Z10\nG1 Z0 F500\nX10\nG74 Z1=0\nG0 X50 Y50\nG1 Z-1\nG75 FP=2 X=0 Y=0 Z=0\nG1 X0\n";
+    let (p, r) = read_all(text, S, Some(&m));
+    assert_eq!(note(&r, "G74/G75 take Z").kind, NoteKind::Break);
+    // After G74 Z is unknown: G0 X50 Y50 gives no point; G1 Z-1 does, reached across the break.
+    let lines: Vec<u32> = p.iter().map(|q| q.line).collect();
+    assert_eq!(lines, [2, 3, 4, 7]);
+    assert_eq!(p[3].motion, Motion::Rapid);
+    assert_eq!(skipped(&r, "variable"), 0, "X1= is not a variable");
+    // G0 SUPA Z0 D0 then modal moves: rapids.
+    let text = "G71 G90\nG1 X0 Y0 Z10 F500\nG1 Z0\nG0 SUPA Z0 D0\nX50 Y50\nZ5\nZ1\n";
+    let (p, _) = read_all(text, S, Some(&m));
+    assert_eq!(
+        p.last().map(|q| (q.tip.z, q.motion)),
+        Some((1.0, Motion::Rapid))
+    );
+}
+
+/// `DEF` after a block number (posts number every block), and a call not closed on its line is
+/// an error with its place, not a crash (a non-ASCII character at the end of it).
+#[test]
+fn def_after_a_block_number_and_an_unclosed_call() {
+    let m = caz_head();
+    let (p, _) = read_all(
+        "N10 DEF REAL DEPTH=5\nN20 G71 G90 G0 X0 Y0 Z=DEPTH\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(0.0, 0.0, 5.0));
+    at(
+        &error("G71\nMSG(\"Fräsen Ø\n", S, Some(&m)),
+        2,
+        1,
+        "MSG( is not closed",
+    );
+    at(
+        &error("CYCLE81(10,0,2,-5,Ø\n", S, Some(&m)),
+        1,
+        1,
+        "CYCLE81( is not closed",
+    );
+}
+
+/// A frame set in inches stays where it is when the program switches to millimetres: TRANS X1
+/// (25.4 mm), then G71 and ATRANS Y10: the origin is (25.4, 10, 0) mm.
+#[test]
+fn a_frame_stays_where_it_is_when_the_unit_changes() {
+    let m = caz_head();
+    let (p, r) = read_all(
+        "G70 G90\nTRANS X1\nG71\nATRANS Y10\nG0 X0 Y0 Z0\n",
+        S,
+        Some(&m),
+    );
+    close_vec(&p[0].tip, &Vector3::new(25.4, 10.0, 0.0), 1e-9, "origin");
+    assert!(note(&r, "TRANS sets the programmable frame")
+        .text
+        .contains("origin (25.4, 0, 0) mm"));
+}

@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
-use common::toolpath::{caz, chords, close_vec, note, read_all};
+use common::toolpath::{caz, chords, close_vec, note, read_all, skipped};
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::RotaryType;
 use fiveaxis::schema::Inputs;
@@ -269,6 +269,9 @@ fn a_hypermill_heidenhain_program_with_plane_spatial_and_labels_after_m30() {
     assert_eq!(p[0].angles, Some([0.0, 0.0]));
     assert_eq!(note(&r, "cycle 207 RIGID TAPPING NEW").count, 6);
     assert_eq!(note(&r, "M91/M92").line, 32);
+    // Cycle parameters continue their CYCL DEF block with `~` after their comment (`Q240=0
+    // ;TUNING MODE~`): only block 42, `FN 0:Q3=286`, is a Q assignment of its own before M30.
+    assert_eq!(skipped(&r, "Q-parameter assignments"), 1);
 }
 
 /// Programs the reader cannot read right are refused at their line, with the construct:

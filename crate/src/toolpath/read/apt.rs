@@ -395,7 +395,7 @@ impl Apt {
                 log.frame_choice = Some(FrameFound {
                     statement: what.to_string(),
                     line,
-                    frame: frame.describe(),
+                    frame: frame.scaled(log.scale().0).describe(),
                     reading,
                 });
             }
@@ -405,7 +405,7 @@ impl Apt {
                     "shown only: the points are left as written (your choice beside the file)"
                 }
             };
-            let desc = frame.describe();
+            let desc = frame.scaled(log.scale().0).describe();
             log.note("apt-frame", NoteKind::Frame, line, || {
                 format!("line {line}: {what} states the output frame {desc}; {applied}")
             });
@@ -533,7 +533,19 @@ impl Apt {
                         ))
                     }
                 };
+                let before = log.scale().0;
                 log.state_unit(unit, no, &format!("{first}/{w}"));
+                // What is held stays where it physically is, written in the new unit.
+                let k = before / log.scale().0;
+                if k != 1.0 {
+                    self.pos = self.pos.map(|p| p * k);
+                    if let Some(c) = &mut self.circle {
+                        c.centre *= k;
+                        c.radius = c.radius.map(|r| r * k);
+                    }
+                    self.output = self.output.scaled(k);
+                    self.tracut = self.tracut.scaled(k);
+                }
                 Ok(())
             }
             "FEDRAT" => {
@@ -763,8 +775,7 @@ impl Apt {
                 ),
             ));
         }
-        let (scale, _) = log.scale();
-        let tol = log.options.chord_tolerance / scale;
+        let tol = log.arc_tolerances();
         let ccw = !self.nx;
         let pts = arc(p0, p1, &c.centre, &c.normal, ccw, 0, tol).map_err(|e| match e {
             ArcError::Radii(a, b) => loc.err(
@@ -874,7 +885,7 @@ impl Apt {
             )
         })?;
         if word == "TRACUT" {
-            let desc = frame.describe();
+            let desc = frame.scaled(log.scale().0).describe();
             let reading = log.options.apt_frame;
             log.note("apt-tracut", NoteKind::Frame, no, || match reading {
                 AptFrameChoice::Apply => {

@@ -40,6 +40,14 @@ impl Frame {
         origin: Vector3::new(0.0, 0.0, 0.0),
     };
 
+    /// The same frame with lengths `k` times larger (its origin; a frame in another unit).
+    pub fn scaled(&self, k: f64) -> Frame {
+        Frame {
+            rotation: self.rotation,
+            origin: self.origin * k,
+        }
+    }
+
     /// A shift: `p ↦ p + by`.
     pub fn shift(by: Vector3<f64>) -> Frame {
         Frame {
@@ -179,8 +187,9 @@ pub enum ArcError {
 /// * A chord of an arc of radius `r` over the angle `φ` lies `r·(1 − cos(φ/2))` inside it, so
 ///   `φ = 2·acos(1 − tol/r)` is the largest step; `n = ⌈|θ|/φ⌉` chords (one when `r ≤ tol`), at
 ///   most [`MAX_ARC_CHORDS`].
-/// * The radii at the start and the end may differ by `max(0.01 mm, 10⁻³·r)` (what controls
-///   accept as rounding of the written numbers); more is [`ArcError::Radii`].
+/// * The radii at the start and the end may differ by `max(rounding, 10⁻⁴·r)` (what controls
+///   accept as rounding of the written numbers; `rounding` in the same unit as the points);
+///   more is [`ArcError::Radii`].
 #[allow(clippy::too_many_arguments)]
 pub fn arc(
     start: &Vector3<f64>,
@@ -189,7 +198,7 @@ pub fn arc(
     normal: &Vector3<f64>,
     ccw: bool,
     turns: u32,
-    chord_tolerance: f64,
+    (chord_tolerance, rounding): (f64, f64),
 ) -> Result<Vec<(Vector3<f64>, f64)>, ArcError> {
     let n = normal.normalize();
     let radial = |p: &Vector3<f64>| {
@@ -201,7 +210,7 @@ pub fn arc(
     if r0 < 1e-9 || r1 < 1e-9 {
         return Err(ArcError::NoRadius);
     }
-    if (r0 - r1).abs() > (1e-3 * r0.max(r1)).max(0.01) {
+    if (r0 - r1).abs() > (1e-4 * r0.max(r1)).max(rounding) {
         return Err(ArcError::Radii(r0, r1));
     }
     // Angle from v0 to v1 about n, counter-clockwise, in (0, 2π].
@@ -267,7 +276,7 @@ mod tests {
             &Vector3::z(),
             true,
             0,
-            0.001,
+            (0.001, 0.01),
         )
         .unwrap_or_default();
         // φ = 2·acos(1 − 1e-4) = 0.028285 rad; π/2 / φ = 55.53 → 56 chords.
@@ -283,7 +292,7 @@ mod tests {
             &Vector3::z(),
             false,
             0,
-            0.001,
+            (0.001, 0.01),
         )
         .unwrap_or_default();
         assert_eq!(cw.len(), 167);

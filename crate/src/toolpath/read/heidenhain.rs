@@ -65,6 +65,8 @@ use std::collections::HashMap;
 
 /// Deepest nesting of label calls.
 const MAX_DEPTH: usize = 8;
+/// Most repeats of a label section (the TNC's own limit, `REP` 65 534).
+const MAX_REP: f64 = 65_534.0;
 /// Most blocks run (repeats included), a guard against a label that calls itself.
 const MAX_RUN: u64 = 50_000_000;
 
@@ -73,11 +75,22 @@ const MAX_RUN: u64 = 50_000_000;
 /// `CYCL DEF`, `PLANE`, `LBL`, `FN`, `BLK FORM`, or a line with `FMAX`, `TOOL CALL` or
 /// `CYCL DEF`.
 pub(super) fn is_statement(l: &str) -> bool {
-    let u = l.to_ascii_uppercase();
+    // Comments are not statements: an ISO `(TOOL CALL T1)` or a Siemens `;TOOL CALL` is not
+    // Heidenhain.
+    let code = strip_comment(l);
+    let u = code
+        .split('(')
+        .next()
+        .unwrap_or("")
+        .trim()
+        .to_ascii_uppercase();
+    let rest = u
+        .trim_start_matches(|c: char| c.is_ascii_digit())
+        .trim_start();
     if u.contains("BEGIN PGM")
-        || u.contains("TOOL CALL")
-        || u.contains("CYCL DEF")
-        || u.contains("FMAX") && !u.contains('(')
+        || rest.starts_with("TOOL CALL")
+        || rest.starts_with("CYCL DEF")
+        || u.contains("FMAX") && !code.contains('(')
     {
         return true;
     }
@@ -125,7 +138,11 @@ pub struct Heidenhain {
     pole: Option<(Vector3<f64>, Plane)>,
     /// The tool axis of TOOL CALL: its plane.
     tool_plane: Option<Plane>,
+    /// The datum shift programmed outside a tilted plane (workpiece axes).
     datum: Vector3<f64>,
+    /// The datum shift programmed in the tilted plane (along its axes: the TNC's
+    /// transformations after `PLANE` act in the working-plane system).
+    datum_tilted: Vector3<f64>,
     rot10: f64,
     tilt: Option<Matrix3<f64>>,
     /// Cycle being defined (number) and the one last defined.
@@ -142,16 +159,20 @@ impl Heidenhain {
         log: &mut Log,
         _out: &mut [Point],
     ) -> Result<()> {
-        let code = strip_comment(text);
+        // `~` continues the block on the next line; the TNC writes it after the line's
+        // comment too (`Q240=0 ;TUNING MODE~`).
+        let raw = text.trim_end();
+        let (more, raw) = match raw.strip_suffix('~') {
+            Some(r) => (true, r),
+            None => (false, raw),
+        };
+        let code = strip_comment(raw);
         let t = code.trim_end();
+        let t = t.strip_suffix('~').unwrap_or(t);
         match self.pending.take() {
             Some((first, mut acc)) => {
                 acc.push(' ');
-                let (more, body) = match t.strip_suffix('~') {
-                    Some(b) => (true, b),
-                    None => (false, t),
-                };
-                acc.push_str(body.trim());
+                acc.push_str(t.trim());
                 if more {
                     self.pending = Some((first, acc));
                 } else {
@@ -159,12 +180,13 @@ impl Heidenhain {
                 }
             }
             None => {
-                if t.trim().is_empty() {
+                if t.trim().is_empty() && !more {
                     return Ok(());
                 }
-                match t.strip_suffix('~') {
-                    Some(b) => self.pending = Some((no, b.to_string())),
-                    None => self.push(no, t.to_string(), log),
+                if more {
+                    self.pending = Some((no, t.to_string()));
+                } else {
+                    self.push(no, t.to_string(), log);
                 }
             }
         }
@@ -221,10 +243,7 @@ impl Heidenhain {
             if until == Some(i) {
                 return Ok(());
             }
-            self.run += 1;
-            if self.run > MAX_RUN {
-                return Err(Error::field(super::FIELD, format!("line {}: the program runs more than {MAX_RUN} blocks (a label calling itself?)", blocks[i].0)));
-            }
+            self.count_run(blocks[i].0, out.len())?;
             let (no, text) = (&blocks[i].0, &blocks[i].1);
             let segs = [Seg {
                 start: 0,
@@ -247,10 +266,16 @@ impl Heidenhain {
             }
             if let Some(rest) = u.strip_prefix("CALL LBL") {
                 let (name, rep) = match rest.find(" REP") {
-                    Some(p) => (
-                        label_name(rest[..p].trim()),
-                        number(rest[p + 4..].split_whitespace().next().unwrap_or(""), false),
-                    ),
+                    Some(p) => {
+                        // `REP 2` or, as the TNC stores it, `REP 2/2` (remaining/total).
+                        let words = rest[p + 4..].trim_start();
+                        let n = words.split(['/', ' ']).next().unwrap_or("");
+                        let Some(m) = number(n, false).filter(|m| m.fract() == 0.0 && *m >= 0.0)
+                        else {
+                            return Err(loc.err(body_at + "CALL LBL".len() + p + 1, format!("REP must be followed by the number of repeats (REP 2 or REP 2/2), not {:?}", words)));
+                        };
+                        (label_name(rest[..p].trim()), Some(m.min(MAX_REP)))
+                    }
                     None => (label_name(rest.trim()), None),
                 };
                 let Some(&at) = self.labels.get(&name) else {
@@ -269,7 +294,8 @@ impl Heidenhain {
                 }
                 match rep {
                     Some(m) if at < i => {
-                        for _ in 0..(m.max(0.0) as u64) {
+                        for _ in 0..(m as u64) {
+                            self.count_run(blocks[i].0, out.len())?; // a pass counts, even an empty one
                             self.run_from(core, blocks, at + 1, Some(i), depth + 1, log, out)?;
                         }
                     }
@@ -280,6 +306,19 @@ impl Heidenhain {
             }
             self.block(core, *no, body, body_at, &loc, log, out)?;
             i += 1;
+        }
+        Ok(())
+    }
+
+    /// Counts one block (or one pass of a repeat) run, against [`MAX_RUN`], and the points so
+    /// far against [`super::MAX_POINTS`].
+    fn count_run(&mut self, line: u32, points: usize) -> Result<()> {
+        if points as u64 > super::MAX_POINTS {
+            return Err(super::too_many(line));
+        }
+        self.run += 1;
+        if self.run > MAX_RUN {
+            return Err(Error::field(super::FIELD, format!("line {line}: the program runs more than {MAX_RUN} blocks (a label calling itself?)")));
         }
         Ok(())
     }
@@ -344,22 +383,26 @@ impl Heidenhain {
             "RND" | "CHF" => refuse(format!("{first} rounds or chamfers the corner between two blocks; the control computes it. Post the program with the corner written as moves")),
             "APPR" | "DEP" => refuse(format!("{first} approaches or leaves the contour along moves the control builds; post the program with them written as L and C blocks")),
             "FPOL" | "FL" | "FLT" | "FC" | "FCT" | "FSELECT" => refuse(format!("{first} is free contour programming (FK): the control computes the contour; post the program with L and C blocks")),
-            "CYCL" => self.cycl(core, no, body, at, &u, loc, log),
+            "CYCL" => self.cycl(core, no, body, at, &u, loc, log, out),
             "TRANS" if u.starts_with("TRANS DATUM") => {
+                if u.contains("TABLE") {
+                    return refuse("TRANS DATUM TABLE shifts the datum by a line of a datum table, which the file does not state; post the program with the shift written out".into());
+                }
                 if u.contains("RESET") {
                     self.datum = Vector3::zeros();
-                } else {
-                    for w in &words[2..] {
-                        if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
-                            if i < 3 {
-                                self.datum[i] = if inc { self.datum[i] + v } else { v };
-                            }
+                    self.datum_tilted = Vector3::zeros();
+                    self.update_frame(core);
+                    return Ok(());
+                }
+                let mut shifts = Vec::new();
+                for w in &words[2..] {
+                    if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
+                        if i < 3 {
+                            shifts.push((i, inc, v));
                         }
                     }
                 }
-                self.update_frame(core);
-                let d = self.datum;
-                log.note("hei-datum", NoteKind::Frame, no, || format!("line {no}: TRANS DATUM shifts the datum to ({}, {}, {}): applied to the points after it", d.x, d.y, d.z));
+                self.shift_datum(core, &shifts, "TRANS DATUM", no, log);
                 Ok(())
             }
             "PLANE" => self.plane(core, no, body, at, &u, loc, log),
@@ -367,6 +410,9 @@ impl Heidenhain {
                 if u.contains("RESET TCPM") {
                     core.set_tcp(false, no, "", log);
                 } else if u.contains("TCPM") {
+                    if u.contains("AXIS SPAT") {
+                        return refuse("FUNCTION TCPM … AXIS SPAT makes A, B, C spatial angles, not the rotary axes' positions, which the reader does not read; post the program with AXIS POS, with vectors (LN … TX TY TZ) or as CL data".into());
+                    }
                     core.set_tcp(true, no, "FUNCTION TCPM", log);
                 } else {
                     log.skip("FUNCTION settings", no);
@@ -377,6 +423,11 @@ impl Heidenhain {
             "CALL" => refuse(format!("{} calls another program: the calculator reads one program; post it with the called moves written out", shown(body))),
             "TCH" => {
                 log.note("hei-probe", NoteKind::Partial, no, || format!("line {no}: a touch-probe cycle: its probing moves are not drawn"));
+                Ok(())
+            }
+            "PRESET" if u.starts_with("PRESET SELECT") || u.starts_with("PRESET COPY") || u.starts_with("PRESET SET") => {
+                core.break_next = true;
+                log.note("hei-preset", NoteKind::Break, no, || format!("line {no}: {} selects or changes a preset, whose place the file does not state: the path breaks there", words.iter().take(2).copied().collect::<Vec<_>>().join(" ")));
                 Ok(())
             }
             "SEL" | "DECLARE" | "SPEC" | "PRESET" | "PATTERN" | "FUNCTION PROG" => {
@@ -546,6 +597,7 @@ impl Heidenhain {
         let mut machine = false;
         let mut retract = false;
         let mut cycle_call = false;
+        let mut tcp_off = false;
         let mut prev = "";
         for w in &words {
             let uw = w.to_ascii_uppercase();
@@ -572,12 +624,12 @@ impl Heidenhain {
                     126 => core.shortest = true,
                     127 => core.shortest = false,
                     128 => core.set_tcp(true, no, "M128", log),
-                    129 => core.set_tcp(false, no, "", log),
+                    129 => tcp_off = true, // M129 acts at the end of its block
                     30 | 2 => core.ended = true,
                     _ => log.skip("M-functions", no),
                 }
             }
-            if uw.starts_with('F') && uw != "FMAX" {
+            if uw.starts_with('F') && uw != "FMAX" && uw != "F" {
                 log.skip("feeds (F)", no);
             }
             prev = w;
@@ -620,8 +672,11 @@ impl Heidenhain {
             return Ok(());
         }
         core.execute(&b, loc, log, out)?;
+        if tcp_off {
+            core.set_tcp(false, no, "", log);
+        }
         if cycle_call {
-            self.cycle_called(no, log);
+            self.cycle_called(no, log, " at the block's end point");
         }
         Ok(())
     }
@@ -636,8 +691,13 @@ impl Heidenhain {
         loc: &Loc,
         log: &mut Log,
     ) -> Result<()> {
+        let mut retract = false;
         for w in words {
             let uw = w.to_ascii_uppercase();
+            // M140's own words: `MB MAX`, `MB+10`.
+            if retract && (uw.starts_with("MB") || uw == "MAX") {
+                continue;
+            }
             let Some(m) = uw.strip_prefix('M').and_then(|m| m.parse::<u32>().ok()) else {
                 return Err(loc.err(
                     at,
@@ -653,20 +713,25 @@ impl Heidenhain {
                 126 => core.shortest = true,
                 127 => core.shortest = false,
                 30 | 2 => core.ended = true,
-                99 | 89 => self.cycle_called(no, log),
+                99 | 89 => self.cycle_called(no, log, " at the current position"),
+                140 => retract = true,
                 _ => log.skip("M-functions", no),
             }
+        }
+        if retract {
+            core.forget(&[0, 1, 2]);
+            log.note("hei-machine", NoteKind::Break, no, || format!("line {no}: M140 retracts the tool along its axis, to positions the file does not relate to the part: the path breaks until each axis is given again"));
         }
         Ok(())
     }
 
-    /// The cycle last defined is called at the current position.
-    fn cycle_called(&mut self, no: u32, log: &mut Log) {
+    /// The cycle last defined is called (`at`: where, in words).
+    fn cycle_called(&mut self, no: u32, log: &mut Log, at: &str) {
         let name = self
             .cycle
             .as_ref()
             .map_or_else(|| "a cycle".to_string(), |(n, t)| format!("cycle {n} {t}"));
-        log.note("hei-cycle", NoteKind::Partial, no, || format!("line {no}: {name} is called at the current position: its moves are not drawn (the tool axis does not turn in them)"));
+        log.note("hei-cycle", NoteKind::Partial, no, || format!("line {no}: {name} is called{at}: its moves are not drawn (the tool axis does not turn in them)"));
     }
 
     /// `CC`.
@@ -715,6 +780,7 @@ impl Heidenhain {
         let mut radius = None;
         let mut ipa = None;
         let mut pa = None;
+        let mut tcp_off = false;
         let mut prev = "";
         for w in &words {
             let uw = w.to_ascii_uppercase();
@@ -752,7 +818,7 @@ impl Heidenhain {
             if let Some(m) = uw.strip_prefix('M').and_then(|m| m.parse::<u32>().ok()) {
                 match m {
                     128 => core.set_tcp(true, no, "M128", log),
-                    129 => core.set_tcp(false, no, "", log),
+                    129 => tcp_off = true, // M129 acts at the end of its block
                     30 | 2 => core.ended = true,
                     _ => log.skip("M-functions", no),
                 }
@@ -872,7 +938,11 @@ impl Heidenhain {
                 }
             }
         }
-        core.execute(&b, loc, log, out)
+        core.execute(&b, loc, log, out)?;
+        if tcp_off {
+            core.set_tcp(false, no, "", log);
+        }
+        Ok(())
     }
 
     /// `CYCL DEF …`, `CYCL CALL …`.
@@ -886,9 +956,27 @@ impl Heidenhain {
         u: &str,
         loc: &Loc,
         log: &mut Log,
+        out: &mut Vec<Point>,
     ) -> Result<()> {
-        if u.starts_with("CYCL CALL") {
-            self.cycle_called(no, log);
+        if let Some(rest) = u.strip_prefix("CYCL CALL") {
+            if let Some(pos) = rest.trim_start().strip_prefix("POS") {
+                // `CYCL CALL POS X Y Z FMAX|F`: a positioning move there (drawn as a rapid, the
+                // tool axis does not turn), then the cycle.
+                let words = &body[body.len() - pos.len()..];
+                self.linear(
+                    core,
+                    no,
+                    &format!("L {words} FMAX"),
+                    at,
+                    loc,
+                    log,
+                    out,
+                    false,
+                )?;
+                self.cycle_called(no, log, " at the position the block gives");
+            } else {
+                self.cycle_called(no, log, " at the current position");
+            }
             return Ok(());
         }
         let rest = u.strip_prefix("CYCL DEF").unwrap_or("").trim();
@@ -906,21 +994,18 @@ impl Heidenhain {
                 if minor == "0" {
                     return Ok(());
                 }
+                let mut shifts = Vec::new();
                 for w in &words {
                     if w.starts_with('#') {
                         return Err(loc.err(at, "CYCL DEF 7 with a datum table line (#) shifts by values the file does not state; post the program with the shift written out"));
                     }
                     if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
                         if i < 3 {
-                            self.datum[i] = if inc { self.datum[i] + v } else { v };
+                            shifts.push((i, inc, v));
                         }
                     }
                 }
-                self.update_frame(core);
-                let d = self.datum;
-                if d != Vector3::zeros() {
-                    log.note("hei-datum", NoteKind::Frame, no, || format!("line {no}: CYCL DEF 7 DATUM SHIFT moves the datum to ({}, {}, {}): applied to the points after it", d.x, d.y, d.z));
-                }
+                self.shift_datum(core, &shifts, "CYCL DEF 7 DATUM SHIFT", no, log);
                 Ok(())
             }
             10 => {
@@ -1033,7 +1118,16 @@ impl Heidenhain {
             }
             _ => return Err(loc.err(at, format!("PLANE {kind} defines the plane in a way the reader does not read; post the program with PLANE SPATIAL, M128/FUNCTION TCPM or as CL data"))),
         };
+        // A shift programmed in the plane before stays where it is (in workpiece axes).
+        if let Some(t) = self.tilt {
+            if self.datum_tilted != Vector3::zeros() {
+                self.datum += t * self.datum_tilted;
+                self.datum_tilted = Vector3::zeros();
+                log.note("hei-datum-fold", NoteKind::Frame, no, || format!("line {no}: a new working plane while a datum shift programmed in the tilted plane is active: the datum is kept where it is"));
+            }
+        }
         self.tilt = r.filter(|m| (m - Matrix3::identity()).amax() > 1e-12);
+        core.tilt_override = false;
         self.update_frame(core);
         if let Some(m) = r {
             if u.contains("STAY") {
@@ -1087,13 +1181,45 @@ impl Heidenhain {
         }
     }
 
-    /// The frame of the datum shift, the tilted plane and the rotation.
+    /// A datum shift (`TRANS DATUM`, cycle 7): each `(axis, incremental, value)`. Programmed in
+    /// a tilted plane it is along the plane's axes, else along the workpiece's.
+    fn shift_datum(
+        &mut self,
+        core: &mut Core,
+        shifts: &[(usize, bool, f64)],
+        what: &str,
+        no: u32,
+        log: &mut Log,
+    ) {
+        let tilted = self.tilt.is_some();
+        let d = if tilted {
+            &mut self.datum_tilted
+        } else {
+            &mut self.datum
+        };
+        for &(i, inc, v) in shifts {
+            d[i] = if inc { d[i] + v } else { v };
+        }
+        let d = *d;
+        self.update_frame(core);
+        if d != Vector3::zeros() {
+            let along = if tilted {
+                "along the tilted plane's axes"
+            } else {
+                "along the workpiece's axes"
+            };
+            log.note("hei-datum", NoteKind::Frame, no, || format!("line {no}: {what} moves the datum by ({}, {}, {}) {along}: applied to the points after it", d.x, d.y, d.z));
+        }
+    }
+
+    /// The frame of the datum shift, the tilted plane, the shift programmed in it and the
+    /// rotation: `p ↦ datum + T·(datum_tilted + R₁₀·p)`.
     fn update_frame(&mut self, core: &mut Core) {
         let mut f = Frame::shift(self.datum);
         if let Some(t) = self.tilt {
             f = f.then(&Frame {
                 rotation: t,
-                origin: Vector3::zeros(),
+                origin: t * self.datum_tilted,
             });
         }
         if self.rot10 != 0.0 {

@@ -77,17 +77,22 @@ pub struct Iso {
     offset: Option<(i64, i64)>,
     /// A point has been written (a new work offset then breaks the path).
     any_point: bool,
-    /// G52 shift, G92 shift (program units).
+    /// G52 shift, G92 shift (mm: they stay where they are when the unit changes).
     local: Vector3<f64>,
     g92: Vector3<f64>,
-    /// G68 rotation.
+    /// G68 rotation (mm).
     rotation: Option<Frame>,
-    /// G68.2 tilted plane.
+    /// G68.2 tilted plane (mm).
     tilt: Option<Frame>,
     /// G90.1: arc centres absolute.
     centre_absolute: bool,
     /// G43.5: I J K are the tool axis.
     ijk_vector: bool,
+    /// G99: a drilling cycle returns to its R plane (G98, the default: to the level it
+    /// started from).
+    to_r: bool,
+    /// The drilling cycle's R plane, as last written (modal in the cycle).
+    cycle_r: Option<f64>,
 }
 
 /// One word of a block.
@@ -209,7 +214,7 @@ impl Iso {
             let refuse = |msg: &str| Err(loc.err(t.at, msg.to_string()));
             match (t.letter, g10(t.value)) {
                 ('G', 160) => return refuse("G16 switches to polar coordinates (radius and angle); the calculator reads X Y Z: post the program in Cartesian coordinates"),
-                ('G', 510) | ('G', 511) | ('G', 501) => return refuse("the program scales or mirrors its coordinates (G51, G51.1, G50.1); the calculator reads them unscaled: post the program without scaling or mirroring"),
+                ('G', 510) | ('G', 511) => return refuse("the program scales or mirrors its coordinates (G51, G51.1); the calculator reads them unscaled: post the program without scaling or mirroring"),
                 ('G', 650) | ('G', 660) | ('G', 661) => return refuse("G65/G66 call a macro: the calculator reads one program as plain blocks; post it with the macro's moves written out"),
                 ('G', 683) | ('G', 684) => return refuse("G68.3/G68.4 define the working plane from the tool axis the machine holds, which the file does not state; post the program with tool-centre-point output (G43.4) or as CL data"),
                 ('M', 980) | ('M', 970) => return refuse(&format!("M{} calls a subprogram: the calculator reads one program without its subprograms; post the program with them written out", t.value)),
@@ -248,9 +253,15 @@ impl Iso {
             ..Block::default()
         };
         // Plane, unit and distance mode first: they apply to the whole block (`G28 G91 Z0`).
-        const SETTINGS: [i64; 9] = [170, 180, 190, 200, 210, 900, 910, 901, 911];
+        // The motion mode too: it stays in force after a block whose non-modal code returns
+        // early (`G53 G0 Z0`, `G0 G28 G91 Z0`).
+        const SETTINGS: [i64; 13] = [0, 10, 20, 30, 170, 180, 190, 200, 210, 900, 910, 901, 911];
         for t in &gs {
             match g10(t.value) {
+                0 => (b.mode, self.cycle) = (Some(Mode::Rapid), None),
+                10 => (b.mode, self.cycle) = (Some(Mode::Feed), None),
+                20 => (b.mode, self.cycle) = (Some(Mode::Cw), None),
+                30 => (b.mode, self.cycle) = (Some(Mode::Ccw), None),
                 170 => core.plane = Plane::Xy,
                 180 => core.plane = Plane::Zx,
                 190 => core.plane = Plane::Yz,
@@ -263,14 +274,17 @@ impl Iso {
                 _ => {}
             }
         }
+        let mode = b.mode;
+        let mut no_move = false;
+        let keep_mode = |core: &mut Core| {
+            if let Some(m) = mode {
+                core.mode = m;
+            }
+        };
         for t in &gs {
             let code = g10(t.value);
             match code {
                 c if SETTINGS.contains(&c) => {}
-                0 => (b.mode, self.cycle) = (Some(Mode::Rapid), None),
-                10 => (b.mode, self.cycle) = (Some(Mode::Feed), None),
-                20 => (b.mode, self.cycle) = (Some(Mode::Cw), None),
-                30 => (b.mode, self.cycle) = (Some(Mode::Ccw), None),
                 434 => core.set_tcp(true, no, "G43.4", log),
                 435 => {
                     core.set_tcp(true, no, "G43.5", log);
@@ -301,8 +315,8 @@ impl Iso {
                     }
                 }
                 800 => self.cycle = None,
-                540..=593 | 1100..=1290 => {
-                    let p = if code == 541 {
+                540..=593 | 1100..=1290 | 1540 => {
+                    let p = if code == 541 || code == 1540 {
                         word('P').map_or(0, |w| w.value as i64)
                     } else {
                         0
@@ -322,6 +336,7 @@ impl Iso {
                     for i in if all { vec![3, 4] } else { rotary } {
                         core.pos[i] = 0.0;
                     }
+                    keep_mode(core);
                     if !axes.is_empty() {
                         log.note("iso-home", NoteKind::Break, no, || {
                             format!("line {no}: G{} returns {} to the reference position, which the file does not state: the path breaks until each is given again (the move back is not analysed)", t.value, names(&axes))
@@ -329,22 +344,48 @@ impl Iso {
                     }
                     return Ok(());
                 }
-                530 => return self.machine_coordinates(core, &toks, "G53", no, log),
-                520 => return self.local_shift(core, &toks, no, &loc, log),
-                920 => return self.g92(core, &toks, no, &loc, log),
+                530 => {
+                    keep_mode(core);
+                    return self.machine_coordinates(core, &toks, "G53", no, log);
+                }
+                520 => {
+                    keep_mode(core);
+                    return self.local_shift(core, &toks, no, &loc, log);
+                }
+                920 => {
+                    keep_mode(core);
+                    return self.g92(core, &toks, no, &loc, log);
+                }
                 921 | 922 => {
                     self.g92 = Vector3::zeros();
-                    self.update_frame(core);
+                    self.update_frame(core, log);
+                    keep_mode(core);
                     return Ok(());
                 }
-                680 => return self.g68(core, &toks, no, &loc, log),
-                682 => return self.g68_2(core, &toks, no, &loc, log),
+                680 => {
+                    keep_mode(core);
+                    return self.g68(core, &toks, no, &loc, log);
+                }
+                682 => {
+                    keep_mode(core);
+                    return self.g68_2(core, &toks, no, &loc, log);
+                }
                 690 => {
                     self.rotation = None;
                     self.tilt = None;
-                    self.update_frame(core);
+                    core.tilt_override = false;
+                    self.update_frame(core, log);
                 }
                 531 | 536 => log.skip("tool axis direction control (G53.1, G53.6)", no),
+                500 | 501 => {
+                    // Its X Y Z name the axes whose mirroring ends: not a position.
+                    no_move = true;
+                    log.skip("scaling and mirroring cancels (G50, G50.1)", no);
+                }
+                980 | 990 => {
+                    self.to_r = code == 990;
+                    log.skip("cycle return levels (G98, G99)", no);
+                }
                 50..=90
                 | 610
                 | 611
@@ -353,8 +394,6 @@ impl Iso {
                 | 640
                 | 1870
                 | 930..=950
-                | 980
-                | 990
                 | 400
                 | 150
                 | 960
@@ -391,7 +430,14 @@ impl Iso {
                 ),
                 4290 => core.set_tcp(false, no, "", log),
                 910 | 920 => {
-                    return self.machine_coordinates(core, &toks, &format!("M{}", t.value), no, log)
+                    keep_mode(core);
+                    return self.machine_coordinates(
+                        core,
+                        &toks,
+                        &format!("M{}", t.value),
+                        no,
+                        log,
+                    );
                 }
                 30 | 40 | 50 | 190 => log.skip("spindle (M3, M4, M5)", no),
                 60 => log.skip("tool changes (M6)", no),
@@ -400,7 +446,14 @@ impl Iso {
                 _ => log.skip("other M-functions", no),
             }
         }
+        if no_move {
+            keep_mode(core);
+            return Ok(());
+        }
         // The move.
+        if self.cycle.is_none() {
+            self.cycle_r = None;
+        }
         let in_cycle = self.cycle.is_some() && b.mode.is_none();
         for t in &toks {
             let w = Some(Word {
@@ -416,6 +469,7 @@ impl Iso {
                     b.centre[i] = w;
                 }
                 'R' if !in_cycle => b.radius = w,
+                'R' => self.cycle_r = Some(t.value),
                 'P' if matches!(core.mode, Mode::Cw | Mode::Ccw)
                     || matches!(b.mode, Some(Mode::Cw | Mode::Ccw)) =>
                 {
@@ -452,6 +506,17 @@ impl Iso {
         core.execute(&b, &loc, log, out)?;
         if out.len() > before {
             self.any_point = true;
+            // G99: the cycle ends on its R plane, so the next move starts there.
+            if let (true, true, true, Some(r)) = (in_cycle, self.to_r, core.absolute, self.cycle_r)
+            {
+                let mut up = Block {
+                    at: at0,
+                    rapid_once: true,
+                    ..Block::default()
+                };
+                up.axes[2] = Some(Word { value: r, at: at0 });
+                core.execute(&up, &loc, log, out)?;
+            }
         }
         Ok(())
     }
@@ -509,13 +574,14 @@ impl Iso {
         _loc: &Loc,
         log: &mut Log,
     ) -> Result<()> {
+        let mm = log.scale().0;
         for t in toks {
             if let Some(i) = "XYZ".find(t.letter) {
-                self.local[i] = t.value;
+                self.local[i] = t.value * mm;
             }
         }
-        self.update_frame(core);
-        let s = self.local;
+        self.update_frame(core, log);
+        let s = self.local / mm;
         if s != Vector3::zeros() {
             log.note("iso-g52", NoteKind::Frame, no, || {
                 format!("line {no}: G52 shifts the program's origin to ({}, {}, {}): applied to the points after it", s.x, s.y, s.z)
@@ -540,14 +606,14 @@ impl Iso {
                 }
                 // p_old = p_new + d, d = pos_old − value: the origin moves by d.
                 let d = core.pos[i] - t.value;
-                self.g92[i] += d;
+                self.g92[i] += d * log.scale().0;
                 core.pos[i] = t.value;
             } else if core.rotary_index(t.letter).is_some() {
                 return Err(loc.err(t.at, "G92 on a rotary axis renumbers its angles: the commands after it no longer give the tool axis; post the program without it"));
             }
         }
-        self.update_frame(core);
-        let d = self.g92;
+        self.update_frame(core, log);
+        let d = self.g92 / log.scale().0;
         log.note("iso-g92", NoteKind::Frame, no, || {
             format!("line {no}: G92 sets the current position: the program's origin moves by ({}, {}, {}); applied", d.x, d.y, d.z)
         });
@@ -608,8 +674,8 @@ impl Iso {
                 )
             }
         };
-        self.rotation = Some(frame);
-        self.update_frame(core);
+        self.rotation = Some(frame.scaled(log.scale().0));
+        self.update_frame(core, log);
         log.note("iso-g68", NoteKind::Frame, no, || {
             format!("line {no}: G68 turns the program by {r}° {about}: applied to the points after it (G69 cancels)")
         });
@@ -647,9 +713,10 @@ impl Iso {
             * rotation(Axis::Z, c.to_radians());
         self.tilt = Some(Frame {
             rotation: r,
-            origin: o,
+            origin: o * log.scale().0,
         });
-        self.update_frame(core);
+        core.tilt_override = false;
+        self.update_frame(core, log);
         log.note("iso-g68.2", NoteKind::Frame, no, || {
             format!("line {no}: G68.2 tilts the working plane: origin ({}, {}, {}), Euler angles {a}°, {b}°, {c}° (Z, X′, Z″); the points after it are read in that plane and the tool axis is its z axis (G69 cancels)", o.x, o.y, o.z)
         });
@@ -657,14 +724,14 @@ impl Iso {
     }
 
     /// The frame of the active shifts, rotation and tilted plane.
-    fn update_frame(&mut self, core: &mut Core) {
-        let shift = Frame::shift(self.local + self.g92);
-        let mut f = shift;
+    fn update_frame(&mut self, core: &mut Core, log: &Log) {
+        let k = 1.0 / log.scale().0; // file units per mm
+        let mut f = Frame::shift((self.local + self.g92) * k);
         if let Some(t) = self.tilt {
-            f = f.then(&t);
+            f = f.then(&t.scaled(k));
         }
         if let Some(r) = self.rotation {
-            f = f.then(&r);
+            f = f.then(&r.scaled(k));
         }
         core.frame = f;
         core.tilted = self.tilt.is_some();

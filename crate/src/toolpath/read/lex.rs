@@ -8,8 +8,9 @@ use std::fmt;
 
 /// Largest coordinate accepted, mm (absolute value).
 pub const MAX_COORDINATE: f64 = 1e5;
-/// Largest NC rotary angle accepted, degrees (absolute value).
-pub const MAX_ANGLE: f64 = 3600.0;
+/// Largest NC rotary angle accepted, degrees (absolute value): a thousand turns (a continuous
+/// table programmed turn after turn with literal commands).
+pub const MAX_ANGLE: f64 = 360_000.0;
 
 /// A piece of a statement's text that starts at column 1 of line `line`.
 #[derive(Debug, Clone, Copy)]

@@ -71,6 +71,12 @@ use std::str::FromStr;
 pub const FIELD: &str = "toolpath";
 /// Longest line (or continued APT statement) the parser carries over between chunks, bytes.
 pub const MAX_LINE: usize = 1 << 20;
+/// The rounding allowed between an arc's start and end radii, mm (at least; 10⁻⁴ of the radius
+/// on large arcs): what controls accept from numbers written to a few decimals.
+pub const ARC_ROUNDING_MM: f64 = 0.01;
+/// Most points a file may give (arcs and repeats included), about 400 MB: a guard against a
+/// program that repeats without end.
+pub const MAX_POINTS: u64 = 5_000_000;
 /// One inch, mm.
 pub const INCH: f64 = 25.4;
 
@@ -478,10 +484,12 @@ pub(crate) struct Log {
     pub(crate) tcp: Option<String>,
     pub(crate) frame_choice: Option<FrameFound>,
     pub(crate) options: ReadOptions,
+    /// The format has unit hints (APT's `FEDRAT/IPM`): an unstated unit may change later.
+    hints: bool,
 }
 
 impl Log {
-    fn new(options: ReadOptions) -> Self {
+    fn new(options: ReadOptions, format: Format) -> Self {
         Log {
             notes: Vec::new(),
             skipped: Vec::new(),
@@ -490,6 +498,7 @@ impl Log {
             tcp: None,
             frame_choice: None,
             options,
+            hints: format == Format::Apt,
         }
     }
 
@@ -549,6 +558,28 @@ impl Log {
         match self.units.stated {
             Some((u, _)) => (u.mm(), true),
             None => (self.unstated().mm(), false),
+        }
+    }
+
+    /// The arc tolerances in the file's unit now: the chord's sagitta (the option, mm) and the
+    /// rounding allowed between an arc's two radii (0.01 mm). While an APT file states no unit
+    /// and no hint has decided it yet, so that a later hint may still make it inches, both take the
+    /// stricter case (the chord for inches, the rounding for millimetres): the points are
+    /// scaled only at the end.
+    pub(crate) fn arc_tolerances(&self) -> (f64, f64) {
+        let tol = self.options.chord_tolerance;
+        let undecided = self.hints
+            && self.units.stated.is_none()
+            && self.units.hint.is_none()
+            && self.options.unit == UnitChoice::Auto;
+        if undecided {
+            (
+                tol / LengthUnit::Inch.mm(),
+                ARC_ROUNDING_MM / LengthUnit::Mm.mm(),
+            )
+        } else {
+            let mm = self.scale().0;
+            (tol / mm, ARC_ROUNDING_MM / mm)
         }
     }
 
@@ -703,7 +734,7 @@ impl Parser {
         };
         Ok(Self {
             reader,
-            log: Log::new(options),
+            log: Log::new(options, format),
             format,
             carry: String::new(),
             after_cr: false,
@@ -810,7 +841,7 @@ impl Parser {
             Reader::Apt(apt) => apt.finish(&mut self.log, out)?,
             Reader::Nc(nc) => nc.finish(&mut self.log, out)?,
         }
-        self.count(before, out);
+        self.count(before, out)?;
         if self.points == 0 {
             let what = match self.format {
                 Format::Csv => "lines x,y,z,i,j,k",
@@ -825,13 +856,18 @@ impl Parser {
         // Points read where no unit was stated: scaled when the unit decided differs from the
         // one they were read in (a later hint).
         let any_unstated = !self.log.units.unstated.is_empty();
-        let now = self.log.unstated().mm();
+        let now_unit = self.log.unstated();
+        let now = now_unit.mm();
         let first = self.points - out.len() as u64;
         for &(from, to, read_in) in &self.log.units.unstated {
             let k = now / read_in;
             if k != 1.0 {
                 for i in from.max(first)..to {
-                    out[(i - first) as usize].tip *= k;
+                    let p = &mut out[(i - first) as usize];
+                    p.tip *= k;
+                    if p.tip.amax() > MAX_COORDINATE {
+                        return Err(Error::field(FIELD, format!("line {}: expected coordinates within ±{MAX_COORDINATE} mm, got {} mm once read in {}", p.line, p.tip.amax(), now_unit.words())));
+                    }
                 }
             }
         }
@@ -873,16 +909,15 @@ impl Parser {
             Reader::Apt(apt) => apt.line(text, line, &mut self.log, out)?,
             Reader::Nc(nc) => nc.line(text, line, &mut self.log, out)?,
         }
-        self.count(before, out);
-        Ok(())
+        self.count(before, out)
     }
 
     /// Counts the points appended since `before`, checks their range, and notes those read
     /// where no unit is stated.
-    fn count(&mut self, before: usize, out: &[Point]) {
+    fn count(&mut self, before: usize, out: &[Point]) -> Result<()> {
         let new = out.len() - before;
         if new == 0 {
-            return;
+            return Ok(());
         }
         // The moves: into every point but the file's first.
         for (i, p) in out[before..].iter().enumerate() {
@@ -892,11 +927,23 @@ impl Parser {
         }
         let from = self.points;
         self.points += new as u64;
+        if self.points > MAX_POINTS {
+            return Err(too_many(self.line));
+        }
         let (mm, stated) = self.log.scale();
         if !stated {
             self.log.unstated_points(from, self.points, mm);
         }
+        Ok(())
     }
+}
+
+/// The error of a file that gives more than [`MAX_POINTS`] points.
+pub(super) fn too_many(line: u32) -> Error {
+    Error::field(
+        FIELD,
+        format!("line {line}: the file gives more than {MAX_POINTS} points (with its arcs and repeats); read a part of the program at a time"),
+    )
 }
 
 /// The error of a line longer than [`MAX_LINE`], whether it came whole or in pieces.

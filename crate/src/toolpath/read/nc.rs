@@ -16,8 +16,11 @@
 //!
 //! Where the dialect tilts the working plane (`G68.2`, `PLANE SPATIAL`) the tool axis is the
 //! tilted frame's z axis (the control turns the rotary axes to it), and the point carries no
-//! commanded angles. A tool vector written in the block (Siemens `A3 B3 C3`, Heidenhain `LN …
-//! TX TY TZ`) is the tool axis, turned by the active frame.
+//! commanded angles, until a block under tool-centre-point control gives rotary words or a tool
+//! vector (5-axis moves in a tilted plane): from there those give the tool axis, as the control
+//! does, and a note says so; the next tilt statement returns to the plane's z. A tool vector
+//! written in the block (Siemens `A3 B3 C3`, Heidenhain `LN … TX TY TZ`) is the tool axis,
+//! turned by the active frame.
 //!
 //! # Positions
 //! * Modal: a coordinate missing from a block keeps its value. A linear axis is **unknown**
@@ -176,6 +179,9 @@ pub(super) struct Core {
     pub frame: Frame,
     /// The frame tilts the working plane: the tool axis is its z axis.
     pub tilted: bool,
+    /// In the tilted plane, a block under tool-centre-point control gave rotary words or a
+    /// vector: they give the tool axis, not the plane's z (reset by the next tilt statement).
+    pub tilt_override: bool,
     /// Tool-centre-point control is on.
     pub tcp: bool,
     /// A tool vector programmed (Siemens `A3 B3 C3`, Heidenhain `TX TY TZ`), modal.
@@ -228,6 +234,7 @@ impl Nc {
                 absolute: true,
                 frame: Frame::IDENTITY,
                 tilted: false,
+                tilt_override: false,
                 tcp: false,
                 vector: None,
                 break_next: false,
@@ -409,6 +416,14 @@ impl Core {
         } else if b.axes[3].is_some() || b.axes[4].is_some() {
             self.vector = None;
         }
+        let orients = b.vector.is_some() || b.axes[3].is_some() || b.axes[4].is_some();
+        if self.tilted && self.tcp && orients && !self.tilt_override {
+            self.tilt_override = true;
+            let line = loc.line_of(b.at);
+            log.note("tilt-tcp", NoteKind::Tcp, line, || {
+                format!("line {line}: in the tilted working plane, under tool-centre-point control, the block's rotary axes (or tool vector) give the tool axis from here, not the plane's z axis")
+            });
+        }
         if rotary_moves && !self.tcp && !self.tilted {
             let [kl, ml] = self.letters;
             let line = loc.line_of(b.at);
@@ -512,7 +527,7 @@ impl Core {
                 self.pos[i] = p1[i];
             }
         }
-        let tol = log.options.chord_tolerance / scale;
+        let tol = log.arc_tolerances();
         // A sweep of more than a turn ends where a smaller one does: the whole turns are added.
         let turns = b.turns
             + b.sweep
@@ -525,7 +540,7 @@ impl Core {
                     c[i] = w.value;
                 }
             }
-            arc(&p0, &p1, &c, &normal, ccw, turns, f64::INFINITY).is_ok()
+            arc(&p0, &p1, &c, &normal, ccw, turns, (f64::INFINITY, tol.1)).is_ok()
         };
         let points = arc(&p0, &p1, &centre, &normal, ccw, turns, tol).map_err(|e| match e {
             ArcError::Radii(r0, r1) => loc.err(
@@ -583,7 +598,7 @@ impl Core {
                 ),
             ));
         }
-        let (axis, angles) = if self.tilted {
+        let (axis, angles) = if self.tilted && !self.tilt_override {
             (self.frame.direction(&Vector3::z()), None)
         } else if let Some(v) = self.vector {
             (self.frame.direction(&v), None)

@@ -148,8 +148,6 @@ enum Var {
 #[derive(Debug, Clone, Default)]
 pub struct Siemens {
     vars: HashMap<String, Var>,
-    /// The programmable frame (TRANS, ROT …).
-    programmable: Option<Frame>,
     /// The work offset in use.
     offset: Option<String>,
     /// A point has been written.
@@ -223,10 +221,13 @@ impl Siemens {
             return Ok(());
         }
         log.blocks += 1;
-        // DEF: variables.
-        if let Some(Tok::Name { name, .. }) = toks.first() {
+        // DEF: variables (after a block number, if any).
+        if let Some(Tok::Name { name, at }) = toks
+            .iter()
+            .find(|t| !matches!(t, Tok::Word { letter: 'N', .. } | Tok::Label))
+        {
             if name == "DEF" {
-                return self.def(text, no);
+                return self.def(&text[*at..], no);
             }
         }
         let mut b = Block {
@@ -239,6 +240,7 @@ impl Siemens {
         let mut machine_coords = false;
         let mut home = false;
         let mut vector = [None::<f64>; 3];
+        let mut home_words: Vec<(&str, &str, usize)> = Vec::new();
         for tok in &toks {
             match tok {
                 Tok::Label => {}
@@ -318,6 +320,9 @@ impl Siemens {
                             b.incremental[i] = mode;
                             b.way[i - 3] = way;
                         }
+                        // `G74 X1=0 Z1=0`, `G75 FP=2 X1=0`: the machine axes to send to the
+                        // reference or fixed point (read after the loop, whatever the order).
+                        "X1" | "Y1" | "Z1" | "A1" | "B1" | "C1" | "FP" => home_words.push((n, value, *at)),
                         _ => self.assign(n, value, no, log),
                     }
                 }
@@ -349,6 +354,27 @@ impl Siemens {
                 }
             }
         }
+        // The motion mode stays in force after a block that returns early (`G0 SUPA Z0`).
+        if let Some(m) = b.mode {
+            core.mode = m;
+        }
+        for (n, value, at) in home_words {
+            if !home {
+                self.assign(n, value, no, log);
+            } else if n != "FP" {
+                let letter = n.chars().next().unwrap_or('X');
+                let w = Some(Word { value: 0.0, at });
+                match "XYZ".find(letter) {
+                    Some(i) => b.axes[i] = w,
+                    None => {
+                        let i = core
+                            .rotary_index(letter)
+                            .ok_or_else(|| core.not_this_machine(&loc, at, letter))?;
+                        b.axes[i] = w; // the rotary axis's reference, 0°
+                    }
+                }
+            }
+        }
         if let Some((stmt, at)) = frame_stmt {
             return self.frame(core, &stmt, at, &frame_words, rpl, no, &loc, log);
         }
@@ -373,7 +399,7 @@ impl Siemens {
             if !axes.is_empty() {
                 core.forget(&axes);
                 let what = if home {
-                    "G74 returns"
+                    "G74/G75 take"
                 } else {
                     "a move in machine coordinates (SUPA, G53, G153) takes"
                 };
@@ -644,7 +670,9 @@ impl Siemens {
         log: &mut Log,
     ) -> Result<()> {
         let get = |l: char| words.iter().find(|w| w.0 == l).map(|w| w.1);
-        let current = self.programmable.unwrap_or(Frame::IDENTITY);
+        // The programmable frame (TRANS, ROT …) is the reader's whole frame, kept in the
+        // file's unit now.
+        let current = core.frame;
         let frame = match stmt {
             "TRANS" | "ATRANS" => {
                 let v = Vector3::new(
@@ -685,10 +713,9 @@ impl Siemens {
                 Frame::IDENTITY
             }
         };
-        self.programmable = (!frame.is_identity()).then_some(frame);
         core.frame = frame;
         if !frame.is_identity() {
-            let desc = frame.describe();
+            let desc = frame.scaled(log.scale().0).describe();
             log.note("sie-frame", NoteKind::Frame, no, || {
                 format!("line {no}: {stmt} sets the programmable frame to {desc}: applied to the points after it")
             });
@@ -818,7 +845,10 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
                 }
                 v += 1;
             }
-            let args = &line[k + 1..v.saturating_sub(1).max(k + 1)];
+            if depth > 0 {
+                return Err(loc.err(at, format!("{id}( is not closed on its line: expected ')'")));
+            }
+            let args = &line[k + 1..v - 1];
             toks.push(Tok::Call {
                 name: id.to_ascii_uppercase(),
                 args,
