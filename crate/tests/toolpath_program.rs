@@ -172,6 +172,27 @@ fn the_machine_follows_the_program_s_own_turns_within_its_travel_or_without_limi
         "{}",
         u.message
     );
+    assert!(
+        u.message.contains("continuous box"),
+        "C is the table: {}",
+        u.message
+    );
+    // A (−120° to 30°) is the tilt: no continuous box is offered for it.
+    let (points, _) = read_all(
+        "G43.4 H1\nG0 X0 Y0 Z50 C0 A-30\nG1 A45\n",
+        Format::Nc,
+        Some(&m),
+    );
+    let parts = Parts::of(&points);
+    let a = analyse_path(&model, &parts.path(caz_type()), 100.0, 0.01).unwrap();
+    let u = a.summary.unreachable.unwrap();
+    assert!(
+        u.message
+            .starts_with("commanded A = 45°, outside the travel of A (-120° to 30°)")
+            && !u.message.contains("continuous"),
+        "{}",
+        u.message
+    );
 }
 
 #[test]
@@ -199,4 +220,25 @@ fn refining_inserts_points_into_cuts_only() {
 /// The type CAZ.
 fn caz_type() -> RotaryType {
     RotaryType::parse("CAZ").unwrap()
+}
+
+/// The travel of the rotary axes in the summary is along the cutting moves: a rapid that turns
+/// C by 90° is not counted (0 → 90 at rapid, then 90 → −110 cutting: 200°).
+#[test]
+fn the_travel_counts_the_cutting_moves_only() {
+    let m = trunnion(true);
+    let (points, _) = read_all(
+        "G43.4 H1\nG0 X0 Y0 Z50 C0 A-30\nG0 C90\nG1 C-110 F500\n",
+        Format::Nc,
+        Some(&m),
+    );
+    let parts = Parts::of(&points);
+    let model = m.without_errors().build().unwrap();
+    let a = analyse_path(&model, &parts.path(caz_type()), 100.0, 0.01).unwrap();
+    assert!(
+        (a.summary.k_travel.to_degrees() - 200.0).abs() < 1e-9,
+        "{}",
+        a.summary.k_travel.to_degrees()
+    );
+    assert_eq!(a.summary.m_travel, 0.0);
 }

@@ -332,3 +332,36 @@ fn catia_spacing_multax_and_tlaxis() {
     close_vec(&p[2].axis, &Vector3::new(0.0, -0.6, 0.8), 1e-15, "kept");
     assert_eq!(skipped(&r, "MULTAX"), 2);
 }
+
+/// GOHOME returns to the FROM/ point at rapid (APT: "GOHOME, move to the FROM point"); without
+/// a FROM/ the path breaks. Statements the reader does not know are each listed by name.
+#[test]
+fn gohome_returns_to_from_and_unknown_statements_are_named() {
+    let (p, r) = read_all(
+        "UNITS/MM\nFROM/0,0,100\nGOTO/10,0,0\nGOTO/20,0,0\nGOHOME\nTLCOMP/ON\nWPLANE/1\nGOTO/30,0,0\n",
+        A,
+        None,
+    );
+    let got: Vec<_> = p.iter().map(|q| (q.tip.x, q.tip.z, q.motion)).collect();
+    assert_eq!(
+        got,
+        [
+            (0.0, 100.0, Motion::Rapid),
+            (10.0, 0.0, Motion::Feed),
+            (20.0, 0.0, Motion::Feed),
+            (0.0, 100.0, Motion::Rapid),
+            (30.0, 0.0, Motion::Feed),
+        ]
+    );
+    assert_eq!(
+        skipped(&r, "TLCOMP: a statement the reader does not know"),
+        1
+    );
+    assert_eq!(
+        skipped(&r, "WPLANE: a statement the reader does not know"),
+        1
+    );
+    let (p, r) = read_all("UNITS/MM\nGOTO/10,0,0\nGOHOME\nGOTO/30,0,0\n", A, None);
+    assert_eq!(p[1].motion, Motion::Rapid, "across the break");
+    assert_eq!(note(&r, "GOHOME returns").kind, NoteKind::Break);
+}

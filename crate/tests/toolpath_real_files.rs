@@ -233,6 +233,8 @@ fn solidworks_cam_drilling_cycles_are_rapid_positions() {
     assert_eq!(p[0].tip, Vector3::new(8.0, 15.0, 25.0));
     assert_eq!(at_line(&p, 24)[0].tip, Vector3::new(113.0, 15.0, 0.0));
     assert_eq!(note(&r, "CYCLE/").line, 16);
+    // CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0 on line 13: the identity, said as such.
+    assert_eq!(note(&r, "states the identity frame").line, 13);
 }
 
 /// szborok/BRK_CNC_CORE, `test-data/…/DMU 85 monoblock MINUS/W5246NS01007B9.h` (commit

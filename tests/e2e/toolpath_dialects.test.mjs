@@ -151,3 +151,64 @@ test('toolpath panel: a Heidenhain program and an inch CLSF, read and ranked as 
     await page.screenshot({ path: `${ARTIFACTS}toolpath-clsf-phone.png`, fullPage: true });
   });
 });
+
+const BC = PRESETS.findIndex((p) => p.name.startsWith('B/C tilting table'));
+
+test('toolpath panel: the file chosen last is the one the fields and the machine read, refused or not', async () => {
+  await withPage({ viewport: { width: 1400, height: 1800 } }, async ({ page, url }) => {
+    await page.goto(url);
+    await page.click('#tab-toolpath');
+    await page.waitForSelector('#panel-toolpath[data-ready=true]');
+    await page.waitForFunction(() => /751 points \(APT/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    const msg = () => page.textContent('#tp-file-msg');
+    const verdictText = () => page.textContent('#tp-verdict');
+
+    // The B/C preset has no table height and no tool length: the verdict says what to enter,
+    // and no plot spins for ever.
+    await page.selectOption('#m-preset-menu', String(BC));
+    await page.waitForFunction(() => /enter L/.test(document.getElementById('tp-verdict')?.textContent ?? ''));
+    for (const id of ['tp-delta', 'tp-path']) {
+      assert.ok(await page.$eval(`#${id}`, (p) => Boolean(p.dataset.plotted) || Boolean(p.closest('.plot-wrap')?.querySelector('.plot-note')?.textContent)), id);
+    }
+
+    // A/C: the Heidenhain program is read and judged.
+    await page.selectOption('#m-preset-menu', String(TRUNNION));
+    await drop(page, 'demo.h', HEIDENHAIN);
+    await page.waitForFunction(() => /^Read demo\.h/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    await page.waitForFunction(() => ['pass', 'fail'].includes(document.getElementById('tp-verdict')?.dataset.verdict ?? ''));
+    await page.click('#tp-refine');
+    await page.waitForFunction(() => !document.getElementById('tp-export').disabled);
+
+    // B/C: the program (A words) is refused; everything of its last result is greyed, the
+    // refined path dropped, the reason in the verdict and in the error style at the file.
+    await page.selectOption('#m-preset-menu', String(BC));
+    await page.waitForFunction(() => /^demo\.h could not be read/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    assert.match(await msg(), /expected a rotary axis of this machine \(C or B\), got A.*\. The results below are still those of demo\.h\.$/);
+    assert.ok(await page.$eval('#tp-file-msg', (e) => e.classList.contains('error')));
+    assert.match(await verdictText(), /demo\.h could not be read: .*got A/);
+    assert.ok(await page.$eval('#tp-rapids', (e) => e.classList.contains('stale')));
+    assert.ok(await page.$eval('#tp-export', (e) => e.disabled));
+    assert.equal(await page.$('#tp-read-dialect'), null, 'no report of the file refused');
+
+    // A/C again: the program is read again, its report back, the refusal gone.
+    await page.selectOption('#m-preset-menu', String(TRUNNION));
+    await page.waitForFunction(() => /^Read demo\.h/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    assert.ok(!(await page.$eval('#tp-file-msg', (e) => e.classList.contains('error'))));
+    assert.match(await page.textContent('#tp-read-dialect'), /^Heidenhain conversational/);
+    await page.waitForFunction(() => ['pass', 'fail'].includes(document.getElementById('tp-verdict')?.dataset.verdict ?? ''));
+
+    // A file refused after a good one: a reading field reads the refused file again, not the
+    // one before it, and a tolerance edit brings no verdict of the old file back.
+    await drop(page, 'macro.nc', 'G90 G21\nG65 P1000 A1\n');
+    await page.waitForFunction(() => /^macro\.nc could not be read/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    await page.selectOption('#tp-format', 'nc');
+    await page.waitForFunction(() => /^(Reading )?macro\.nc/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
+    await waitIdle(page);
+    assert.match(await msg(), /^macro\.nc could not be read: line 2, column 1: G65\/G66 call a macro/);
+    await page.fill('#tp-tolerance', '0.02');
+    await page.dispatchEvent('#tp-tolerance', 'input');
+    await waitIdle(page);
+    assert.equal(await page.getAttribute('#tp-verdict', 'data-verdict'), 'none');
+    assert.match(await verdictText(), /macro\.nc could not be read/);
+  });
+});

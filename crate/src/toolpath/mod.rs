@@ -337,9 +337,9 @@ pub struct Summary {
     pub flips: usize,
     /// Segments passing by the pole.
     pub poles: usize,
-    /// Total travel of K, rad (sum of |ΔK|).
+    /// Total travel of K along the cutting segments, rad (sum of |ΔK|; rapids not counted).
     pub k_travel: f64,
-    /// Total travel of M, rad.
+    /// Total travel of M along the cutting segments, rad.
     pub m_travel: f64,
     /// The first point that cannot be reached and why, when one cannot.
     pub unreachable: Option<Unreachable>,
@@ -469,10 +469,16 @@ pub fn follow_commands(model: &Model, angles: &[[f64; 2]]) -> Following {
                         i,
                         format!(
                             "commanded {letter} = {}°, outside the travel of {letter} ({}° to \
-                             {}°); a table that turns without limit: tick its continuous box",
+                             {}°); {}",
                             round4(x.to_degrees()),
                             round4(lo.to_degrees()),
-                            round4(hi.to_degrees())
+                            round4(hi.to_degrees()),
+                            if letter == kl {
+                                "if the machine reaches it, widen the travel in the machine \
+                                 (a table that turns without limit: tick its continuous box)"
+                            } else {
+                                "if the machine reaches it, widen the travel in the machine"
+                            }
                         ),
                     )),
                 };
@@ -689,7 +695,13 @@ fn summarise(
         let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n) - 1;
         *d.select_nth_unstable_by(rank, f64::total_cmp).1
     };
-    let travel = |v: &[f64]| v.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    // Along the cutting segments (what the ranking compares; rapids are apart).
+    let travel = |v: &[f64]| {
+        cutting()
+            .filter(|(i, _)| i + 1 < v.len())
+            .map(|(i, _)| (v[i + 1] - v[i]).abs())
+            .sum()
+    };
     let mut rapids = Rapids::default();
     for (i, s) in segments.iter().enumerate().filter(|(_, s)| s.rapid) {
         let (dk, dm) = (

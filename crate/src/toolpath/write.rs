@@ -150,8 +150,9 @@ pub fn write(format: Format, points: &[Point], letters: Option<[char; 2]>) -> Re
             let _ = write!(
                 s,
                 "%\n(five-axis toolpath: X Y Z tool tip in workpiece coordinates, mm; {kl} {ml} \
-                 commanded angles, degrees)\n(tool centre point control must be on: G43.4, \
-                 TRAORI or M128)\nG90 G21\n"
+                 commanded angles, degrees)\n(geometry only: no feeds, tool, spindle or \
+                 coolant; add them before running it)\n(tool centre point control must be on: \
+                 G43.4, G234, M428 on LinuxCNC, TRAORI or M128)\nG90 G21\n"
             );
             let mut mode = None;
             for (n, p) in points.iter().enumerate() {

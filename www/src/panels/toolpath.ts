@@ -5,7 +5,7 @@
 // apart, and the path refined to a tolerance.
 import type { Data } from 'plotly.js';
 import type { Machine, ParsedToolpath, Report, ToolpathAnalysis, ToolpathPath, ToolpathRefined, ToolpathSummary } from '@engine';
-import { call, channel, SUPERSEDED } from '../engine/client';
+import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
 import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
@@ -28,6 +28,21 @@ const SAMPLES = [
 ];
 /** The fields that change how the file is read: a change reads it again. */
 const READING = ['tp-format', 'tp-unit', 'tp-aptFrame', 'tp-chordTolerance'];
+/** The ranking's columns and what each means (their tooltips). */
+const HEADERS: [string, string][] = [
+  ['rank', 'Best first: by the largest δ of a cutting segment, then the mean.'],
+  ['type', 'The rotary-axis configuration (the two rotary axes and the order in the chain).'],
+  ['largest δ', 'The largest nonlinear error of a cutting segment: how far the tool tip leaves the programmed motion between two points.'],
+  ['mean δ', 'The mean nonlinear error over the cutting segments.'],
+  ['95 % of segments below', 'The 95th percentile of δ: 95 % of the cutting segments have a smaller δ. It can be below the tolerance while a few segments are above it.'],
+  ['segments above the tolerance', 'How many cutting segments have δ above the tolerance, of all the cutting segments.'],
+  ['flips', 'Cutting segments where the rotary axes swing round (the other solution): the tool stops and turns there.'],
+  ['by the pole', 'Cutting segments where the tool axis passes near the pole (the tilt near 0°), where a small change of direction needs a large turn of the other axis.'],
+  ['travel K, M', 'How far the two rotary axes (K the one next to the bed, M the other) turn in all along the cutting moves.'],
+  ['rapids (apart)', 'Rapid positioning moves: not cutting, not ranked; how many, and how far each rotary axis swings at most in one of them.'],
+];
+/** True when the cutting moves turn neither rotary axis (a 3-axis or 3+2 program): δ = 0. */
+const still = (s: { kTravel: number; mTravel: number }) => s.kTravel < 1e-9 && s.mTravel < 1e-9;
 /** Rapids listed one by one, the largest excursions first. */
 const RAPIDS_LISTED = 8;
 
@@ -106,7 +121,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const refineBox = el('div', { class: 'refine', id: 'tp-refine-box' });
   const refineButton = el('button', { type: 'button', id: 'tp-refine' }, 'Insert the points that keep every cutting segment within the tolerance');
   const refineOut = el('p', { id: 'tp-refine-out', 'aria-live': 'polite' });
-  const exportButton = el('button', { type: 'button', id: 'tp-export', disabled: '' }, 'Download the refined path');
+  const exportButton = el('button', { type: 'button', id: 'tp-export', disabled: '', title: 'The geometry only: X Y Z and the rotary commands (or the tool axes), with rapids as G0. No feeds, tools, spindle or coolant: add them before running it.' }, 'Download the refined path (geometry only, no feeds)');
   refineBox.append(refineButton, refineOut, exportButton);
   const plots = el('div', { class: 'plots' });
   plots.append(along.wrap, path3d.wrap);
@@ -118,9 +133,17 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const runAnalyse = channel('toolpathAnalyse');
   const engineError = engineErrors(inputs.byPath, machine);
   let loaded: Loaded | null = null;
+  /** The file the user chose last, read or not: the reading fields and the machine read it
+   *  again (`key`: the options of its last reading). Results show only while it is `loaded`. */
+  let chosen: { name: string; source: Blob | string; key: string } | null = null;
   let refined: { type: string; r: ToolpathRefined; from: Loaded } | null = null;
 
-  const fileText = (text: string) => (fileMsg.textContent = text);
+  const fileText = (text: string, error = false) => {
+    fileMsg.textContent = text;
+    fileMsg.classList.toggle('error', error);
+  };
+  /** A sentence: ends with a full stop. */
+  const sentence = (t: string) => (/[.!?]$/.test(t.trim()) ? t.trim() : `${t.trim()}.`);
   /** Tooltips of the summary's symbols: the plain meaning and the paper's symbol. */
   const tips: Record<string, string> = {
     'Largest δ': 'δ: the nonlinear error of a cutting segment, the largest distance of the tool tip from the motion programmed between two points of the path, when the control interpolates the rotary axes\' angles in a straight line (Geng, Wu & Qiu 2018, eqs 19–21). Rapid moves do not cut and are not counted.',
@@ -199,6 +222,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     try {
       const source = await get();
       if (mine !== loads) return;
+      chosen = { name, source, key: ro.key };
       progress.hidden = false;
       progress.value = 0;
       const parsed = await readToolpath(source, ro.options, (f) => {
@@ -214,17 +238,29 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       progress.hidden = true;
       const e = showAtField(err, inputs.byPath, machine);
       readBox.replaceChildren();
-      fileText(`${name} could not be read: ${e ? e.message.replace(/^toolpath: /, '') : 'see the field marked'}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`);
-      greyAll(loaded ? `Showing ${loaded.name}; ${name} could not be read.` : undefined);
+      const why = e ? sentence(e.message.replace(/^toolpath: /, '')) : 'See the field marked.';
+      fileText(`${name} could not be read: ${why}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`, true);
+      // The reason in the verdict too: on a phone the file box is far below it.
+      greyAll(`${name} could not be read: ${why}${loaded ? ` Greyed below: ${loaded.name}.` : ''}`);
     }
   };
 
   const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
   const greyAll = (why?: string) => {
     verdict.none(why ? `No verdict: ${why}` : 'No verdict: the inputs marked (here or in the machine above) need a valid value first.');
-    for (const p of [along.p, path3d.p]) stale(p, true, why);
+    greyResults(why);
+  };
+  /** Every result of the file greyed (or, never drawn, a note saying why), the refined path
+   *  dropped. */
+  const greyResults = (why?: string) => {
+    for (const p of [along.p, path3d.p]) {
+      // A plot never drawn says why instead of spinning.
+      if (p.dataset.plotted) stale(p, true, why);
+      else note(p, why ?? 'No plot: the inputs marked need a valid value first.');
+    }
     tableWrap.classList.add('stale');
     rapidsBox.classList.add('stale');
+    dropRefined();
   };
   /** A refined path belongs to the inputs it was made with: any change drops it. */
   const dropRefined = () => {
@@ -238,7 +274,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const current = () => {
     const m = machine.current();
     const own = inputs.read();
-    if (!m || !own || !loaded) return null;
+    if (!m || !own || !loaded || chosen?.source !== loaded.source) return null;
     const base = { machine: m as Machine, tolerance: own.tolerance as number, ...(own.length === undefined ? {} : { length: own.length as number }) };
     return { m, base, t: chosenType(m), loaded };
   };
@@ -279,7 +315,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     }, (e) => {
       if (mine !== details) return;
       engineError(e, along.p);
-      verdict.none('No verdict: the engine could not follow the path (see the message at the field or over the plot).');
+      const err = EngineError.of(e);
+      const why = sentence(err.text);
+      for (const p of [along.p, path3d.p]) if (!p.dataset.plotted) note(p, `No plot: ${why}`);
+      rapidsBox.classList.add('stale');
+      verdict.none(`No verdict: ${why}${err.field ? ' (the field is marked)' : ''}`);
     });
   };
 
@@ -288,20 +328,22 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     dropRefined();
     // The file is read for the machine and the reading chosen: another one reads it again.
     const ro = readOptions();
-    if (ro && loaded && loaded.key !== ro.key) {
-      const { name, source } = loaded;
+    if (ro && chosen && chosen.key !== ro.key) {
+      const { name, source } = chosen;
       void load(name, async () => source);
       return;
     }
     if (!current()) {
-      if (!loaded) verdict.none('No verdict yet: choose a sample path or a file of your own.');
-      else if (verdict.tolerance() === null) verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
-      else verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
       // Whatever is still being computed no longer answers the inputs.
       ranks++;
       details++;
       runAnalyse.cancel();
-      if (loaded) greyAll();
+      // The file chosen last could not be read: its refusal stays (the verdict says it).
+      if (chosen && chosen.source !== loaded?.source) return;
+      if (!loaded) verdict.none('No verdict yet: choose a sample path or a file of your own.');
+      else if (verdict.tolerance() === null) verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+      else verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      if (loaded) greyResults();
       return;
     }
     rerank();
@@ -309,10 +351,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   const ranking = (rows: ToolpathSummary[], own: string, shown: string, tolerance: number, name: string, lines: Float64Array) => {
+    const follow = rows.filter((r) => !r.unreachable);
+    if (follow.length && follow.every(still)) {
+      const cannot = rows.filter((r) => r.unreachable).map((r) => r.type);
+      tableWrap.replaceChildren(el('p', { id: 'tp-ranking-none' }, `${name}: the cutting moves do not turn the rotary axes, so no configuration adds a nonlinear error; there is nothing to rank` +
+        (cannot.length ? ` (${cannot.join(', ')} cannot reach the tool direction within the travel).` : '.')));
+      tableWrap.classList.remove('stale');
+      return;
+    }
     const table = el('table', { class: 'ranking' });
     table.append(el('caption', {}, `${name} on the twelve configurations of this kind, best first, on the cutting moves (tolerance ${show('errLength', tolerance)})`));
     const head = el('tr');
-    for (const h of ['rank', 'type', 'largest δ', 'mean δ', '95 % of segments below', 'segments above the tolerance', 'flips', 'by the pole', 'travel K, M', 'rapids (apart)']) head.append(el('th', { scope: 'col' }, h));
+    for (const [h, tip] of HEADERS) head.append(el('th', { scope: 'col', title: tip }, h));
     table.append(el('thead'));
     table.tHead?.append(head);
     const body = el('tbody');
@@ -349,13 +399,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const r = a.summary.rapids;
     const [kl, ml] = [machine.context().k, machine.context().m];
     rapidsBox.append(el('h3', {}, 'Rapid moves (positioning, not cutting)'));
+    if (a.summary.unreachable) {
+      const n = parsed.report.rapids;
+      rapidsBox.append(el('p', { id: 'tp-rapids-line' }, `${n ? `${plural(n, 'rapid move')} in the file, not analysed` : 'No rapid moves in the file'}: ${t} cannot follow the path (see the verdict).`));
+      return;
+    }
     if (!r.count) {
       rapidsBox.append(el('p', { id: 'tp-rapids-line' }, 'The path has no rapid moves: every segment is judged.'));
       return;
     }
     rapidsBox.append(el('p', { id: 'tp-rapids-line' },
       `${plural(r.count, 'rapid move')} on ${t}, ${count(r.swings)} of them turning the rotary axes (up to ${fmt.turn(r.kSwing)} of ${kl} and ${fmt.turn(r.mSwing)} of ${ml}). ` +
-      `They are not in the ranking or the verdict. In the largest the tool tip leaves the straight line by ${show('errLength', r.max)} (line ${parsed.lines[r.maxSegment + 1]}): check the clearance there.`));
+      `They are not in the ranking or the verdict. In the largest the tool tip leaves the straight line by ${show('errLength', r.max)} (line ${parsed.lines[r.maxSegment + 1]})` +
+      (r.max > a.tolerance ? ': check the clearance there.' : ', within the tolerance.')));
     const moves = [...a.rapidMoves].sort((x, y) => y.excursion - x.excursion).slice(0, RAPIDS_LISTED);
     const table = el('table', { class: 'rapid-moves' });
     table.append(el('caption', {}, `The ${plural(moves.length, 'rapid')} with the largest tip excursion`));
@@ -381,9 +437,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     setSummary([
       ['File', `${name} (${count(parsed.count)} points, ${parsed.report.dialect}, ${parsed.report.unit === 'inch' ? 'inches' : 'mm'})`],
       ['Configuration', `${t}${s.commanded ? ' (the program\'s own commands)' : ''}`],
-      ['Largest δ', s.segments ? `${show('errLength', s.max)} (segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]})` : '—'],
-      ['Cutting segments above the tolerance', `${s.above} of ${s.segments}`],
-      ['Rapids (apart)', String(s.rapids.count)],
+      ['Largest δ', s.segments ? `${show('errLength', s.max)} (segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]})${s.unreachable ? `, before point ${s.unreachable.point + 1} only: the rest cannot be followed` : ''}` : '—'],
+      ['Cutting segments above the tolerance', `${s.above} of ${s.segments}${s.unreachable ? ` (up to point ${s.unreachable.point + 1})` : ''}`],
+      ['Rapids (apart)', s.unreachable ? `${count(parsed.report.rapids)} in the file, not analysed` : count(s.rapids.count)],
       ['Flips', String(s.flips)],
       ['L', `${fmt.num(a.length)} mm`],
     ]);
@@ -472,6 +528,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
         sentence: `${on}: this configuration cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}.` });
     }
     if (!s.segments) return verdict.none(`No verdict: ${name} has no cutting moves${s.rapids.count ? ` (${plural(s.rapids.count, 'rapid')} only)` : ''}.`);
+    if (still(s)) {
+      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes: notes.filter((n) => !n.startsWith('This machine follows')),
+        sentence: `${on}: the cutting moves do not turn the rotary axes, so the control makes no nonlinear error on them (δ = 0 on every configuration); the machine's other errors are not part of this study.` });
+    }
     const worst = `${show('errLength', s.max)} (cutting segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]} of the file)`;
     if (s.max <= a.tolerance) {
       return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
@@ -561,7 +621,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const id = (e.target as HTMLElement).id;
     if (id === 'tp-file' || id === 'tp-sample' || id === 'tp-type') return;
     // A reading option reads the file again (update() sees the key change).
-    if (READING.includes(id) && !loaded) return;
+    if (READING.includes(id) && !chosen) return;
     update();
   });
   form.addEventListener('change', (e) => {

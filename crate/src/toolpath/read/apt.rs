@@ -137,6 +137,8 @@ pub struct Apt {
     fini: bool,
     /// The last position (file unit, the statements' own frame).
     pos: Option<Vector3<f64>>,
+    /// The FROM/ point (GOHOME returns to it).
+    home: Option<Vector3<f64>>,
     /// The next motion is a rapid.
     rapid_next: bool,
     /// The arc the next `GOTO`s follow.
@@ -162,6 +164,7 @@ impl Default for Apt {
             dollar: (0, 0),
             fini: false,
             pos: None,
+            home: None,
             rapid_next: false,
             circle: None,
             cycle: None,
@@ -390,7 +393,11 @@ impl Apt {
     /// A new output frame (`what` on `line`).
     fn set_output(&mut self, frame: Frame, what: &str, line: u32, log: &mut Log) {
         let reading = log.options.apt_frame;
-        if !frame.is_identity() {
+        if frame.is_identity() {
+            log.note("apt-frame-identity", NoteKind::Frame, line, || {
+                format!("line {line}: {what} states the identity frame (the output frame is the workpiece's): nothing to apply")
+            });
+        } else {
             if log.frame_choice.is_none() {
                 log.frame_choice = Some(FrameFound {
                     statement: what.to_string(),
@@ -496,6 +503,24 @@ impl Apt {
                 Ok(())
             }
             "GOTO" | "FROM" | "GODLTA" => self.goto(first, args, args_at, no, &loc, log, out),
+            "GOHOME" => {
+                // Back to the FROM/ point at rapid; without one, to a place the file does not
+                // state: the path breaks.
+                match self.home {
+                    Some(h) => {
+                        self.pos = Some(h);
+                        self.circle = None;
+                        let a = self.axis;
+                        self.emit(&h, &a, Motion::Rapid, no, log, out)
+                    }
+                    None => {
+                        self.pos = None;
+                        self.rapid_next = true;
+                        log.note("apt-gohome", NoteKind::Break, no, || format!("line {no}: GOHOME returns to the FROM/ point, which the file does not give: the path breaks until the next GOTO/"));
+                        Ok(())
+                    }
+                }
+            }
             "TLAXIS" => {
                 let f = numbers(args, args_at, &loc, "TLAXIS", 0, 3)?;
                 if f.1 != 3 {
@@ -539,6 +564,7 @@ impl Apt {
                 let k = before / log.scale().0;
                 if k != 1.0 {
                     self.pos = self.pos.map(|p| p * k);
+                    self.home = self.home.map(|p| p * k);
                     if let Some(c) = &mut self.circle {
                         c.centre *= k;
                         c.radius = c.radius.map(|r| r * k);
@@ -635,13 +661,16 @@ impl Apt {
                     log.skip(kind, no);
                 } else {
                     log.skip(
-                        "statements the reader does not know (no geometry assumed)",
+                        &format!(
+                            "{major}: a statement the reader does not know (no geometry assumed)"
+                        ),
                         no,
                     );
                     log.note("apt-unknown", NoteKind::Partial, no, || {
                         format!(
-                            "line {no}: {major} is not a statement the reader knows; it is \
-                             skipped as changing no geometry (listed under Skipped)"
+                            "line {no}: {major} is not a statement the reader knows; it and any \
+                             other such statement are skipped as changing no geometry (each is \
+                             listed by name under Skipped)"
                         )
                     });
                 }
@@ -722,6 +751,9 @@ impl Apt {
         self.rapid_next = false;
         let start = self.pos;
         self.pos = Some(p);
+        if word == "FROM" {
+            self.home = Some(p);
+        }
         // An arc: the GOTO on the circle from a known start.
         if let (Some(c), Some(p0), Motion::Feed) = (self.circle, start, motion) {
             match self.arc_to(&c, &p0, &p, &a0, loc, args_at, log)? {

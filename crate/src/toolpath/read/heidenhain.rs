@@ -1133,6 +1133,9 @@ impl Heidenhain {
             if u.contains("STAY") {
                 self.stay_angles(core, &m, u, no);
             }
+            if self.tilt.is_none() {
+                log.note("hei-plane-none", NoteKind::Frame, no, || format!("line {no}: PLANE {kind} with zero angles: no tilt, the working plane is the workpiece's"));
+            }
             if self.tilt.is_some() {
                 let text = body
                     .split_whitespace()

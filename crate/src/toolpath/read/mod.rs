@@ -345,12 +345,12 @@ crate::choices! {
     pub enum AptFrameChoice {
         /// The points are in the MSYS frame; turned into the frame MSYS is written in.
         Apply = "apply" {
-            label: "GOTOs are in the MSYS frame: turn them into the frame it is given in",
+            label: "Apply it: GOTOs are in the MSYS frame (NX)",
             help: "The reading NX documents: MSYS/ gives the machine coordinate system (origin, x axis, y axis) in the part's absolute frame, and the GOTO/ points that follow are written in it. Each point p is read as origin + R·p.",
         },
         /// The points are already in the machine's frame; MSYS is only shown.
         Ignore = "ignore" {
-            label: "GOTOs are already in the machine's frame: leave them as written",
+            label: "Leave GOTOs as written (machine frame)",
             help: "When the CAM system wrote the points in the frame the machine runs in and MSYS/ only records where that frame is.",
         },
     }
