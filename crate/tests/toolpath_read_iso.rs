@@ -579,3 +579,50 @@ fn rotary_words_under_tcp_in_a_tilted_plane_give_the_tool_axis() {
     assert!((p[1].axis - plane_z).norm() > 0.1);
     assert_eq!(note(&r, "give the tool axis from here").line, 4);
 }
+
+/// A HEIDENHAIN DIN/ISO program (TNC 640 DIN/ISO User's Manual: a program opens with
+/// `%NAME G71 *`, G71 millimetres, G70 inches; an arc's centre I J is given in absolute
+/// coordinates and stays in force, like CC; cycles are defined by G200… with Q parameters and
+/// called by M99; `N99999999 %NAME G71 *` ends it), as NX's post for a Mikron WF21D writes it.
+#[test]
+fn a_heidenhain_din_iso_program_reads_absolute_modal_centres_and_its_cycles() {
+    let m = caz_head();
+    let text = "% 123 G71\n\
+                N0010 ; Start of Program\n\
+                N0020 G90 G17 T1 S0\n\
+                N0030 G0 X47.5 Y-10. Z100. M13\n\
+                N0040 G3 X41.755 Y-13. Z100. I47.5 J-17.\n\
+                N0050 G1 X57. Y-17. F250.\n\
+                N0060 G2 X38. Y-17.\n\
+                N0070 G0 X15. Y15. Z103.\n\
+                N0080 G200 DRILLING\n\
+                Q200=3.\n\
+                Q201=-12.5\n\
+                N0090 X15. Y85. M99\n\
+                N9999 % 123 G71 *\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    assert_eq!(r.unit, LengthUnit::Mm);
+    // G3 about (47.5, −17) (absolute): from (47.5, −10), r = 7, to (41.755, −13), counter-clockwise.
+    let arc1: Vec<_> = p.iter().filter(|q| q.line == 5).collect();
+    assert!(!arc1.is_empty());
+    for q in &arc1 {
+        let r = (q.tip.xy() - nalgebra::Vector2::new(47.5, -17.0)).norm();
+        assert!((r - 7.0).abs() < 1e-3, "{r}");
+    }
+    // G2 with no I J: the same centre, from (57, −17) to (38, −17), r = 9.5: half a turn
+    // clockwise (from +x towards −y), through y = −17 − 9.5 = −26.5.
+    let arc2: Vec<_> = p.iter().filter(|q| q.line == 7).collect();
+    let low = arc2.iter().map(|q| q.tip.y).fold(f64::MAX, f64::min);
+    assert!(
+        (low + 26.5).abs() < 1e-3,
+        "clockwise under the centre: {low}"
+    );
+    // The cycle's parameters change nothing; M99 moves there and calls it; the end is read.
+    assert_eq!(
+        p.last().map(|q| (q.tip.x, q.tip.y, q.line)),
+        Some((15.0, 85.0, 12))
+    );
+    assert_eq!(skipped(&r, "cycle definitions and their Q parameters"), 3);
+    assert_eq!(note(&r, "M99 calls the cycle").line, 12);
+    assert_eq!(note(&r, "HEIDENHAIN DIN/ISO").line, 1);
+}

@@ -88,6 +88,10 @@ pub struct Iso {
     centre_absolute: bool,
     /// G43.5: I J K are the tool axis.
     ijk_vector: bool,
+    /// A HEIDENHAIN DIN/ISO program (`%NAME G71`): G70/G71 are units, G200… cycles.
+    heidenhain: bool,
+    /// DIN/ISO: the last arc centre (modal there).
+    last_centre: [Option<Word>; 3],
     /// G99: a drilling cycle returns to its R plane (G98, the default: to the level it
     /// started from).
     to_r: bool,
@@ -123,6 +127,9 @@ impl Iso {
             return Ok(());
         }
         if t.starts_with('%') {
+            if self.percents == 0 {
+                self.heidenhain_header(core, t, no, log);
+            }
             self.percents += 1;
             if !self.started {
                 self.started = true;
@@ -155,6 +162,33 @@ impl Iso {
             return Ok(());
         }
         self.block(core, text, no, log, out)
+    }
+
+    /// `%NAME G71` (or `G70`) opens a HEIDENHAIN DIN/ISO program (TNC 640 DIN/ISO manual,
+    /// "%NAME G71 *"): G71 is millimetres and G70 inches (not Fanuc's turning cycles), and an
+    /// arc's I J K are its centre's absolute coordinates, as the TNC's CC.
+    fn heidenhain_header(&mut self, core: &mut Core, t: &str, no: u32, log: &mut Log) {
+        let words: Vec<&str> = t[1..].trim_end_matches('*').split_whitespace().collect();
+        let unit = match words.as_slice() {
+            [_, g] | [g] if g.eq_ignore_ascii_case("G71") => LengthUnit::Mm,
+            [_, g] | [g] if g.eq_ignore_ascii_case("G70") => LengthUnit::Inch,
+            _ => return,
+        };
+        self.heidenhain = true;
+        self.centre_absolute = true;
+        core.state_unit(
+            unit,
+            no,
+            if unit == LengthUnit::Mm {
+                "%… G71 (HEIDENHAIN DIN/ISO)"
+            } else {
+                "%… G70 (HEIDENHAIN DIN/ISO)"
+            },
+            log,
+        );
+        log.note("iso-heidenhain", NoteKind::Partial, no, || {
+            format!("line {no}: a HEIDENHAIN DIN/ISO program: arc centres I J K are read as absolute coordinates, and the cycle definitions (G200 …, Q parameters) are skipped")
+        });
     }
 
     pub(super) fn finish(
@@ -199,7 +233,55 @@ impl Iso {
     ) -> Result<()> {
         let segs = [Seg { start: 0, line: no }];
         let loc = Loc::line(text, &segs);
+        if self.heidenhain {
+            // DIN/ISO: a block ends with `*`; a cycle definition (`G200 DRILLING`) and its
+            // parameter lines (`Q200=3.`) change no geometry.
+            let code = text
+                .split(';')
+                .next()
+                .unwrap_or("")
+                .trim()
+                .trim_end_matches('*')
+                .trim();
+            let body = code
+                .trim_start_matches(|c: char| c == 'N' || c.is_ascii_digit())
+                .trim_start();
+            let is_q = body.starts_with(['Q', 'q']) && body.contains('=');
+            let cycle = body.len() > 4
+                && body.starts_with(['G', 'g'])
+                && body[1..4].bytes().all(|c| c.is_ascii_digit())
+                && body[1..2] == *"2";
+            if body.starts_with('%') {
+                // `N99999999 %NAME G71 *`: the end of the program.
+                core.ended = true;
+                log.skip("program ends (M2, M30, M99)", no);
+                return Ok(());
+            }
+            if is_q || cycle {
+                log.blocks += 1;
+                log.skip(
+                    "cycle definitions and their Q parameters (G200 …, Q200=…)",
+                    no,
+                );
+                return Ok(());
+            }
+            let toks = lex(code, no)?;
+            return self.words(core, toks, &loc, no, log, out);
+        }
         let toks = lex(text, no)?;
+        self.words(core, toks, &loc, no, log, out)
+    }
+
+    /// The words of one block.
+    fn words(
+        &mut self,
+        core: &mut Core,
+        toks: Vec<Tok>,
+        loc: &Loc,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
         if toks.is_empty() {
             return Ok(());
         }
@@ -414,6 +496,13 @@ impl Iso {
         }
         for t in toks.iter().filter(|t| t.letter == 'M') {
             match g10(t.value) {
+                // DIN/ISO: M99 (and the modal M89) call the cycle defined last at the block's
+                // end point.
+                990 | 890 if self.heidenhain => {
+                    log.note("iso-heidenhain-cycle", NoteKind::Partial, no, || {
+                        format!("line {no}: M{} calls the cycle defined before it at the block's end point: its moves are not drawn (the tool axis does not turn in them)", t.value)
+                    });
+                }
                 20 | 300 | 990 => {
                     core.ended = true;
                     log.skip("program ends (M2, M30, M99)", no);
@@ -499,6 +588,14 @@ impl Iso {
         } else if !arc_block {
             b.centre = [None; 3];
             b.radius = None;
+        }
+        // DIN/ISO: the centre stays until another is given (the TNC's CC is modal).
+        if self.heidenhain && arc_block {
+            if b.centre.iter().any(Option::is_some) {
+                self.last_centre = b.centre;
+            } else if b.radius.is_none() && b.axes.iter().any(Option::is_some) {
+                b.centre = self.last_centre;
+            }
         }
         b.centre_absolute = self.centre_absolute;
         b.cycle = in_cycle;
