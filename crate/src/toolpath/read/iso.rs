@@ -301,7 +301,7 @@ impl Iso {
                 ('G', 683) | ('G', 684) => return refuse("G68.3/G68.4 define the working plane from the tool axis the machine holds, which the file does not state; post the program with tool-centre-point output (G43.4) or as CL data"),
                 ('M', 980) | ('M', 970) => return refuse(&format!("M{} calls a subprogram: the calculator reads one program without its subprograms; post the program with them written out", t.value)),
                 ('U', _) | ('V', _) | ('W', _) => return refuse(&format!("{} is an axis the calculator does not read (a parallel or incremental axis); the program must move X, Y, Z and the machine's two rotary axes", t.letter)),
-                ('A' | 'B' | 'C', _) if core.rotary_index(t.letter).is_none() => return Err(core.not_this_machine(&loc, t.at, t.letter)),
+                ('A' | 'B' | 'C', _) if core.rotary_index(t.letter).is_none() => return Err(core.not_this_machine(loc, t.at, t.letter)),
                 _ => {}
             }
         }
@@ -432,11 +432,11 @@ impl Iso {
                 }
                 520 => {
                     keep_mode(core);
-                    return self.local_shift(core, &toks, no, &loc, log);
+                    return self.local_shift(core, &toks, no, loc, log);
                 }
                 920 => {
                     keep_mode(core);
-                    return self.g92(core, &toks, no, &loc, log);
+                    return self.g92(core, &toks, no, loc, log);
                 }
                 921 | 922 => {
                     self.g92 = Vector3::zeros();
@@ -446,11 +446,11 @@ impl Iso {
                 }
                 680 => {
                     keep_mode(core);
-                    return self.g68(core, &toks, no, &loc, log);
+                    return self.g68(core, &toks, no, loc, log);
                 }
                 682 => {
                     keep_mode(core);
-                    return self.g68_2(core, &toks, no, &loc, log);
+                    return self.g68_2(core, &toks, no, loc, log);
                 }
                 690 => {
                     self.rotation = None;
@@ -600,7 +600,7 @@ impl Iso {
         b.centre_absolute = self.centre_absolute;
         b.cycle = in_cycle;
         let before = out.len();
-        core.execute(&b, &loc, log, out)?;
+        core.execute(&b, loc, log, out)?;
         if out.len() > before {
             self.any_point = true;
             // G99: the cycle ends on its R plane, so the next move starts there.
@@ -612,7 +612,7 @@ impl Iso {
                     ..Block::default()
                 };
                 up.axes[2] = Some(Word { value: r, at: at0 });
-                core.execute(&up, &loc, log, out)?;
+                core.execute(&up, loc, log, out)?;
             }
         }
         Ok(())
