@@ -291,16 +291,17 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
     const [csv] = await Promise.all([page.waitForEvent('download'), csvButton.click()]);
     const text = readFileSync(await csv.path(), 'utf8');
     const [header, ...lines] = text.trim().split('\n');
-    // Traces with different x (the curve and its markers) come in long form: trace, x, y.
-    assert.equal(header, 'trace,interpolation parameter u,δ (mm)');
+    // Long form: trace, x, the value and its quantity with the unit (each trace its own axis).
+    assert.equal(header, 'trace,interpolation parameter u,value,quantity (unit)');
     const rows = lines.filter((l) => l.startsWith('δ(u),')).map((l) => l.slice('δ(u),'.length));
     // Independent of the page: the engine called directly with the default inputs.
     // The default machine: table-table, CBZ, table 100 mm above the rotary centre (L = 100 mm).
     const r = fa.nonlinearMove({ machine: { kind: 'table-table', type: 'CBZ', geometry: { tableHeight: 100 } }, start: { k: 0, m: 10 }, end: { k: 30, m: 25 }, samples: 201 });
     assert.equal(rows.length, 201);
     rows.forEach((row, i) => {
-      const [u, d] = row.split(',').map(Number);
-      assert.ok(Math.abs(u - r.u[i]) < 1e-12 && Math.abs(d - r.delta[i]) < 1e-12, `row ${i}: ${row}`);
+      const [u, d, quantity] = row.split(',');
+      assert.equal(quantity.replace(/"/g, ''), 'δ (mm)');
+      assert.ok(Math.abs(Number(u) - r.u[i]) < 1e-12 && Math.abs(Number(d) - r.delta[i]) < 1e-12, `row ${i}: ${row}`);
     });
     const [png] = await Promise.all([page.waitForEvent('download'), page.locator('#nl-curve ~ .plot-tools button[data-export=png]').click()]);
     const bytes = readFileSync(await png.path());
