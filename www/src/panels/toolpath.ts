@@ -7,6 +7,7 @@ import type { Data } from 'plotly.js';
 import type { Machine, ParsedToolpath, Report, ToolpathAnalysis, ToolpathPath, ToolpathRefined, ToolpathSummary } from '@engine';
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
+import { deltaSeries, MOST_IN_3D, pathPoints } from '../toolpath/decimate';
 import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
 import { download } from '../ui/export';
@@ -448,22 +449,23 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const n = a.delta.length;
     const rapid = new Uint8Array(n);
     for (const i of a.rapids) rapid[i] = 1;
-    const x = Array.from({ length: n }, (_, i) => i + 1);
-    const cut = Array.from(a.delta, (d, i) => (rapid[i] ? null : D(d)));
-    const fast = Array.from(a.delta, (d, i) => (rapid[i] ? D(d) : null));
+    // A long path is thinned for drawing only: each run's largest δ (deltaSeries).
+    const series = deltaSeries(a.delta, rapid);
+    const cut = series.cut.y.map((d) => (d === null ? null : D(d)));
     const flips = a.flips.map((i) => i + 1);
     const data: Data[] = [
-      { x, y: cut, type: 'scatter', mode: 'lines', name: 'δ, cutting', connectgaps: false, line: { color: '#1f77b4', width: 1 }, hovertemplate: 'segment %{x}<br>δ %{y:.4g}<extra></extra>' },
+      { x: series.cut.x, y: cut, type: 'scatter', mode: 'lines', name: 'δ, cutting', connectgaps: false, line: { color: '#1f77b4', width: 1 }, hovertemplate: 'segment %{x}<br>δ %{y:.4g}<extra></extra>' },
       { x: [1, Math.max(1, n)], y: [D(a.tolerance), D(a.tolerance)], type: 'scatter', mode: 'lines', name: 'tolerance', line: { color: '#2ca02c', dash: 'dash' } },
     ];
     if (flips.length) data.push({ x: flips, y: a.flips.map((i) => D(a.delta[i])), type: 'scatter', mode: 'markers', name: 'flip', marker: { color: '#d62728', size: 9, symbol: 'x' } });
     // The rapids on their own axis (right): their excursions do not set the cutting δ's scale.
-    if (a.rapids.length) data.push({ x, y: fast, yaxis: 'y2', type: 'scatter', mode: 'markers', name: 'rapid, tip excursion (right axis; not cutting, not judged)', marker: { color: '#888', size: 6, symbol: 'circle-open' }, hovertemplate: 'rapid, segment %{x}<br>tip excursion %{y:.4g}<extra></extra>' });
+    if (a.rapids.length) data.push({ x: series.rapid.x, y: series.rapid.y.map(D), yaxis: 'y2', type: 'scatter', mode: 'markers', name: 'rapid, tip excursion (right axis; not cutting, not judged)', marker: { color: '#888', size: 6, symbol: 'circle-open' }, hovertemplate: 'rapid, segment %{x}<br>tip excursion %{y:.4g}<extra></extra>' });
     const layout2 = a.rapids.length
       ? { yaxis2: { ...axis(titled('rapid tip excursion', 'errLength'), { rangemode: 'tozero' }), overlaying: 'y', side: 'right', showgrid: false },
           legend: { orientation: 'h', x: 0, y: -0.3, xanchor: 'left', yanchor: 'top' } }
       : {};
-    draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} cutting segments above the tolerance, ${s.flips} flips, ${s.rapids.count} rapids apart`, data,
+    const thinned = series.step > 1 ? `<br>drawn: the largest δ of each run of ${count(series.step)} segments (${count(n)} segments in all)` : '';
+    draw(along.p, `δ along the path on ${t} (Fig 12 style)<br>${s.above} of ${s.segments} cutting segments above the tolerance, ${s.flips} flips, ${s.rapids.count} rapids apart${thinned}`, data,
       { xaxis: axis('segment (from point n to n + 1)'), yaxis: axis(titled('δ, cutting', 'errLength'), { rangemode: 'tozero', type: s.max > 100 * Math.max(s.p95, 1e-9) ? 'log' : 'linear' }), ...layout2 } as Parameters<typeof draw>[3], 'toolpath-delta');
     // The path: cutting moves coloured by the δ of the segment that ends at each point, rapids
     // dashed grey. Gaps (null) separate the pieces of each trace.
@@ -477,9 +479,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ry: (number | null)[] = [];
     const rz: (number | null)[] = [];
     const at = (i: number) => [p[6 * i], p[6 * i + 1], p[6 * i + 2]];
-    for (let i = 0; i < count3; i++) {
-      const rapidIn = i > 0 && rapid[i - 1] === 1;
-      const rapidOut = i < n && rapid[i] === 1;
+    // A long path: every step-th point drawn, and each one where cutting and rapids meet, so
+    // that the run between two points drawn is all cutting or all rapid.
+    const { step: pstep, keep } = pathPoints(n, rapid, MOST_IN_3D);
+    for (let j = 0; j < keep.length; j++) {
+      const i = keep[j];
+      const prev = j > 0 ? keep[j - 1] : -1;
+      const rapidIn = prev >= 0 && rapid[prev] === 1;
+      const rapidOut = j + 1 < keep.length && rapid[i] === 1;
       const [px, py, pz] = at(i);
       if (rapidIn) {
         rx.push(px, null);
@@ -501,15 +508,23 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       cx.push(px);
       cy.push(py);
       cz.push(pz);
-      cc.push(i > 0 && !rapidIn ? D(a.delta[i - 1]) : 0);
+      // The colour: the largest δ of the cutting segments since the point drawn before.
+      let worst = 0;
+      if (prev >= 0 && !rapidIn) for (let k = prev; k < i; k++) worst = Math.max(worst, a.delta[k]);
+      cc.push(D(worst));
     }
+    const scale3d = { cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } };
     const traces3d: Data[] = [{
-      type: 'scatter3d', mode: 'lines+markers', name: 'cutting', x: cx, y: cy, z: cz, connectgaps: false,
-      line: { color: cc, colorscale: 'Viridis', width: 4 }, marker: { size: 2, color: cc, colorscale: 'Viridis', cmin: 0, cmax: D(a.tolerance), showscale: true, colorbar: { title: { text: titled('δ', 'errLength') } } },
+      // A thinned path without markers: half the geometry to draw (in software where there is no GPU).
+      type: 'scatter3d', mode: pstep > 1 ? 'lines' : 'lines+markers', name: 'cutting', x: cx, y: cy, z: cz, connectgaps: false,
+      // The colour bar on the markers, or on the line when there are none.
+      line: { color: cc, colorscale: 'Viridis', width: 4, ...(pstep > 1 ? scale3d : {}) },
+      ...(pstep > 1 ? {} : { marker: { size: 2, color: cc, colorscale: 'Viridis', ...scale3d } }),
       hovertemplate: 'x %{x:.3f}<br>y %{y:.3f}<br>z %{z:.3f}<extra></extra>',
     } as Data];
     if (rx.length) traces3d.push({ type: 'scatter3d', mode: 'lines', name: 'rapid', x: rx, y: ry, z: rz, connectgaps: false, line: { color: '#888', width: 2, dash: 'dash' }, hoverinfo: 'skip' } as Data);
-    draw(path3d.p, `The path on ${t}<br>cutting coloured by δ of the segment ending at each point, rapids dashed`, traces3d,
+    const thinned3d = pstep > 1 ? ` (drawn: every ${count(pstep)}th point of ${count(count3)}, coloured by the largest δ since the one before)` : '';
+    draw(path3d.p, `The path on ${t}<br>cutting coloured by δ of the segment ending at each point, rapids dashed${thinned3d}`, traces3d,
       { scene: { xaxis: { title: { text: 'x (mm)' } }, yaxis: { title: { text: 'y (mm)' } }, zaxis: { title: { text: 'z (mm)' } }, aspectmode: 'auto', camera: { eye: { x: 1.6, y: 1.6, z: 1.2 } } }, margin: { l: 0, r: 0, b: 0 }, showlegend: rx.length > 0 }, 'toolpath-3d');
   };
 

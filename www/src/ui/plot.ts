@@ -158,8 +158,18 @@ function inMm<T extends { title?: unknown }>(target: T | undefined, values: numb
   lo /= 1000;
   hi /= 1000;
   if (Math.max(-lo, hi) * 1000 < MM_FROM) return target;
-  const ticks = niceTicks(lo, hi);
   const title = typeof t === 'string' ? t.replace('(µm)', '(mm)') : { ...t, text: text.replace('(µm)', '(mm)') };
+  if ((target as { type?: string }).type === 'log') {
+    // A log axis: a tick at each power of ten the values span (linear ticks would crowd its top).
+    let least = Infinity;
+    for (const v of finite) if (v > 0 && v < least) least = v;
+    if (!Number.isFinite(least)) return target;
+    const tickvals: number[] = [];
+    for (let e = Math.floor(Math.log10(least)); e <= Math.ceil(Math.log10(hi * 1000)); e++) tickvals.push(10 ** e);
+    const mm = (v: number) => (v >= 1e-3 && v < 1e6 ? String(Number(v.toPrecision(6))) : v.toExponential(0));
+    return { ...target, title, tickmode: 'array', tickvals, ticktext: tickvals.map((v) => mm(v / 1000)) };
+  }
+  const ticks = niceTicks(lo, hi);
   return { ...target, title, tickmode: 'array', tickvals: ticks.map((v) => v * 1000), ticktext: ticks.map((v) => String(v)) };
 }
 
@@ -191,10 +201,13 @@ function millimetres(layout: Partial<Layout>, traces: Data[]): Partial<Layout> {
 /** A trace whose colour bar (its own or its markers') writes its values out, as fitToBox's axes. */
 function plainColorbar(t: Data): Data {
   const c = t as { type?: string; colorbar?: object; marker?: { colorbar?: object; showscale?: boolean } };
+  // (and the line's, a 3D line coloured without markers)
   const plain = (a?: object) => ({ exponentformat: 'none', separatethousands: true, ...a });
   let out = t;
   if (c.colorbar || ['heatmap', 'surface', 'contour'].includes(c.type ?? '')) out = { ...out, colorbar: plain(c.colorbar) } as Data;
   if (c.marker?.colorbar || c.marker?.showscale) out = { ...out, marker: { ...c.marker, colorbar: plain(c.marker.colorbar) } } as Data;
+  const line = (t as { line?: { colorbar?: object; showscale?: boolean } }).line;
+  if (line?.colorbar || line?.showscale) out = { ...out, line: { ...line, colorbar: plain(line.colorbar) } as object } as Data;
   return out;
 }
 
