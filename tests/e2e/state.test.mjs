@@ -338,6 +338,32 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
       const cell = row[1 + xs.findIndex((x) => Math.abs(x - z.x) < 1e-9)];
       assert.ok(Math.abs(cell - z.height) < 1e-12, `ZONE ${z.name}: CSV ${cell} vs engine ${z.height} mm`);
     }
+
+    // The sensitivity bars: positions on the first y axis (mm/mm), angles on the second (mm/°).
+    // Each column's unit is its own axis's, and each value is the engine's k = ∂height/∂error.
+    const [sens] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-sens ~ .plot-tools button[data-export=csv]').click()]);
+    const [head, ...body] = readFileSync(await sens.path(), 'utf8').trim().split('\n');
+    /** One CSV line's cells (RFC 4180 quoting: a quoted cell may hold commas). */
+    const cellsOf = (line) => [...line.matchAll(/(?:^|,)(?:"((?:[^"]|"")*)"|([^,]*))/g)].map((m) => m[1]?.replace(/""/g, '"') ?? m[2]);
+    const columns = cellsOf(head);
+    assert.equal(columns[0], 'zone');
+    const n = r.errorNames.length;
+    let angles = 0;
+    for (const [c, title] of columns.entries()) {
+      if (c === 0) continue;
+      const name = title.split(' ')[0];
+      const e = r.errorNames.indexOf(name);
+      assert.ok(e >= 0, `column ${title}`);
+      const angular = r.errorUnits[e] === 'deg';
+      angles += angular;
+      assert.ok(title.endsWith(angular ? '[k, angles (mm/°)]' : '[k, positions (mm/mm)]'), `column "${title}" (${r.errorUnits[e]})`);
+      for (const line of body) {
+        const cells = cellsOf(line);
+        const zi = r.zones.findIndex((z) => z.name === cells[0]);
+        assert.ok(Math.abs(Number(cells[c]) - r.kHeight[zi * n + e]) < 1e-9, `${name} on ${cells[0]}: ${cells[c]} vs ${r.kHeight[zi * n + e]}`);
+      }
+    }
+    assert.ok(angles > 0 && angles < columns.length - 1, `both axes exported: ${columns.join(' | ')}`);
   });
 });
 

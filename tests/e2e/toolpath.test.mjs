@@ -39,6 +39,10 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
       else assert.equal(r.cells[6], '0', r.type);
     }
     assert.deepEqual(rows.slice(-2).map((r) => r.type).sort(), ['ABX', 'ACX']);
+    // The machine's own row (the Machine section's CBZ) is marked, and no other.
+    const marked = rows.filter((r) => /\(this machine/.test(r.cells[1]));
+    assert.deepEqual(marked.map((r) => r.type), ['CBZ'], rows.map((r) => r.cells[1]).join(' | '));
+    assert.equal(marked[0].cells[1], 'CBZ (this machine)');
     // The page's workers share the types among them; the order is the engine's own ranking.
     const dome = fa.toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
     const engineOrder = fa.toolpathCompare({ machine: { type: 'CBZ', geometry: { tableHeight: 100 } }, tolerance: 0.01 }, dome.path).map((r) => r.type);

@@ -232,3 +232,26 @@ test('presets are named in plain words, the paper’s reference in parentheses',
     }
   }
 });
+
+test('a worst value exactly at the tolerance passes; the next double below it fails', async () => {
+  await withPage({ viewport: { width: 1366, height: 900 } }, async ({ page, url }) => {
+    await page.goto(url);
+    // Lengths shown in mm: the tolerance typed is the worst value's own decimal form, which reads
+    // back as the same double (factor 1), so the comparison meets the boundary exactly.
+    await page.selectOption('#units-length', 'mm');
+    await page.waitForSelector('#panel-nonlinear[data-ready=true] .verdict[data-verdict]');
+    const machine = { type: 'CBZ', geometry: { tableHeight: 100 } };
+    const exact = fa.nonlinearMove({ machine, start: { k: 0, m: 10 }, end: { k: 30, m: 25 } }).max;
+    await page.fill('#nl-tolerance', String(exact));
+    const at = await judged(page, 'nonlinear', exact);
+    assert.equal(at.worst, exact, 'the engine\'s δ, to the last bit');
+    assert.equal(at.tolerance, exact);
+    assert.equal(at.status, 'pass', `δ = tolerance = ${exact} mm: ${at.sentence}`);
+    // The largest double below: now the worst is above the tolerance.
+    const below = exact - Math.abs(exact) * Number.EPSILON;
+    assert.ok(below < exact);
+    await page.fill('#nl-tolerance', String(below));
+    const under = await judged(page, 'nonlinear', below);
+    assert.equal(under.status, 'fail', `δ ${exact} mm > tolerance ${below} mm: ${under.sentence}`);
+  });
+});

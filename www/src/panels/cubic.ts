@@ -14,7 +14,7 @@ import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../u
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText, type Source } from '../ui/identify';
 import { download } from '../ui/export';
-import { errorWords, lowerFirst, rankParts, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, rankParts, judge, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -309,7 +309,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const zi = r.zones.indexOf(worst);
     const parts: [string, number][] = r.errorNames.map((name, e) => [name, r.single[zi * n + e]]);
     const anyError = Array.from(r.single).some((v) => v !== 0);
-    const status = Math.abs(worst.height) <= tol ? 'pass' : 'fail';
+    const status = judge(worst.height, tol);
     const t = show('errLength', tol);
     if (!anyError && Math.abs(worst.height) < ROUND_OFF) {
       return verdict.show({ status: 'pass', worst: 0, tolerance: tol, sentence: `No errors entered: every zone at 0 (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });

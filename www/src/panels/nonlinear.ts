@@ -11,7 +11,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
-import { verdictBox } from '../ui/verdict';
+import { judge, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -257,7 +257,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!sp) return verdict.none('No verdict: no tolerance was given.');
     const head = `Nonlinear error ${show('errLength', r.max)} at L = ${fmt.num(r.length)} mm`;
     const tol = show('errLength', sp.tolerance);
-    if (r.max <= sp.tolerance) {
+    if (judge(r.max, sp.tolerance) === 'pass') {
       verdict.show({
         status: 'pass', worst: r.max, tolerance: sp.tolerance,
         sentence: r.max < 1e-12

@@ -14,7 +14,7 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText as sourceText_, type Source } from '../ui/identify';
-import { errorWords, lowerFirst, rankParts, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, rankParts, judge, verdictBox } from '../ui/verdict';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -156,7 +156,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const c of ranked) if (c.name === 'tool radius') (c.label = 'tool radius R′ − R'), (c.title = 'The tool’s actual radius minus its nominal radius (the paper’s dR).');
     const top = ranked[0];
     const p = part.points[k];
-    const status = worst <= tol ? 'pass' : 'fail';
+    const status = judge(worst, tol);
     const side = d.total[k] > 0 ? 'outside' : 'inside';
     verdict.show({
       status, worst, tolerance: tol, notes,

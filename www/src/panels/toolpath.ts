@@ -17,7 +17,7 @@ import { axis, draw, note, stale } from '../ui/plot';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
-import { verdictBox } from '../ui/verdict';
+import { judge, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -548,7 +548,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
         sentence: `${on}: the cutting moves do not turn the rotary axes, so the control makes no nonlinear error on them (δ = 0 on every configuration); the machine's other errors are not part of this study.` });
     }
     const worst = `${show('errLength', s.max)} (cutting segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]} of the file)`;
-    if (s.max <= a.tolerance) {
+    if (judge(s.max, a.tolerance) === 'pass') {
       return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
         sentence: `${on}: largest nonlinear error ${worst}, every one of the ${count(s.segments)} cutting segments within the ${tol} tolerance.` });
     }

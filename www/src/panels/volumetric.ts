@@ -14,7 +14,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { fromDisplay, onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
-import { errorWords, lowerFirst, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, judge, verdictBox } from '../ui/verdict';
 
 export const volumetricPanel: Panel = {
   id: 'volumetric',
@@ -151,7 +151,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return verdict.show({ status: 'pass', worst: 0, tolerance: tol,
         sentence: r.budget.length ? `The errors entered do not move the tool tip on this plane (within the ${t} tolerance).` : `No errors entered: the tool tip is where the control puts it everywhere on the plane (within the ${t} tolerance).` });
     }
-    const status = w.norm <= tol ? 'pass' : 'fail';
+    const status = judge(w.norm, tol);
     const top = r.budget.find((b) => b.share > 0);
     const at = `X ${fmt.num(w.position[0])}, Y ${fmt.num(w.position[1])}, Z ${fmt.num(w.position[2])} mm`;
     verdict.show({

@@ -172,7 +172,7 @@ export function verdictBox(o: VerdictOptions): Verdict {
   };
 }
 
-/** "within the 10 µm tolerance" / "above the 10 µm tolerance": the comparison in words. */
+/** Pass when the worst value is within the tolerance, the boundary included (|worst| ≤ tolerance): the one comparison every panel makes. */
 export function judge(worst: number, tolerance: number): Exclude<VerdictStatus, 'none'> {
   return Math.abs(worst) <= tolerance ? 'pass' : 'fail';
 }
