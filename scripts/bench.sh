@@ -6,3 +6,4 @@ bash scripts/setup.sh
 export PATH="$PWD/node_modules/.bin:$HOME/.cargo/bin:$PATH"
 npm run --silent build
 node scripts/bench.mjs
+node scripts/bench-page.mjs

@@ -48,8 +48,10 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     const longest = await page.evaluate(() => window.longest);
     console.log(`longest main-thread task while reading and computing 10^6 points: ${Math.round(longest)} ms`);
     // A freeze detector, not a speed target (npm run bench has those): the page once froze for
-    // 16 s on 200,000 points; software WebGL on a 2-core machine takes up to about 0.7 s here.
-    assert.ok(longest < 2500, `a main-thread task of ${Math.round(longest)} ms`);
+    // 16 s on 200,000 points. Each plot is drawn in a task of its own (software WebGL on a
+    // two-core machine takes about 0.3 s for the 3D path), the path is sent to the workers as
+    // transferred copies: no task comes near 1 s.
+    assert.ok(longest < 1000, `a main-thread task of ${Math.round(longest)} ms`);
     // Drawn thinned, and saying so; the highest δ drawn is the verdict's worst.
     const plot = await page.evaluate(() => {
       const p = document.getElementById('tp-delta');
@@ -59,7 +61,7 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
       return { drawn: cut.x.length, top, title: p.layout.title.text, path3d: document.getElementById('tp-path').data[0].x.length };
     });
     assert.ok(plot.drawn <= 20_000, `${plot.drawn} points drawn`);
-    assert.ok(plot.path3d <= 8_100, `${plot.path3d} 3D points drawn`);
+    assert.ok(plot.path3d <= 4_100, `${plot.path3d} 3D points drawn`);
     assert.match(plot.title, /drawn: the largest δ of each run of 50 segments \(999,999 segments in all\)/);
     const worst = Number(await page.getAttribute('#tp-verdict', 'data-worst'));
     assert.ok(Math.abs(plot.top / 1000 - worst) <= 1e-12 * Math.max(1, worst), `plot ${plot.top} µm, verdict ${worst} mm`);

@@ -1,6 +1,7 @@
 // Calls into the engine's Web Worker, typed against the .d.ts that wasm-bindgen generates.
 import type * as Engine from '@engine';
 import { callStarted } from './idle';
+import { copied } from './transfer';
 
 type Api = typeof Engine;
 /** Names of the engine's exported functions (not the loader). */
@@ -66,7 +67,9 @@ export function call<F extends FnName>(fn: F, ...args: Args<F>): Promise<Result<
   const id = nextId++;
   return new Promise((resolve, reject) => {
     pending.set(id, { resolve: resolve as (v: unknown) => void, reject, end: callStarted() });
-    getWorker().postMessage({ id, fn, args });
+    // The arguments' typed arrays (a toolpath's points) are copied and the copies transferred.
+    const { value, transfer } = copied(args);
+    getWorker().postMessage({ id, fn, args: value }, transfer);
   });
 }
 

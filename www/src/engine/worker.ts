@@ -2,20 +2,10 @@
 // The engine's Web Worker: every computation of the page runs here, off the main thread.
 // Messages in: { id, fn, args } naming an export of the engine; out: { id, ok, result | error }.
 import init, * as engine from '@engine';
+import { transferables } from './transfer';
 
 const ready = init();
 const callable = engine as unknown as Record<string, unknown>;
-
-/** The ArrayBuffers of every typed array in `value`, so they move instead of being copied. */
-function transferables(value: unknown, out: Transferable[] = [], depth = 0): Transferable[] {
-  if (depth > 4 || value === null || typeof value !== 'object') return out;
-  if (ArrayBuffer.isView(value)) {
-    if (value.buffer instanceof ArrayBuffer && !out.includes(value.buffer)) out.push(value.buffer);
-    return out;
-  }
-  for (const v of Array.isArray(value) ? value : Object.values(value)) transferables(v, out, depth + 1);
-  return out;
-}
 
 self.onmessage = async (event: MessageEvent<{ id: number; fn: string; args: unknown[] }>) => {
   const { id, fn, args } = event.data;

@@ -4,9 +4,9 @@
 
 /** Most segments drawn in the δ plot (an SVG line). */
 export const MOST_DRAWN = 20_000;
-/** Most points drawn in the 3D path (WebGL, drawn in software where there is no GPU: 10⁴
- *  points take about half a second there). */
-export const MOST_IN_3D = 8_000;
+/** Most points drawn in the 3D path (WebGL, drawn in software where there is no GPU: on a
+ *  two-core machine 8000 points held the main thread 0.7 s there, 2000 points 0.28 s). */
+export const MOST_IN_3D = 4_000;
 
 /** The δ plot's series: every segment, or for runs of `step` segments the largest δ of the run's
  *  cutting segments (a gap where a run has none) and of its rapids. x is the segment's number

@@ -4,6 +4,7 @@
 import type { ParsedToolpath, ToolpathCase, ToolpathPath, ToolpathReadInput, ToolpathSummary } from '@engine';
 import { EngineError } from '../engine/client';
 import { callStarted } from '../engine/idle';
+import { copied } from '../engine/transfer';
 
 /** The twelve types, Group I then Group II (the engine's order). */
 export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
@@ -58,7 +59,9 @@ function run<T>(i: number, message: Record<string, unknown>, progress?: (f: numb
   const id = nextId++;
   return new Promise<T>((resolve, reject) => {
     jobs.set(id, { worker: i, resolve: resolve as (v: unknown) => void, reject, progress, end: callStarted() });
-    worker(i).postMessage({ id, ...message });
+    // A path's typed arrays are copied and the copies transferred (../engine/transfer.ts).
+    const { value, transfer } = copied(message);
+    worker(i).postMessage({ id, ...value }, transfer);
   });
 }
 

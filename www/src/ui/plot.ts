@@ -253,6 +253,9 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   }
   const meta = { titles, ...((layout as { meta?: object }).meta) };
   const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin, meta } as Partial<Layout>, traces), el);
+  // Each drawing a task of its own: two plots drawn from one result (the toolpath's δ plot and
+  // its 3D path) would otherwise hold the main thread as one long task.
+  await new Promise((resolve) => setTimeout(resolve, 0));
   await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
   stale(el, false);
