@@ -114,10 +114,14 @@ test('an invalid field greys every plot it feeds with a label; fixing it redraws
       const after = await waitIdle(page);
       assert.equal(await page.getAttribute(`#${id}`, 'aria-invalid'), 'true', `${tab}: ${id} marked`);
       assert.equal(after.draws, counters.draws, `${tab}: nothing redrawn from ${id} = x`);
+      // The label names the field, its tab and its message (read from the field, as shown).
+      const label = (await page.textContent(`label[for="${id}"]`)).trim().replace(/\s+/g, ' ');
+      const tabName = (await page.textContent(`#tab-${tab}`)).trim();
+      const message = (await page.$eval(`#${id}`, (e) => e.closest('.field').querySelector('.field-msg').textContent)).trim().replace(/\.$/, '');
       for (const p of await plotsOf(page, tab)) {
         if (!before.some((b) => b.id === p.id)) continue;
         assert.ok(p.stale, `${tab}: ${p.id} greyed while ${id} is invalid`);
-        assert.equal(p.label, 'Showing the last valid result; fix the field marked in red.', `${tab}: ${p.id}`);
+        assert.equal(p.label, `Showing the last valid result; fix ${label} (${tabName} tab): ${message}.`, `${tab}: ${p.id}`);
       }
       if (tab === 'nonlinear') await page.screenshot({ path: `${ARTIFACTS}input-stale.png` });
       await page.fill(`#${id}`, original);

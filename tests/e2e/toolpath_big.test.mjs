@@ -40,6 +40,8 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     // At once: the old plots greyed, the file named with "Reading".
     assert.match(await page.textContent('#tp-file-msg'), /^Reading million\.csv…/);
     assert.ok(await page.$eval('#tp-delta', (p) => p.closest('.plot-wrap').classList.contains('stale')));
+    // The verdict says it is computing (not "no verdict", not the old file's badge).
+    assert.deepEqual(await page.$eval('#tp-verdict', (v) => [v.dataset.state, v.querySelector('.verdict-badge').textContent]), ['computing', 'COMPUTING…']);
     await page.waitForFunction(() => /^Read million\.csv: 1,000,000 points/.test(document.getElementById('tp-file-msg')?.textContent ?? ''), null, { timeout: 120_000 });
     await page.waitForFunction(() => ['pass', 'fail'].includes(document.getElementById('tp-verdict')?.dataset.verdict ?? ''), null, { timeout: 120_000 });
     await waitPlotted(page, 'tp-delta', drawn);
@@ -64,6 +66,7 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     assert.ok(plot.path3d <= 4_100, `${plot.path3d} 3D points drawn`);
     assert.match(plot.title, /drawn: the largest δ of each run of 50 segments \(999,999 segments in all\)/);
     const worst = Number(await page.getAttribute('#tp-verdict', 'data-worst'));
+    assert.match(await page.textContent('#tp-verdict-source'), /^Computed at \d\d:\d\d:\d\d from million\.csv\.$/);
     assert.ok(Math.abs(plot.top / 1000 - worst) <= 1e-12 * Math.max(1, worst), `plot ${plot.top} µm, verdict ${worst} mm`);
     assert.ok(!(await page.$eval('#tp-delta', (p) => p.closest('.plot-wrap').classList.contains('stale'))));
   });

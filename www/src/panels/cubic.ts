@@ -130,7 +130,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const rng = range.read();
     if (!m || !own || rng === null) {
       fresh = false;
-      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      verdict.invalid();
       for (const p of [zonesPlot, mapPlot, sensPlot, fitPlot, svPlot]) stale(p.p, true);
       stale(ident, true);
       stale(designOut, true);
@@ -151,8 +151,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       if (lastMap) showMap(lastMap);
     }, (e) => {
       fresh = false;
-      verdict.none('No verdict: the engine could not compute the zones (see the message at the field or over the plot).');
       engineError(e, zonesPlot.p);
+      verdict.refused(e);
       stale(sensPlot.p, true); // fed by the same computation
     });
     runMap({ ...input, nx: nx as number, ...(ny === undefined ? {} : { ny: ny as number }) }).then((map) => {
@@ -300,7 +300,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** The verdict: the worst zone's height (the engine's) against the tolerance, the errors behind it. */
   const judgeTest = () => {
     const tol = verdict.tolerance();
-    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (tol === null) return verdict.invalid();
     if (!lastTest || !fresh) return;
     const { r } = lastTest;
     const n = r.errorNames.length;

@@ -88,9 +88,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const m = machine.current();
     const own = inputs.read();
     if (!m || !own) {
-      verdict.none(verdict.tolerance() === null
-        ? 'No verdict: enter a tolerance greater than 0 (see the message at the field).'
-        : 'No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      verdict.invalid();
       // Messages are at the fields; the plots no longer show what the inputs ask for.
       for (const p of allPlots) stale(p.p, true);
       stale(ikOut, true);
@@ -114,7 +112,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       showMove(r, t, start, end);
     }, (e) => {
       engineError(e, curve.p);
-      verdict.none('No verdict: the engine could not compute this move (see the message at the field or over the plot).');
+      verdict.refused(e);
     });
 
     runSweepK({ ...base, thetaM: start.m, dK, dM, from: -180, to: 180, n: 73 }).then((r) => {

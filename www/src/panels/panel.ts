@@ -2,7 +2,7 @@ import { EngineError } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
 import type { ShowsError } from '../ui/form';
-import { note, stale, STALE_FIELD } from '../ui/plot';
+import { note, stale } from '../ui/plot';
 
 // A study's panel: mounted once, the first time it is shown.
 export interface Panel {
@@ -55,6 +55,6 @@ export function engineErrors(fieldsByPath: Record<string, ShowsError>, machine: 
     // A message about the machine as a whole ("machine: ZONE II-1: outside the travel …") goes
     // over the plot without its path.
     if (e) note(target, e.field === 'machine' ? e.text : e.message);
-    stale(target, true, e ? 'Showing the last valid result; the engine refused the inputs (see the message).' : STALE_FIELD);
+    stale(target, true, e ? 'Showing the last valid result; the engine refused the inputs (see the message).' : undefined);
   };
 }

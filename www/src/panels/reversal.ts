@@ -129,7 +129,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** The verdict: the engine's dent depth against the tolerance, and the fitted friction. */
   const judgeSim = () => {
     const tol = verdict.tolerance();
-    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (tol === null) return verdict.invalid();
     if (!last || !fresh) return;
     const d = last.dent;
     const t = show('errLength', tol);
@@ -153,7 +153,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!i) {
       fresh = false;
       lastFit = null;
-      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      verdict.invalid();
       for (const p of [polar, radial, timePlot, linearPlot, fitPlot, residualPlot]) stale(p.p, true);
       stale(dentsBox, true);
       stale(fitBox, true);
@@ -172,9 +172,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       showSim(r, came);
       judgeSim();
     }, (e) => {
-      verdict.none('No verdict: the engine could not simulate this test (see the message at the field or over the plot).');
       for (const p of [radial, timePlot, linearPlot]) stale(p.p, true);
       engineError(e, polar.p);
+      verdict.refused(e);
     });
     runDents(input as never).then((rows) => {
       if (rows === SUPERSEDED) return;

@@ -135,7 +135,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** The verdict: the engine's defect at its worst point against the tolerance, the errors behind it. */
   const judgeDefects = () => {
     const tol = verdict.tolerance();
-    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (tol === null) return verdict.invalid();
     const d = lastDefects;
     if (!d || !fresh) return;
     const n = d.names.length;
@@ -171,7 +171,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const i = read();
     if (!i) {
       fresh = false;
-      verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      verdict.invalid();
       for (const p of [part3d, mapA, mapB, defects, fitPlot, residualPlot]) stale(p.p, true);
       stale(ident, true);
       for (const run of [runOvercut, runDefects, runIdentify]) run.cancel(); // a late result would look current
@@ -193,8 +193,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       showPart();
       judgeDefects();
     }, (e) => {
-      verdict.none('No verdict: the engine could not compute the defect (see the message at the field or over the plot).');
       engineError(e, defects.p);
+      verdict.refused(e);
       stale(part3d.p, true); // coloured by the same defects
     });
     identify(i);

@@ -14,6 +14,7 @@ import { download } from '../ui/export';
 import { el, selectField } from '../ui/fields';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
+import { blockedBy, invalidFields } from '../ui/status';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
@@ -213,13 +214,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const load = async (name: string, get: () => Promise<Blob | string>) => {
     const mine = ++loads; // taken first: a file chosen while a sample downloads wins
     const ro = readOptions();
-    if (!ro) return fileText(`${name}: fix the fields marked first.`);
+    if (!ro) return fileText(`${name}: ${blockedBy(invalidFields(fileMsg), 'an input is missing')} first.`);
     fileText(`Reading ${name}…`);
     // Whatever shows the last file no longer answers: greyed until the new one is computed.
     rankLater.cancel();
     ranks++;
     details++;
-    if (loaded) greyAll(`Reading ${name}…`);
+    verdict.pending(`Reading ${name}…`);
+    if (loaded) greyResults(`Reading ${name}…`);
     try {
       const source = await get();
       if (mine !== loads) return;
@@ -248,7 +250,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const chosenType = (m: Machine) => (typeSel.select.value === 'machine' ? String(m.type ?? 'CBZ') : typeSel.select.value);
   const greyAll = (why?: string) => {
-    verdict.none(why ? `No verdict: ${why}` : 'No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+    if (why) verdict.none(`No verdict: ${why}`);
+    else verdict.invalid();
     greyResults(why);
   };
   /** Every result of the file greyed (or, never drawn, a note saying why), the refined path
@@ -257,7 +260,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const p of [along.p, path3d.p]) {
       // A plot never drawn says why instead of spinning.
       if (p.dataset.plotted) stale(p, true, why);
-      else note(p, why ?? 'No plot: the inputs marked need a valid value first.');
+      else note(p, why ?? `No plot: ${blockedBy(invalidFields(p), 'an input is missing')}.`);
     }
     tableWrap.classList.add('stale');
     rapidsBox.classList.add('stale');
@@ -320,7 +323,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       const why = sentence(err.text);
       for (const p of [along.p, path3d.p]) if (!p.dataset.plotted) note(p, `No plot: ${why}`);
       rapidsBox.classList.add('stale');
-      verdict.none(`No verdict: ${why}${err.field ? ' (the field is marked)' : ''}`);
+      if (err.field) verdict.invalid(why);
+      else verdict.error(why);
     });
   };
 
@@ -342,8 +346,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       // The file chosen last could not be read: its refusal stays (the verdict says it).
       if (chosen && chosen.source !== loaded?.source) return;
       if (!loaded) verdict.none('No verdict yet: choose a sample path or a file of your own.');
-      else if (verdict.tolerance() === null) verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
-      else verdict.none('No verdict: the inputs marked (here or in the machine above) need a valid value first.');
+      else verdict.invalid();
       if (loaded) greyResults();
       return;
     }
@@ -539,20 +542,20 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ...(s.commanded ? ['This machine follows the program\'s own rotary commands (its branch and its turns).'] : []),
     ];
     if (s.unreachable) {
-      return verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
+      return verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
         sentence: `${on}: this configuration cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}.` });
     }
     if (!s.segments) return verdict.none(`No verdict: ${name} has no cutting moves${s.rapids.count ? ` (${plural(s.rapids.count, 'rapid')} only)` : ''}.`);
     if (still(s)) {
-      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes: notes.filter((n) => !n.startsWith('This machine follows')),
+      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, notes: notes.filter((n) => !n.startsWith('This machine follows')),
         sentence: `${on}: the cutting moves do not turn the rotary axes, so the control makes no nonlinear error on them (δ = 0 on every configuration); the machine's other errors are not part of this study.` });
     }
     const worst = `${show('errLength', s.max)} (cutting segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]} of the file)`;
     if (judge(s.max, a.tolerance) === 'pass') {
-      return verdict.show({ status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
+      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
         sentence: `${on}: largest nonlinear error ${worst}, every one of the ${count(s.segments)} cutting segments within the ${tol} tolerance.` });
     }
-    verdict.show({ status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
+    verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
       sentence: `${on}: largest nonlinear error ${worst}, above the ${tol} tolerance; ${s.above} of ${count(s.segments)} cutting segments are above it. ` +
         'Insert points with the button below to keep every cutting segment within it.' });
   };

@@ -142,7 +142,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** The verdict: the engine's worst point against the tolerance, the budget ranked. */
   const judgeMap = () => {
     const tol = verdict.tolerance();
-    if (tol === null) return verdict.none('No verdict: enter a tolerance greater than 0 (see the message at the field).');
+    if (tol === null) return verdict.invalid();
     if (!last || !fresh) return;
     const { r } = last;
     const w = r.worst;
@@ -170,7 +170,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let fresh = false;
   const greyAll = () => {
     fresh = false;
-    verdict.none('No verdict: the inputs marked (here, in the error motions or in the machine above) need a valid value first.');
+    verdict.invalid();
     for (const p of allPlots) stale(p, true);
     budgetTable.classList.add('stale');
     sentence.classList.add('stale');
@@ -189,6 +189,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       stale(mapPlot.p, true);
     } else fieldErrors(err, mapPlot.p);
     greyAll();
+    // A motion's table at fault is named by its row (not a field): the engine's words then.
+    if (row) verdict.error(e.message);
+    else verdict.refused(err);
   };
 
   const update = () => {

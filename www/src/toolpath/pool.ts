@@ -1,5 +1,5 @@
-// The toolpath workers: as many as the processor has cores (at most 6, each holds a copy of the
-// path), the twelve types shared among them. Also on `window.fiveaxisToolpath` for the console
+// The toolpath workers: one fewer than the processor has cores (at least 1, at most 6; each holds
+// a copy of the path), the twelve types shared among them. Also on `window.fiveaxisToolpath` for the console
 // and the benchmark (scripts/bench.mjs).
 import type { ParsedToolpath, ToolpathCase, ToolpathPath, ToolpathReadInput, ToolpathSummary } from '@engine';
 import { EngineError } from '../engine/client';
@@ -9,8 +9,10 @@ import { copied } from '../engine/transfer';
 /** The twelve types, Group I then Group II (the engine's order). */
 export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
 
-/** Workers the pool uses by default. */
-export const WORKERS = Math.max(1, Math.min(navigator.hardwareConcurrency || 2, 6));
+/** Workers the pool uses by default: one core fewer than the processor has (at most 6), so
+ *  that the page itself (and the engine's worker, which follows the path on the configuration
+ *  shown meanwhile) keeps a core and answers clicks while a large file is ranked. */
+export const WORKERS = Math.max(1, Math.min((navigator.hardwareConcurrency || 2) - 1, 6));
 
 interface Job {
   worker: number;

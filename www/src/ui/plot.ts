@@ -4,6 +4,7 @@
 import type { Config, Data, Layout } from 'plotly.js';
 import { download, graphCsv } from './export';
 import { drawStarted } from '../engine/idle';
+import { blockedBy, invalidFields } from './status';
 
 type PlotlyModule = typeof import('plotly.js');
 let plotly: Promise<PlotlyModule> | null = null;
@@ -263,16 +264,15 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
 }
 
-/** What a greyed result says while a field is invalid. */
-export const STALE_FIELD = 'Showing the last valid result; fix the field marked in red.';
 
 /**
  * Greys what no longer shows what the inputs ask for: a plot (its wrapper), or any other output
  * element, and with it the panel's summary of key numbers; a line above it says that it shows
- * the last valid result (`why`, by default: fix the field marked in red), when it shows one.
+ * the last valid result (`why`, by default: which fields to fix and where, ui/status.ts), when it
+ * shows one.
  * `on = false` clears the element only: the summary is cleared by a successful drawing (`draw`).
  */
-export function stale(target: HTMLElement, on: boolean, why = STALE_FIELD) {
+export function stale(target: HTMLElement, on: boolean, why?: string) {
   const box = target.closest<HTMLElement>('.plot-wrap') ?? target;
   box.classList.toggle('stale', on);
   // The label sits in the plot's frame (not greyed with the plot), or just before the element.
@@ -289,7 +289,7 @@ export function stale(target: HTMLElement, on: boolean, why = STALE_FIELD) {
       if (isPlot) box.prepend(label);
       else box.before(label);
     }
-    label.textContent = why;
+    label.textContent = why ?? `Showing the last valid result; ${blockedBy(invalidFields(target), 'the inputs changed')}.`;
   }
   if (on) target.closest('.results')?.querySelector(':scope > dl.summary')?.classList.add('stale');
 }

@@ -7,8 +7,10 @@
 // ranks and formats them. `data-verdict` is "pass", "fail" or "none" (nothing to judge yet,
 // inputs invalid, a computation on its way): "none" never shows the badge of earlier inputs.
 import type { Schema } from '@engine';
+import { EngineError } from '../engine/client';
 import { el, numberField } from './fields';
 import * as fmt from './format';
+import { blockedBy, fieldLinks, invalidFields } from './status';
 
 export type VerdictStatus = 'pass' | 'fail' | 'none';
 
@@ -40,6 +42,8 @@ export interface Judgement {
   contributorsOf?: string;
   /** Further plain lines under the headline. */
   notes?: string[];
+  /** What was judged, when not the inputs on screen: the file's name ("impeller.apt"). */
+  source?: string;
 }
 
 export interface VerdictOptions {
@@ -63,13 +67,26 @@ export interface Verdict {
   show(j: Judgement): void;
   /** Nothing to judge: says why (no stale badge). */
   none(message: string): void;
-  /** Inputs changed, a result is on its way: the badge goes, the last sentence stays greyed. */
-  pending(): void;
+  /** No verdict because inputs are invalid: names each field marked and where it is (this tab or
+   *  the Machine section), with a button that goes to it; `otherwise` when none is marked. */
+  invalid(otherwise?: string): void;
+  /** No verdict because the engine refused the inputs or failed: its message. */
+  error(message: string): void;
+  /** After an engine error was shown (at its field, or over a plot): `invalid()` when a field
+   *  is marked now, else `error()` with the engine's message. */
+  refused(err: unknown): void;
+  /** Inputs changed, a result is on its way: the badge says so, the last sentence stays greyed;
+   *  or, with `message`, says what is being done ("Reading impeller.apt…") instead. */
+  pending(message?: string): void;
   /** The papers' level: replaces the contents of the <details>. */
   details(summary: string, ...body: (Node | string)[]): void;
 }
 
 const BADGE: Record<VerdictStatus, string> = { pass: 'PASS', fail: 'FAIL', none: 'NO VERDICT' };
+/** The four states a verdict is in (`data-state`): a result, being computed, invalid input, an
+ *  engine error; and "none" for nothing to judge (no tolerance, an empty file). */
+type State = 'result' | 'computing' | 'invalid' | 'error' | 'none';
+const STATE_BADGE: Partial<Record<State, string>> = { computing: 'COMPUTING…', invalid: 'NO VERDICT', error: 'ENGINE ERROR' };
 
 /** Makes the verdict section; the panel puts `root` first in its results. */
 export function verdictBox(o: VerdictOptions): Verdict {
@@ -78,6 +95,12 @@ export function verdictBox(o: VerdictOptions): Verdict {
   const badge = el('span', { class: 'verdict-badge', id: `${o.prefix}-verdict-badge` }, BADGE.none);
   const sentence = el('p', { class: 'verdict-sentence', id: `${o.prefix}-verdict-sentence`, 'aria-live': 'polite' }, 'Computing…');
   head.append(badge, sentence);
+  root.dataset.state = 'computing';
+  badge.textContent = STATE_BADGE.computing ?? '';
+  /** What the verdict was computed from and when ("Computed 14:02:31 from impeller.apt"). */
+  const source = el('p', { class: 'verdict-source', id: `${o.prefix}-verdict-source` });
+  /** Buttons to the invalid fields. */
+  const links = el('div', { class: 'verdict-links', id: `${o.prefix}-verdict-links` });
   const notes = el('ul', { class: 'verdict-notes', id: `${o.prefix}-verdict-notes` });
   const contrib = el('div', { class: 'verdict-contrib', id: `${o.prefix}-verdict-contrib` });
   const paper = el('details', { class: 'verdict-details', id: `${o.prefix}-verdict-details` });
@@ -105,17 +128,26 @@ export function verdictBox(o: VerdictOptions): Verdict {
   fieldRoot.classList.add('verdict-tolerance');
   // Edits of the tolerance reach the panel here; they still bubble to the page (saved state).
   field.input.addEventListener('input', () => o.onTolerance());
-  root.append(head, fieldRoot, notes, contrib, paper);
+  root.append(head, links, source, fieldRoot, notes, contrib, paper);
 
-  const set = (status: VerdictStatus) => {
+  const set = (status: VerdictStatus, state: State = status === 'none' ? 'none' : 'result') => {
     root.dataset.verdict = status;
-    badge.textContent = BADGE[status];
+    root.dataset.state = state;
+    badge.textContent = STATE_BADGE[state] ?? BADGE[status];
+    links.replaceChildren();
+    if (state !== 'computing') source.textContent = '';
   };
   const clear = () => {
     notes.replaceChildren();
     contrib.replaceChildren();
     delete root.dataset.worst;
     delete root.dataset.tolerance;
+  };
+  const none = (message: string, state: State) => {
+    set('none', state);
+    root.classList.remove('stale');
+    sentence.textContent = message;
+    clear();
   };
 
   return {
@@ -129,6 +161,8 @@ export function verdictBox(o: VerdictOptions): Verdict {
       set(j.status);
       root.classList.remove('stale');
       sentence.textContent = j.sentence;
+      const time = new Date().toTimeString().slice(0, 8);
+      source.textContent = `Computed at ${time} from ${j.source ?? 'the inputs shown'}.`;
       root.dataset.worst = String(j.worst);
       root.dataset.tolerance = String(j.tolerance);
       notes.replaceChildren(...(j.notes ?? []).map((n) => el('li', {}, n)));
@@ -154,15 +188,30 @@ export function verdictBox(o: VerdictOptions): Verdict {
       }
     },
     none(message) {
-      set('none');
-      root.classList.remove('stale');
-      sentence.textContent = message;
-      clear();
+      none(message, 'none');
     },
-    pending() {
-      if (root.dataset.verdict === 'none') return;
-      set('none');
-      root.classList.add('stale');
+    invalid(otherwise = 'an input is missing') {
+      const list = invalidFields(root);
+      none(`No verdict: ${blockedBy(list, otherwise)}.`, 'invalid');
+      if (list.length) links.replaceChildren(fieldLinks(list));
+    },
+    error(message) {
+      none(`No verdict: the engine refused the inputs: ${message}`, 'error');
+    },
+    refused(err) {
+      const e = EngineError.of(err);
+      if (invalidFields(root).length) this.invalid();
+      else this.error(e.field === 'machine' ? e.text : e.message);
+    },
+    pending(message) {
+      // A result shown stays, greyed, until the new one replaces it; a message goes.
+      const shown = root.dataset.state === 'result' || (root.dataset.state === 'computing' && root.classList.contains('stale'));
+      set('none', 'computing');
+      if (shown && !message) return void root.classList.add('stale');
+      root.classList.remove('stale');
+      source.textContent = '';
+      sentence.textContent = message ?? 'Computing…';
+      clear();
     },
     details(summary, ...body) {
       paperSummary.textContent = summary;
