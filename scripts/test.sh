@@ -7,10 +7,32 @@
 #   5. Node tests of the built JS API, and browser end-to-end tests in Debian's Chromium
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+# Each step's time is printed when the next one starts, and all of them at the end.
+START=$(date +%s)
+LAST=$START
+LAST_NAME="install what is missing (scripts/setup.sh)"
+TIMES=""
+lap() {
+  local now
+  now=$(date +%s)
+  TIMES="${TIMES}$(printf '%5d s  %s' $((now - LAST)) "$LAST_NAME")"$'\n'
+  LAST=$now
+}
+step() {
+  lap
+  LAST_NAME="$*"
+  printf '\n== %s\n' "$*"
+}
+finish() {
+  local rc=$?
+  lap
+  printf '\n== time per step (exit %d)\n%s%5d s  in all\n' "$rc" "$TIMES" $(($(date +%s) - START))
+}
+trap finish EXIT
+
 bash scripts/setup.sh --test
 export PATH="$PWD/node_modules/.bin:$HOME/.cargo/bin:$PATH"
-
-step() { printf '\n== %s\n' "$*"; }
 
 step "lint (rustfmt, clippy native and wasm32)"
 cargo fmt --all -- --check

@@ -117,7 +117,7 @@ test('an invalid field greys every plot it feeds with a label; fixing it redraws
       // The label names the field, its tab and its message (read from the field, as shown).
       const label = (await page.textContent(`label[for="${id}"]`)).trim().replace(/\s+/g, ' ');
       const tabName = (await page.textContent(`#tab-${tab}`)).trim();
-      const message = (await page.$eval(`#${id}`, (e) => e.closest('.field').querySelector('.field-msg').textContent)).trim().replace(/\.$/, '');
+      const message = (await page.$eval(`#${id}`, (e) => e.closest('.field').querySelector('.field-msg').textContent)).trim().replace(/\.$/, '').replace(/^[A-Z](?=[a-z])/, (c) => c.toLowerCase());
       for (const p of await plotsOf(page, tab)) {
         if (!before.some((b) => b.id === p.id)) continue;
         assert.ok(p.stale, `${tab}: ${p.id} greyed while ${id} is invalid`);

@@ -47,7 +47,8 @@ export function invalidFields(from: HTMLElement): Invalid[] {
 
 /** "L (Machine section): must be greater than 0" for each, joined; "" for none. */
 export function invalidWords(list: Invalid[]): string {
-  return list.map((f) => `${f.label} (${f.where})${f.message ? `: ${f.message.replace(/\.$/, '')}` : ''}`).join('; ');
+  const words = (m: string) => (/^[A-Z][a-z]/.test(m) ? m[0].toLowerCase() + m.slice(1) : m).replace(/\.$/, '');
+  return list.map((f) => `${f.label} (${f.where})${f.message ? `: ${words(f.message)}` : ''}`).join('; ');
 }
 
 /** What a result that cannot be computed says: the fields to fix, or `otherwise` when none is
