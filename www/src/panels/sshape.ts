@@ -14,6 +14,7 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText as sourceText_, type Source } from '../ui/identify';
+import { extent } from '../ui/arrays';
 import { errorWords, lowerFirst, rankParts, judge, verdictBox } from '../ui/verdict';
 
 export const sshapePanel: Panel = {
@@ -331,7 +332,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const pairs = d.alike.slice(0, 4).map((p) => `${p.a} / ${p.b} ${fmt.num(p.cosine, 4)}`).join('; ');
     setSummary('ss-pairs', 'Errors the part can hardly tell apart', pairs ? `${pairs} (cosine of their effects; ±1: alike, not separable)` : 'none (no pair above 0.95)');
     setSummary('ss-singular', `Tool along ${ctx.k} (${ctx.k} undefined)`, `${singular.length} of 100 points: ${singular.map((i) => labels[i]).join(', ') || 'none'}`);
-    setSummary('ss-range', 'Defect of the entered errors', `${show('errLength', Math.min(...d.total))} to ${show('errLength', Math.max(...d.total))}`);
+    const [lo, hi] = extent(d.total);
+    setSummary('ss-range', 'Defect of the entered errors', `${show('errLength', lo)} to ${show('errLength', hi)}`);
   };
 
   const showIdentification = (f: SShapeIdentifyResult, from: Source) => {

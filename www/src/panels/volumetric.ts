@@ -14,6 +14,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { fromDisplay, onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
+import { extent } from '../ui/arrays';
 import { errorWords, lowerFirst, judge, verdictBox } from '../ui/verdict';
 
 export const volumetricPanel: Panel = {
@@ -311,7 +312,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     showComponent();
     // The tilt error: from 0 (a constant tilt, as constant angular errors give, still has a scale).
     const tilt = Array.from(r.tilt, (t) => toDisplay('errAngle', t));
-    const [tLo, tHi] = [Math.min(...tilt), Math.max(...tilt)];
+    const [tLo, tHi] = extent(tilt);
     const tiltRange = tHi - tLo < 1e-6 * Math.max(tHi, 1e-30) ? `the same everywhere: ${show('errAngle', r.worst.tilt)}` : `from ${show('errAngle', fromAngle(tLo))} to ${show('errAngle', fromAngle(tHi))}`;
     drawFit(tiltPlot.p, `Tilt error of the tool axis over the ${ua}–${va} plane<br>actual vs commanded tool axis, ${tiltRange}`, [{
       type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(tilt, nu, nv),
