@@ -133,6 +133,17 @@ function overlaps(page) {
   });
 }
 
+/** Plots drawn beyond their box (print media): each plot's drawing within its frame. */
+function clipped(page) {
+  return page.evaluate(() => [...document.querySelectorAll('.report-study .js-plotly-plot')]
+    .filter((g) => getComputedStyle(g.closest('.plot-wrap') ?? g).display !== 'none' && g.getClientRects().length > 0)
+    .flatMap((g) => {
+      const svg = g.querySelector('svg.main-svg')?.getBoundingClientRect();
+      const box = (g.closest('.plot-wrap') ?? g).getBoundingClientRect();
+      return svg && (svg.bottom > box.bottom + 1 || svg.right > box.right + 1) ? [`${g.id}: drawing ${svg.width.toFixed(0)} × ${svg.height.toFixed(0)} px in a box ending ${(svg.bottom - box.bottom).toFixed(0)} px above its bottom`] : [];
+    }));
+}
+
 /** Headings printed with nothing under them (text or a drawn plot) before the next heading. */
 function emptyHeadings(page) {
   return page.evaluate(() => {
@@ -218,6 +229,7 @@ test('the machine report: every study’s verdict with its own tolerance, the wo
     // Print layout (one long page): charts, tables, verdicts and headings do not overlap; no
     // heading printed without something under it.
     assert.deepEqual(await overlaps(page), []);
+    assert.deepEqual(await clipped(page), []);
     assert.deepEqual(await emptyHeadings(page), []);
 
     const blocks = await markBlocks(page);

@@ -209,7 +209,9 @@ async function enter(hooks: PrintHooks) {
   add(panels, sign, 'append');
   const P = await loadPlotly();
   const graphs = printed.flatMap((s) => [...s.section.querySelectorAll<Graph>('.js-plotly-plot')]);
-  await Promise.all(graphs.map((g) => P.relayout(g, { width: PRINT_WIDTH, height: PRINT_HEIGHT })));
+  // At the page's width; as tall as the panel made its box (a budget of three bars is short),
+  // else the default: a plot taller than its box would run over what follows.
+  await Promise.all(graphs.map((g) => P.relayout(g, { width: PRINT_WIDTH, height: parseFloat(g.style.height) || PRINT_HEIGHT })));
   document.body.dataset.report = 'ready';
 }
 
