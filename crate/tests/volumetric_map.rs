@@ -234,3 +234,60 @@ fn a_csv_whose_header_names_another_error_or_axis_is_refused() {
     // Other words are the program's own: accepted.
     assert!(read_table_csv("position (mm), deviation (µm)\n0, 0\n1, 1\n", "E_YY").is_ok());
 }
+
+/// Left out, the plane across the spindle puts the tool tip on the table surface. At Z 0 the
+/// spindle nose is at the rotary centre. On an A/C trunnion (CAZ, the table 100 mm above A's
+/// line, a 30 mm tool) a zero-position error of A turns the table about A's line: the tip on that
+/// line (Z = 30, the tool length) does not move; on the table surface (Z = 130) it moves along Y
+/// by 100 mm times the angle.
+#[test]
+fn the_default_plane_is_the_table_surface_and_z_0_puts_the_spindle_nose_at_the_rotary_centre() {
+    let eps_deg: f64 = 0.001;
+    let trunnion = |at: Option<f64>| {
+        let mut region =
+            json!({ "plane": "XY", "uFrom": -1, "uTo": 1, "vFrom": -1, "vTo": 1, "steps": 3 });
+        if let Some(z) = at {
+            region["at"] = json!(z);
+        }
+        VolumetricInput::read(&json!({
+            "machine": { "kind": "table-table", "type": "CAZ",
+                         "geometry": { "tableHeight": 100, "toolLength": 30 },
+                         "errors": { "E_A0A": eps_deg } },
+            "region": region,
+        }))
+        .unwrap()
+    };
+    const CENTRE: usize = 4; // (u 0, v 0) of the 3 × 3 grid
+    let surface = map(&trunnion(None)).unwrap();
+    assert_eq!(surface.at, 130.0);
+    assert_eq!(surface.surface_at, 130.0);
+    assert_eq!(surface.tip_offset, 30.0);
+    assert_eq!(surface.table_height, 100.0);
+    assert_eq!(surface.spindle_axis, 'Z');
+    assert_eq!(surface.worst.position[2], 130.0);
+    let want = 100.0 * eps_deg.to_radians();
+    let got = surface.norm[CENTRE];
+    assert!((got - want).abs() < 1e-9 * want.max(1.0), "{got} vs {want}");
+    let on_axis = map(&trunnion(Some(30.0))).unwrap();
+    assert!(on_axis.norm[CENTRE] < 1e-12, "{}", on_axis.norm[CENTRE]);
+    // Z 0: the tip 30 mm below A's line.
+    let zero = map(&trunnion(Some(0.0))).unwrap();
+    assert!((zero.norm[CENTRE] - 30.0 * eps_deg.to_radians()).abs() < 1e-12);
+    // Given explicitly, the same as the default.
+    assert_eq!(map(&trunnion(Some(130.0))).unwrap().norm, surface.norm);
+    // A head: the tip is pivot length plus tool length below the head's axis.
+    let head = VolumetricInput::read(&json!({
+        "machine": { "kind": "head-table", "type": "CBZ",
+                     "geometry": { "tableHeight": 50, "pivotLength": 200, "toolLength": 80 } },
+        "region": { "plane": "XY", "steps": 2 },
+    }))
+    .unwrap();
+    assert_eq!(map(&head).unwrap().at, 330.0);
+    // Across another axis than the spindle's: at 0.
+    let xz = VolumetricInput::read(&json!({
+        "machine": { "kind": "table-table", "type": "CAZ" },
+        "region": { "plane": "XZ", "steps": 2 },
+    }))
+    .unwrap();
+    assert_eq!(map(&xz).unwrap().at, 0.0);
+}

@@ -18,6 +18,10 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
     // One error entered in the Machine section (µm): the report lists it, and no error left at 0.
     await page.fill('#m-errors-E_X0B', '20');
     await page.waitForFunction(() => /1 error entered/.test(document.getElementById('machine-summary')?.textContent ?? ''));
+    // One study's report per panel (the machine's report is tested in report.test.mjs).
+    await page.click('#report-menu summary');
+    await page.selectOption('#rp-scope', 'study');
+    await page.click('#report-menu summary');
     const tabs = await page.$$eval('[role=tab]', (ts) => ts.map((t) => t.dataset.panel));
     assert.ok(tabs.length >= 1);
     for (const tab of tabs) {
@@ -34,6 +38,7 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
 
       await page.emulateMedia({ media: 'print' });
       await page.waitForSelector(`#panel-${tab} .print-inputs`, { state: 'attached' });
+      await page.waitForSelector('body[data-report=ready]');
       await page.waitForFunction(
         (tab) => [...document.querySelectorAll(`#panel-${tab} .js-plotly-plot`)].every((g) => (g.querySelector('svg.main-svg')?.getBoundingClientRect().width ?? 0) <= 700),
         tab,
@@ -41,12 +46,14 @@ test('print report: inputs, key numbers and plots that fit the page, for every p
       // Two lists: the machine's, under its summary, then the panel's inputs.
       const [machineRows, rows] = await page.$$eval(`#panel-${tab} .print-inputs dl`, (ds) => ds.map((d) => [...d.querySelectorAll('dt')].map((t, i) => [t.textContent, d.querySelectorAll('dd')[i]?.textContent])));
       const heads = await page.$$eval(`#panel-${tab} .print-inputs h3`, (hs) => hs.map((h) => h.textContent));
+      // Each verdict's tolerance is printed beside its badge and in no list of inputs.
+      assert.ok(![...machineRows, ...rows].some(([label]) => /^Tolerance on /.test(label)), `${tab}: a verdict's tolerance among the inputs`);
       assert.match(heads[0], /^Machine: table-table, type CBZ/, `${tab}: ${heads}`);
       const errorRows = machineRows.filter(([label]) => /^E_/.test(label));
       assert.deepEqual(errorRows.map(([label, value]) => [label.split(':')[0], value]), [['E_X0B', '20 µm']], `${tab}: the errors entered`);
       assert.ok(machineRows.length >= 8, `${tab}: ${machineRows.length} machine rows`);
-      // The panel's inputs: its form and the tolerance at the top of its results (the verdict).
-      const controls = await page.$$eval(`#panel-${tab} :is(form.inputs, .verdict) :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
+      // The panel's inputs: its form (the verdict's tolerance is printed beside the verdict).
+      const controls = await page.$$eval(`#panel-${tab} form.inputs :is(input, select, textarea):not([id$=preset-menu])`, (d) => d.length);
       assert.ok(rows.length >= 3 && rows.length <= controls, `${tab}: ${rows.length} input rows printed for ${controls} controls`);
       // No value printed as a bare unit: an empty optional field says what it stands for.
       for (const [label, value] of [...machineRows, ...rows]) assert.ok(!/^\s*(mm|µm|°|%)?\s*$/.test(value ?? ''), `${tab}: ${label} printed as "${value}"`);

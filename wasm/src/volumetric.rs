@@ -62,6 +62,19 @@ pub struct VolumetricMapResult {
     pub first_order_gap: f64,
     /// Largest first-order `|Δ|` there, mm.
     pub first_order_max: f64,
+    /// The third axis's position used, mm: the input's, or when left out the tool tip on the
+    /// table surface (the plane across the spindle axis; else 0).
+    pub at: f64,
+    /// The spindle axis's position at which the tool tip is on the table surface, mm.
+    pub surface_at: f64,
+    /// The tool tip's distance from the machine origin (the rotary centre) at the linear axes'
+    /// 0, against the spindle direction, mm: the tool length (table-table), or the head's pivot
+    /// length plus the tool length.
+    pub tip_offset: f64,
+    /// The table surface from the machine origin along the spindle, mm.
+    pub table_height: f64,
+    /// The linear axis along the spindle at zero: "Z" for a vertical spindle.
+    pub spindle_axis: String,
     /// One plain sentence.
     pub summary: String,
 }
@@ -97,6 +110,11 @@ pub fn volumetric_map(
         budget_side: m.budget_side,
         first_order_gap: m.first_order_gap,
         first_order_max: m.first_order_max,
+        at: m.at,
+        surface_at: m.surface_at,
+        tip_offset: m.tip_offset,
+        table_height: m.table_height,
+        spindle_axis: m.spindle_axis.to_string(),
         summary,
     })
 }

@@ -16,7 +16,7 @@ import { DEFAULT_UNITS } from './ui/units';
 import { debounced, track } from './engine/idle';
 import { excerpt } from './ui/format';
 import { printReport, setupPrint } from './ui/print';
-import { reportMenu } from './ui/report';
+import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
 const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
@@ -170,10 +170,23 @@ async function show(id: string) {
     b.tabIndex = on ? 0 : -1;
   }
   for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
-  if (!mounted.has(panel.id)) {
-    const section = el('section', { id: `panel-${panel.id}`, class: 'panel', role: 'tabpanel', 'aria-labelledby': `tab-${panel.id}` });
-    document.getElementById('panels')!.append(section);
-    mounted.set(panel.id, section);
+  await mount(panel);
+  scheduleSave();
+}
+
+/** Mounts a panel once (hidden unless it is the open one); later calls wait for the first. */
+const mounting = new Map<string, Promise<void>>();
+function mount(panel: Panel): Promise<void> {
+  let p = mounting.get(panel.id);
+  if (p) return p;
+  const section = el('section', { id: `panel-${panel.id}`, class: 'panel', role: 'tabpanel', 'aria-labelledby': `tab-${panel.id}` });
+  section.hidden = panel.id !== active;
+  // In the tabs' order, whatever order they are mounted in.
+  const host = document.getElementById('panels')!;
+  const after = panels.slice(panels.indexOf(panel) + 1).map((q) => mounted.get(q.id)).find((s) => s);
+  host.insertBefore(section, after ?? null);
+  mounted.set(panel.id, section);
+  p = (async () => {
     try {
       if (!machine) throw new Error('the machine section is not ready');
       await panel.mount(section, machine);
@@ -184,8 +197,16 @@ async function show(id: string) {
       section.append(el('p', { class: 'warn' }, `This panel failed to load: ${String(err)}`));
       throw err;
     }
-  }
-  scheduleSave();
+  })();
+  mounting.set(panel.id, p);
+  return p;
+}
+
+/** Every study, each mounted and computing (for the machine's report). */
+async function allStudies(): Promise<Study[]> {
+  await Promise.allSettled(panels.map((p) => mount(p)));
+  return panels.filter((p) => mounted.get(p.id)?.dataset.ready === 'true')
+    .map((p) => ({ id: p.id, title: p.title, prefix: p.prefix, section: mounted.get(p.id)! }));
 }
 
 function tabs() {
@@ -253,7 +274,7 @@ function toolbar() {
     if (p) state.resetPanel(p.prefix);
     scheduleSave();
   }, 'Restore the default inputs of this panel');
-  const print = button('print', 'Print report', () => void printReport(activeSection), 'Inputs, key numbers and plots of this panel, for print or PDF');
+  const print = button('print', 'Print report', () => void printReport(printHooks), 'The machine’s report (every study’s verdict, inputs, key numbers and plots) or the open study’s (Report header), for print or PDF');
 
   bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), reportMenu(), print, linkOut);
 }
@@ -340,19 +361,20 @@ async function restore(s: state.PageState) {
   await saveNow();
 }
 
-/** The open panel's section and field prefix (for the printed report). */
-function activeSection() {
+/** The open study (for the printed report). */
+function activeStudy(): Study | null {
   const section = mounted.get(active);
   const panel = panels.find((p) => p.id === active);
-  return section && panel ? { section, prefix: panel.prefix } : null;
+  return section && panel ? { id: panel.id, title: panel.title, prefix: panel.prefix, section } : null;
 }
+const printHooks = { active: activeStudy, all: allStudies, scope: reportScope };
 
 async function start() {
   const machineRoot = document.getElementById('machine')!;
   machine = await mountMachine(machineRoot);
   machineRoot.dataset.ready = 'true';
   tabs();
-  setupPrint(activeSection);
+  setupPrint(printHooks);
   toolbar();
   document.getElementById('banner-close')?.addEventListener('click', () => banner(null));
   // On a phone the privacy note and the panels' lead paragraphs show two lines; a tap, all.

@@ -119,12 +119,11 @@ crate::inputs! {
             default: DefaultValue::Num(200.0),
             group: "Region",
         },
-        /// The third axis's position, mm.
-        pub at: f64 = "at" optional {
+        /// The third axis's position, mm; left out: the table surface ([`default_at`]).
+        pub at: Option<f64> = "at" optional {
             label: "Third axis at",
-            help: "Where the axis across the plane stands (Z for X–Y, Y for X–Z, X for Y–Z).",
+            help: "Where the axis across the plane stands (Z for X–Y, Y for X–Z, X for Y–Z), as the control shows it: at Z 0 the spindle nose (a head: its tilting axis) is at the rotary centre. Left empty: the tool tip on the table surface when that axis is the spindle's, else 0.",
             kind: schema::number(Quantity::Length, -MAX_POSITION, MAX_POSITION),
-            default: DefaultValue::Num(0.0),
             group: "Region",
         },
         /// Grid points per side.
@@ -252,6 +251,16 @@ pub struct VolumetricMap {
     pub first_order_gap: f64,
     /// Largest `|Δ₁|` on the budget points, mm.
     pub first_order_max: f64,
+    /// The third axis's position used (the input's, or [`default_at`]), mm.
+    pub at: f64,
+    /// The spindle axis's position at which the tool tip is on the table surface ([`surface_at`]).
+    pub surface_at: f64,
+    /// The tool tip's distance from the machine origin at the linear axes' 0 ([`tip_offset`]).
+    pub tip_offset: f64,
+    /// The table surface from the machine origin along the spindle, mm (`geometry.tableHeight`).
+    pub table_height: f64,
+    /// The linear axis along the spindle at zero ("Z" for a vertical spindle).
+    pub spindle_axis: char,
 }
 
 /// One error of the machine that is not zero, how to get its value at a pose, and where its
@@ -383,7 +392,8 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
     let u = linspace(r.u_from, r.u_to, nu);
     let v = linspace(r.v_from, r.v_to, nv);
     let mut q = model.positions(r.k, r.m);
-    q[iw] = r.at;
+    let at = r.at.unwrap_or_else(|| default_at(&input.machine, axes[2]));
+    q[iw] = at;
     let n = nu * nv;
     let mut dev = [
         Vec::with_capacity(n),
@@ -420,7 +430,7 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
     let mut wp = [0.0; 3];
     wp[axes[0].index()] = u[w % nu];
     wp[axes[1].index()] = v[w / nu];
-    wp[axes[2].index()] = r.at;
+    wp[axes[2].index()] = at;
     let worst = WorstPoint {
         position: wp,
         deviation: [dev[0][w], dev[1][w], dev[2][w]],
@@ -489,7 +499,41 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
         budget_side: [bu.len(), bv.len()],
         first_order_gap: gap,
         first_order_max: first_max,
+        at,
+        surface_at: surface_at(&input.machine),
+        tip_offset: tip_offset(&input.machine),
+        table_height: input.machine.geometry.table_height,
+        spindle_axis: input.machine.home().letter(),
     })
+}
+
+/// Where the plane stands when `region.at` is left out: with the tool tip on the table surface
+/// when the axis across the plane is the spindle's ([`surface_at`]), else at 0.
+pub fn default_at(machine: &Machine, across: Axis) -> f64 {
+    if machine.home() == across {
+        surface_at(machine)
+    } else {
+        0.0
+    }
+}
+
+/// How far the tool tip is from the machine origin (the rotary centre) with the linear axes at
+/// 0, against the spindle direction, mm: the tool length (a table-table machine: the spindle
+/// nose is at the origin), or the head's pivot length plus the tool length (the head's M axis is
+/// at the origin).
+pub fn tip_offset(machine: &Machine) -> f64 {
+    let g = &machine.geometry;
+    match machine.kind {
+        MachineKind::TableTable => g.tool_length,
+        MachineKind::HeadTable | MachineKind::HeadHead => g.pivot_length + g.tool_length,
+    }
+}
+
+/// The spindle axis's position at which the tool tip is on the table surface (its centre at the
+/// other axes' 0), mm: the table surface is `tableHeight` from the machine origin along the
+/// spindle, the tip [`tip_offset`] from it the other way.
+pub fn surface_at(machine: &Machine) -> f64 {
+    machine.geometry.table_height + tip_offset(machine)
 }
 
 /// Adds the pose to an error from the chain (a table that does not reach it).

@@ -14,7 +14,7 @@ import { onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef } from '../u
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText, type Source } from '../ui/identify';
 import { download } from '../ui/export';
-import { errorWords, lowerFirst, rankParts, judge, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, rankParts, judge, unseenOf, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the small-length unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -304,6 +304,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!lastTest || !fresh) return;
     const { r } = lastTest;
     const n = r.errorNames.length;
+    // The errors entered that no zone height changes with (the engine's sensitivities).
+    const unseen = unseenOf('the cubic test', lastTest.input.machine ?? {}, schema, (name) => !r.visibility.invisible.includes(name));
     const zones = judged(r);
     const worst = zones.reduce((a, z) => (Math.abs(z.height) > Math.abs(a.height) ? z : a), zones[0]);
     const zi = r.zones.indexOf(worst);
@@ -312,10 +314,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const status = judge(worst.height, tol);
     const t = show('errLength', tol);
     if (!anyError && Math.abs(worst.height) < ROUND_OFF) {
-      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, sentence: `No errors entered: every zone at 0 (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, unseen, sentence: `No errors entered: every zone at 0 (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });
     }
     if (Math.abs(worst.height) < ROUND_OFF) {
-      return verdict.show({ status: 'pass', worst: 0, tolerance: tol,
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, unseen,
         sentence: `Every zone at 0: the errors entered change no zone’s height (${r.visibility.invisible.join(', ') || 'they cancel'}), within the ${t} tolerance.` });
     }
     const ranked = rankParts(parts, (v) => show('errLength', v), words);
@@ -323,7 +325,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const side = worst.height < 0 ? 'low' : 'high';
     const because = top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name}, the ${lowerFirst(top.label ?? top.name)}` : '';
     verdict.show({
-      status, worst: Math.abs(worst.height), tolerance: tol,
+      status, worst: Math.abs(worst.height), tolerance: tol, unseen,
       sentence: `Worst zone ${worst.name} is ${show('errLength', Math.abs(worst.height))} ${side}, ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance${because}.`,
       contributors: ranked,
       contributorsOf: `each error alone on zone ${worst.name}, as a share of the sum of their sizes`,

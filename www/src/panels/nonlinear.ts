@@ -11,7 +11,7 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
-import { judge, verdictBox } from '../ui/verdict';
+import { judge, unseenOf, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -254,10 +254,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const sp = r.split;
     if (!sp) return verdict.none('No verdict: no tolerance was given.');
     const head = `Nonlinear error ${show('errLength', r.max)} at L = ${fmt.num(r.length)} mm`;
+    // δ is the interpolation's own: the engine computes it from the type and L alone (the
+    // Node test nonlinear_errors proves the machine's errors do not change it).
+    const m = machine.current();
+    const unseen = m ? unseenOf('the nonlinear error', m, schema, () => false, 'it comes from how the control interpolates the rotary axes, whatever the machine’s errors') : undefined;
     const tol = show('errLength', sp.tolerance);
     if (judge(r.max, sp.tolerance) === 'pass') {
       verdict.show({
-        status: 'pass', worst: r.max, tolerance: sp.tolerance,
+        status: 'pass', worst: r.max, tolerance: sp.tolerance, unseen,
         sentence: r.max < 1e-12
           ? `No nonlinear error: the tool turns in the plane of its start and end directions (within the ${tol} tolerance).`
           : `${head}: within the ${tol} tolerance as one move.`,
@@ -266,7 +270,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     }
     const steps = (n: number) => stepWords(sp.stepK, sp.stepM, ctx, n);
     verdict.show({
-      status: 'fail', worst: r.max, tolerance: sp.tolerance,
+      status: 'fail', worst: r.max, tolerance: sp.tolerance, unseen,
       sentence: sp.steps === null
         ? `${head}, above the ${tol} tolerance: even ${sp.maxSteps} equal steps leave ${show('errLength', sp.max)}; shorten the move or choose another path.`
         : `${head}, above the ${tol} tolerance: split the move into ${sp.steps} equal steps ${steps(sp.steps)} to stay under it.`,

@@ -15,7 +15,7 @@ import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, identificationView, sourceText as sourceText_, type Source } from '../ui/identify';
 import { extent } from '../ui/arrays';
-import { errorWords, lowerFirst, rankParts, judge, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, rankParts, judge, unseenOf, verdictBox } from '../ui/verdict';
 
 export const sshapePanel: Panel = {
   id: 'sshape',
@@ -140,6 +140,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const d = lastDefects;
     if (!d || !fresh) return;
     const n = d.names.length;
+    // The errors entered that move no measured point (the engine's sensitivities, eq 14).
+    const m = machine.current();
+    const sees = (name: string) => {
+      const j = d.names.indexOf(name);
+      if (j < 0) return true;
+      for (let i = 0; i * n + j < d.sensitivity.length; i++) if (Math.abs(d.sensitivity[i * n + j]) > 1e-9) return true;
+      return false;
+    };
+    const unseen = m ? unseenOf('the S-shape part', m, schema, sees) : undefined;
     let k = 0;
     for (let i = 1; i < d.total.length; i++) if (Math.abs(d.total[i]) > Math.abs(d.total[k])) k = i;
     const worst = Math.abs(d.total[k]);
@@ -148,7 +157,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const notes = overcut === null ? [] : [`Apart from the machine, flank milling this non-developable surface with a Ø20 mm tool overcuts it by up to ${show('errLength', overcut)} (the part’s geometry, shown below).`];
     if (worst < 1e-9) {
       const any = Array.from(d.contributions).some((v) => v !== 0) || Array.from(d.radius).some((v) => v !== 0);
-      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes,
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes, unseen,
         sentence: any ? `The errors entered move no measured point off the surface (within the ${t} tolerance).` : `No errors entered: every measured point on the nominal surface (within the ${t} tolerance). Enter the machine’s errors above, or choose a preset.` });
     }
     const parts: [string, number][] = d.names.map((name, j) => [name, d.contributions[n * k + j]]);
@@ -160,7 +169,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const status = judge(worst, tol);
     const side = d.total[k] > 0 ? 'outside' : 'inside';
     verdict.show({
-      status, worst, tolerance: tol, notes,
+      status, worst, tolerance: tol, notes, unseen,
       sentence: `Worst point ${p.curve.toUpperCase()} ${p.number} (surface ${p.surface}) is ${show('errLength', worst)} ${side} the nominal surface, ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
         (top ? `; ${fmt.percent(top.share, 2)} of it comes from ${top.name === 'tool radius' ? 'the tool radius' : `${top.name}, the ${lowerFirst(top.label ?? top.name)}`}.` : '.'),
       contributors: ranked,

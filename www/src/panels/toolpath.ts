@@ -18,7 +18,7 @@ import { blockedBy, invalidFields } from '../ui/status';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
-import { judge, verdictBox } from '../ui/verdict';
+import { judge, unseenOf, verdictBox } from '../ui/verdict';
 
 /** A length from the engine (mm) in the unit shown now. */
 const D = (mm: number) => toDisplay('errLength', mm);
@@ -536,26 +536,29 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const s = a.summary;
     const tol = show('errLength', a.tolerance);
     const on = `${name} on ${t}`;
+    // The engine analyses the path on the machine without its errors (the control's model).
+    const m = machine.current();
+    const unseen = m ? unseenOf('the toolpath comparison', m, schema, () => false, 'it follows the path with the control’s model of the machine, whatever the machine’s errors') : undefined;
     const notes = [
       ...(s.flips ? [`${s.flips} flip${s.flips > 1 ? 's' : ''} of the rotary axes while cutting (a swing round, marked on the plot): the tool stops and turns there.`] : []),
       ...(s.rapids.count ? [`${plural(s.rapids.count, 'rapid positioning move')} not cutting, not judged: listed apart below.`] : []),
       ...(s.commanded ? ['This machine follows the program\'s own rotary commands (its branch and its turns).'] : []),
     ];
     if (s.unreachable) {
-      return verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
+      return verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, unseen, notes,
         sentence: `${on}: this configuration cannot follow the path from point ${s.unreachable.point + 1} (line ${parsed.lines[s.unreachable.point]} of the file) on: it is ${s.unreachable.message}.` });
     }
     if (!s.segments) return verdict.none(`No verdict: ${name} has no cutting moves${s.rapids.count ? ` (${plural(s.rapids.count, 'rapid')} only)` : ''}.`);
     if (still(s)) {
-      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, notes: notes.filter((n) => !n.startsWith('This machine follows')),
+      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, unseen, notes: notes.filter((n) => !n.startsWith('This machine follows')),
         sentence: `${on}: the cutting moves do not turn the rotary axes, so the control makes no nonlinear error on them (δ = 0 on every configuration); the machine's other errors are not part of this study.` });
     }
     const worst = `${show('errLength', s.max)} (cutting segment ${s.maxSegment + 1}, line ${parsed.lines[s.maxSegment + 1]} of the file)`;
     if (judge(s.max, a.tolerance) === 'pass') {
-      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, notes,
+      return verdict.show({ source: name, status: 'pass', worst: s.max, tolerance: a.tolerance, unseen, notes,
         sentence: `${on}: largest nonlinear error ${worst}, every one of the ${count(s.segments)} cutting segments within the ${tol} tolerance.` });
     }
-    verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, notes,
+    verdict.show({ source: name, status: 'fail', worst: s.max, tolerance: a.tolerance, unseen, notes,
       sentence: `${on}: largest nonlinear error ${worst}, above the ${tol} tolerance; ${s.above} of ${count(s.segments)} cutting segments are above it. ` +
         'Insert points with the button below to keep every cutting segment within it.' });
   };

@@ -15,7 +15,7 @@ import * as fmt from '../ui/format';
 import { fromDisplay, onUnitsChange, ROUND_OFF, show, titled, toDisplay, unitDef, type Quantity } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
 import { extent } from '../ui/arrays';
-import { errorWords, lowerFirst, judge, verdictBox } from '../ui/verdict';
+import { errorWords, lowerFirst, judge, unseenOf, verdictBox } from '../ui/verdict';
 
 export const volumetricPanel: Panel = {
   id: 'volumetric',
@@ -148,15 +148,18 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const { r } = last;
     const w = r.worst;
     const t = show('errLength', tol);
+    // The errors entered that move the tool tip nowhere on this plane (the engine's budget leaves
+    // out those whose first-order part is zero at every point).
+    const unseen = unseenOf('the volumetric map on this plane', last.input.machine ?? {}, schema, (name) => r.budget.some((b) => b.name === name && b.max > 0));
     if (w.norm === 0) {
-      return verdict.show({ status: 'pass', worst: 0, tolerance: tol,
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, unseen,
         sentence: r.budget.length ? `The errors entered do not move the tool tip on this plane (within the ${t} tolerance).` : `No errors entered: the tool tip is where the control puts it everywhere on the plane (within the ${t} tolerance).` });
     }
     const status = judge(w.norm, tol);
     const top = r.budget.find((b) => b.share > 0);
     const at = `X ${fmt.num(w.position[0])}, Y ${fmt.num(w.position[1])}, Z ${fmt.num(w.position[2])} mm`;
     verdict.show({
-      status, worst: w.norm, tolerance: tol,
+      status, worst: w.norm, tolerance: tol, unseen,
       sentence: `Worst point ${show('errLength', w.norm)} off (at ${at}), ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
         (top ? `; the largest share, ${fmt.percent(top.share, 2)}, is ${top.name}, the ${lowerFirst(words.get(top.name)?.label ?? top.label)}.` : '.'),
       contributors: r.budget.filter((b) => b.share > 0).slice(0, 8).map((b) => ({
@@ -233,6 +236,22 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const row of motionRows.values()) showFunction(row);
   };
 
+  /** Where the spindle axis's 0 is, in words and mm from the rotary axes, and where the map is. */
+  const zeroText = (r: VolumetricMapResult) => {
+    const ctx = machine.context();
+    const kind = machine.current()?.kind ?? 'table-table';
+    const sp = r.spindleAxis;
+    const origin = kind === 'head-head' ? 'the machine origin (where the workpiece is set)' : `the rotary centre, on the ${kind === 'table-table' ? ctx.m : ctx.k} axis`;
+    const atZero = kind === 'table-table' ? 'the spindle nose' : `the head’s ${ctx.m} axis`;
+    const tip = kind === 'table-table' ? 'the tool length' : 'the pivot length plus the tool length';
+    const th = r.tableHeight;
+    const [, , wa] = r.axes;
+    const onSurface = wa === sp && Math.abs(r.at - r.surfaceAt) < 1e-9;
+    return `${sp} 0 puts ${atZero} at ${origin}; the tool tip is then ${fmt.num(r.tipOffset)} mm from it against the spindle (${tip}). ` +
+      `The table surface is ${fmt.num(Math.abs(th))} mm ${th >= 0 ? 'above' : 'below'} ${kind === 'head-head' ? 'the machine origin' : 'the rotary centre'}: the tool tip touches it at ${sp} ${fmt.num(r.surfaceAt)} mm. ` +
+      `This map: ${wa} ${fmt.num(r.at)} mm${onSurface ? ', on the table surface' : ''}.`;
+  };
+
   const showMap = (r: VolumetricMapResult) => {
     const [ua, va, wa] = r.axes;
     const nu = r.u.length;
@@ -247,12 +266,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const items: [string, string, string][] = [
       ['vm-worst', 'Worst point', `|Δ| = ${show('errLength', w.norm)} at X ${fmt.num(w.position[0])}, Y ${fmt.num(w.position[1])}, Z ${fmt.num(w.position[2])} mm`],
       ['vm-worst-dev', 'There', `Δx ${show('errLength', w.deviation[0])}, Δy ${show('errLength', w.deviation[1])}, Δz ${show('errLength', w.deviation[2])}; tool tilted by ${show('errAngle', w.tilt)}`],
+      ['vm-zero', 'Where the plane is', zeroText(r)],
       ['vm-rms', 'rms of |Δ| over the plane', show('errLength', r.rms)],
       ['vm-top', 'Largest contributors', top.length ? top.map((b) => `${b.name} (${b.label}) ${fmt.percent(b.share, 2)}`).join(', ') : 'none: no error entered'],
       ['vm-functions', 'Error motions as tables or polynomials', functionsText()],
       ['vm-linear', 'Exact vs first order', `the first-order (linear) deviation differs from the exact one by at most ${show('errLength', r.firstOrderGap)}, where the first-order |Δ| reaches ${show('errLength', r.firstOrderMax)} (${r.budgetSide[0]} × ${r.budgetSide[1]} points)`],
     ];
     summary.replaceChildren();
+    const atInput = form.querySelector<HTMLInputElement>('#vm-region-at');
+    if (atInput) atInput.placeholder = r.axes[2] === r.spindleAxis ? `empty: the table surface, ${r.spindleAxis} ${fmt.num(r.surfaceAt)}` : 'empty: 0, the rotary centre';
     const tips: Record<string, string> = {
       'vm-worst': '|Δ|: the distance of the tool tip from where the control believes it is (the volumetric error; Tan & Lim’s ΔX, ΔY, ΔZ combined).',
       'vm-worst-dev': 'Δx, Δy, Δz: the tool tip’s deviation along X, Y and Z (workpiece coordinates); the tilt: the angle between the actual and the commanded tool axis.',
@@ -525,7 +547,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   exportButton.addEventListener('click', () => {
     if (!last) return;
-    download('volumetric-map.csv', mapCsv(last.r, last.input), 'text/csv');
+    download('volumetric-map.csv', mapCsv(last.r), 'text/csv');
   });
   component.select.addEventListener('change', showComponent);
   form.addEventListener('input', (e) => {
@@ -552,11 +574,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 }
 
 /** The map as CSV: one row per point, units in the header (the units shown now). */
-export function mapCsv(r: VolumetricMapResult, input: VolumetricInput): string {
+export function mapCsv(r: VolumetricMapResult): string {
   const [ua, va, wa] = r.axes;
   const len = unitDef('errLength');
   const ang = unitDef('errAngle');
-  const at = Number(input.region?.at ?? 0);
+  const at = r.at;
   const lines = [
     `# Volumetric error map over the ${ua}-${va} plane at ${wa} = ${at} mm; Δ = actual minus commanded tool tip in workpiece coordinates; tilt = angle between actual and commanded tool axis`,
     [`u: ${ua} (mm)`, `v: ${va} (mm)`, 'X (mm)', 'Y (mm)', 'Z (mm)', `dx (${len.label})`, `dy (${len.label})`, `dz (${len.label})`, `|Δ| (${len.label})`, `tilt (${ang.label})`].join(','),

@@ -6,11 +6,12 @@
 // The numbers come from the engine's results; the panel only compares them with the tolerance,
 // ranks and formats them. `data-verdict` is "pass", "fail" or "none" (nothing to judge yet,
 // inputs invalid, a computation on its way): "none" never shows the badge of earlier inputs.
-import type { Schema } from '@engine';
+import type { Machine, Schema } from '@engine';
 import { EngineError } from '../engine/client';
 import { el, numberField } from './fields';
 import * as fmt from './format';
 import { blockedBy, fieldLinks, invalidFields } from './status';
+import { show as showValue } from './units';
 
 export type VerdictStatus = 'pass' | 'fail' | 'none';
 
@@ -44,6 +45,20 @@ export interface Judgement {
   notes?: string[];
   /** What was judged, when not the inputs on screen: the file's name ("impeller.apt"). */
   source?: string;
+  /** The errors entered that this test cannot see (its result does not change with them): null
+   *  when it sees every one entered; left out when the study does not say. */
+  unseen?: Unseen | null;
+}
+
+/** Errors entered that a study cannot see: which study, and each error with its value. */
+export interface Unseen {
+  /** The study as the subject of a sentence ("the cubic test"). */
+  by: string;
+  /** Each unseen error entered: its ISO name and its value as entered, formatted. */
+  errors: { name: string; value: string }[];
+  /** Why, when it is not a property of the test's positions ("its result is computed without
+   *  the machine's errors"). */
+  why?: string;
 }
 
 export interface VerdictOptions {
@@ -94,7 +109,9 @@ export function verdictBox(o: VerdictOptions): Verdict {
   const head = el('div', { class: 'verdict-head' });
   const badge = el('span', { class: 'verdict-badge', id: `${o.prefix}-verdict-badge` }, BADGE.none);
   const sentence = el('p', { class: 'verdict-sentence', id: `${o.prefix}-verdict-sentence`, 'aria-live': 'polite' }, 'Computing…');
-  head.append(badge, sentence);
+  // The tolerance as printed beside the badge (the field itself is an input, not printed).
+  const printedTolerance = el('span', { class: 'verdict-printed-tolerance', id: `${o.prefix}-verdict-printed-tolerance` });
+  head.append(badge, printedTolerance, sentence);
   root.dataset.state = 'computing';
   badge.textContent = STATE_BADGE.computing ?? '';
   /** What the verdict was computed from and when ("Computed 14:02:31 from impeller.apt"). */
@@ -142,6 +159,9 @@ export function verdictBox(o: VerdictOptions): Verdict {
     contrib.replaceChildren();
     delete root.dataset.worst;
     delete root.dataset.tolerance;
+    delete root.dataset.unseen;
+    delete root.dataset.sees;
+    printedTolerance.textContent = '';
   };
   const none = (message: string, state: State) => {
     set('none', state);
@@ -165,7 +185,15 @@ export function verdictBox(o: VerdictOptions): Verdict {
       source.textContent = `Computed at ${time} from ${j.source ?? 'the inputs shown'}.`;
       root.dataset.worst = String(j.worst);
       root.dataset.tolerance = String(j.tolerance);
+      const label = fieldRoot.querySelector('label')?.textContent?.trim() || 'Tolerance';
+      printedTolerance.textContent = `${label}: ${showValue('errLength', j.tolerance)}`;
       notes.replaceChildren(...(j.notes ?? []).map((n) => el('li', {}, n)));
+      if (j.unseen === undefined) delete root.dataset.sees;
+      else root.dataset.sees = j.unseen ? 'some' : 'all';
+      if (j.unseen && j.unseen.errors.length) {
+        root.dataset.unseen = j.unseen.errors.map((e) => e.name).join(' ');
+        notes.append(el('li', { class: 'verdict-unseen' }, unseenSentence(j.unseen)));
+      } else delete root.dataset.unseen;
       contrib.replaceChildren();
       const list = (j.contributors ?? []).filter((c) => c.share > 0);
       if (list.length) {
@@ -256,4 +284,36 @@ export function errorWords(schema: Schema): Map<string, { label: string; title: 
 /** "Squareness of Y to X" → "squareness of Y to X" (after "the"); "X yaw" stays. */
 export function lowerFirst(text: string): string {
   return /^[A-Z][a-z]/.test(text) ? text[0].toLowerCase() + text.slice(1) : text;
+}
+
+/** "a", "a and b", "a, b and c". */
+export function listWords(items: string[]): string {
+  return items.length < 2 ? (items[0] ?? '') : `${items.slice(0, -1).join(', ')} and ${items[items.length - 1]}`;
+}
+
+/** "The cubic test cannot see E_X0C and E_Y0C (entered: 12 µm and −8 µm)." */
+export function unseenSentence(u: Unseen): string {
+  const by = u.by[0].toUpperCase() + u.by.slice(1);
+  return `${by} cannot see ${listWords(u.errors.map((e) => e.name))} (entered: ${listWords(u.errors.map((e) => e.value))})${u.why ? `: ${u.why}` : ''}.`;
+}
+
+/** The errors and error motions entered on the machine, each with its value as shown (a motion
+ *  given as a table or a polynomial: "a table", "a polynomial"). */
+export function enteredErrors(machine: Machine, schema: Schema): { name: string; value: string }[] {
+  const quantity = new Map([...schema.errors, ...schema.motions].map((d) => [d.name, d.quantity]));
+  const shown = (name: string, v: number) => showValue(quantity.get(name) === 'smallAngle' ? 'errAngle' : 'errLength', v).replace(/^-/, '−');
+  const out: { name: string; value: string }[] = [];
+  for (const [name, v] of Object.entries(machine.errors ?? {})) if (typeof v === 'number' && v !== 0) out.push({ name, value: shown(name, v) });
+  for (const [name, f] of Object.entries(machine.motions ?? {})) {
+    if (typeof f === 'number') {
+      if (f !== 0) out.push({ name, value: shown(name, f) });
+    } else if (f && typeof f === 'object') out.push({ name, value: 'poly' in f ? 'a polynomial' : 'a table' });
+  }
+  return out;
+}
+
+/** Of the errors entered, those `sees` says the study cannot see; null when it sees them all. */
+export function unseenOf(by: string, machine: Machine, schema: Schema, sees: (name: string) => boolean, why?: string): Unseen | null {
+  const errors = enteredErrors(machine, schema).filter((e) => !sees(e.name));
+  return errors.length ? { by, errors, ...(why ? { why } : {}) } : null;
 }
