@@ -12,6 +12,7 @@
 #   - wasm-opt comes from the npm package binaryen (node_modules/.bin, on PATH in npm scripts):
 #     Debian's binaryen 108 corrupts the externref table that wasm-bindgen 0.2.130 emits.
 #   - chromium, with --test                    (Debian package chromium)
+#   - gs, with --test                          (Debian package ghostscript: the report test reads its PDF)
 #   - the npm packages of package-lock.json   (npm ci)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -54,9 +55,10 @@ if ! command -v wasm-pack >/dev/null; then
   cargo_install wasm-pack
 fi
 
-# 4. Debian packages: for the tests, chromium.
+# 4. Debian packages: for the tests, chromium and Ghostscript.
 apt_pkgs=()
 if [ "$want_browser" = 1 ] && [ ! -x /usr/bin/chromium ]; then apt_pkgs+=(chromium); fi
+if [ "$want_browser" = 1 ] && ! command -v gs >/dev/null; then apt_pkgs+=(ghostscript); fi
 if [ "${#apt_pkgs[@]}" -gt 0 ]; then
   sudo_cmd=()
   [ "$(id -u)" = 0 ] || sudo_cmd=(sudo)
