@@ -9,6 +9,7 @@ import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
 import { el } from './ui/fields';
+import { encodingNote, FileRefused, readTextFile } from './ui/files';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
@@ -312,12 +313,14 @@ function casesMenu(): HTMLElement {
     const file = imp.files?.[0];
     if (!file) return;
     try {
-      const incoming = state.parseCases(await file.text());
+      const read = await readTextFile(file, 'a file of saved cases (JSON)');
+      const incoming = state.parseCases(read.text);
       state.storeCases({ ...state.loadCases(), ...incoming });
-      msg.textContent = `Imported ${Object.keys(incoming).length} case(s).`;
+      msg.textContent = `Imported ${Object.keys(incoming).length} case(s)${encodingNote(read)}.`;
       render();
     } catch (e) {
-      msg.textContent = `Could not import ${file.name}: the file ${e instanceof Error ? e.message : String(e)}.`;
+      if (e instanceof FileRefused) msg.textContent = e.message;
+      else msg.textContent = `Could not import ${file.name}: the file ${e instanceof Error ? e.message : String(e)}.`;
     }
     imp.value = '';
   });
