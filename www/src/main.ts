@@ -10,6 +10,7 @@ import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
 import { el } from './ui/fields';
 import { encodingNote, FileRefused, readTextFile } from './ui/files';
+import { keepOnScreen } from './ui/popup';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
@@ -169,6 +170,7 @@ async function show(id: string) {
     const on = b.dataset.panel === panel.id;
     b.setAttribute('aria-selected', String(on));
     b.tabIndex = on ? 0 : -1;
+    if (on) revealTab(tabs, b);
   }
   for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
   if (!mounted.has(panel.id)) {
@@ -187,6 +189,16 @@ async function show(id: string) {
     }
   }
   scheduleSave();
+}
+
+/** Scrolls the tab strip (only it, never the page) so that `tab` is wholly in view. */
+function revealTab(bar: HTMLElement, tab: HTMLElement) {
+  const b = bar.getBoundingClientRect();
+  const t = tab.getBoundingClientRect();
+  // The strip's own padding kept beside the tab.
+  const pad = parseFloat(getComputedStyle(bar).paddingLeft) || 0;
+  if (t.left < b.left + pad) bar.scrollLeft -= b.left + pad - t.left;
+  else if (t.right > b.right - pad) bar.scrollLeft += t.right - (b.right - pad);
 }
 
 function tabs() {
@@ -257,6 +269,7 @@ function toolbar() {
   const print = button('print', 'Print report', () => void printReport(activeSection), 'Inputs, key numbers and plots of this panel, for print or PDF');
 
   bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), reportMenu(), print, linkOut);
+  for (const d of bar.querySelectorAll('details')) keepOnScreen(d);
 }
 
 function casesMenu(): HTMLElement {
