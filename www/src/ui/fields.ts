@@ -275,7 +275,7 @@ export function listField(id: string, labelText: string, value: number[], min: n
   shell.finish(input);
   const setError = (m: string | null) => shell.setError(input, m);
   const read = (): number[] | null => {
-    const parts = input.value.split(/[,;\s]+/).filter((p) => p !== '');
+    const parts = asciiText(input.value).split(/[,;\s]+/).filter((p) => p !== '');
     if (parts.length < minLen) return setError(minLen === 1 ? 'Enter at least one value.' : `Enter ${minLen} values.`), null;
     if (parts.length > maxLen) return setError(`At most ${maxLen} values.`), null;
     const out: number[] = [];
