@@ -107,7 +107,7 @@ test('an invalid field greys every plot it feeds with a label; fixing it redraws
       assert.ok(before.length >= 1, `${tab}: drawn plots`);
       for (const p of before) assert.ok(!p.stale && p.label === null, `${tab}: ${p.id} current`);
       // The panel's first number field: a text that is not a number.
-      const id = await page.$eval(`#panel-${tab} form.inputs input[inputmode=decimal]:not([hidden])`, (e) => e.id);
+      const id = await page.$eval(`#panel-${tab} form.inputs input[data-number]:not([hidden])`, (e) => e.id);
       const original = await page.inputValue(`#${id}`);
       const counters = await waitIdle(page);
       await page.fill(`#${id}`, 'x');

@@ -41,7 +41,7 @@ async function settle(page, scope) {
 const message = (page, id) => page.$eval(`#${id}`, (e) => e.closest('.field')?.querySelector('.field-msg')?.textContent ?? '');
 /** The numeric fields shown in `scope`. */
 const numericFields = (page, scope) =>
-  page.$$eval(`${scope} input[inputmode=decimal]`, (es) => es.filter((e) => !e.closest('[hidden]')).map((e) => e.id));
+  page.$$eval(`${scope} input[data-number]`, (es) => es.filter((e) => !e.closest('[hidden]')).map((e) => e.id));
 
 /** Bad texts in a field: each gives its message; the original value clears it. */
 async function check(page, id) {

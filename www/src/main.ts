@@ -9,6 +9,8 @@ import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
 import { el } from './ui/fields';
+import { encodingNote, FileRefused, readTextFile } from './ui/files';
+import { keepOnScreen } from './ui/popup';
 import { download } from './ui/export';
 import { ANGLE_UNITS, LENGTH_UNITS, onUnitsChange, setUnits, units, type AngleUnit, type LengthUnit } from './ui/units';
 import * as state from './ui/state';
@@ -168,6 +170,7 @@ async function show(id: string) {
     const on = b.dataset.panel === panel.id;
     b.setAttribute('aria-selected', String(on));
     b.tabIndex = on ? 0 : -1;
+    if (on) revealTab(tabs, b);
   }
   for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
   await mount(panel);
@@ -207,6 +210,16 @@ async function allStudies(): Promise<Study[]> {
   await Promise.allSettled(panels.map((p) => mount(p)));
   return panels.filter((p) => mounted.get(p.id)?.dataset.ready === 'true')
     .map((p) => ({ id: p.id, title: p.title, prefix: p.prefix, section: mounted.get(p.id)! }));
+}
+
+/** Scrolls the tab strip (only it, never the page) so that `tab` is wholly in view. */
+function revealTab(bar: HTMLElement, tab: HTMLElement) {
+  const b = bar.getBoundingClientRect();
+  const t = tab.getBoundingClientRect();
+  // The strip's own padding kept beside the tab.
+  const pad = parseFloat(getComputedStyle(bar).paddingLeft) || 0;
+  if (t.left < b.left + pad) bar.scrollLeft -= b.left + pad - t.left;
+  else if (t.right > b.right - pad) bar.scrollLeft += t.right - (b.right - pad);
 }
 
 function tabs() {
@@ -277,6 +290,7 @@ function toolbar() {
   const print = button('print', 'Print report', () => void printReport(printHooks), 'The machine’s report (every study’s verdict, inputs, key numbers and plots) or the open study’s (Report header), for print or PDF');
 
   bar.append(len.wrap, ang.wrap, copy, reset, casesMenu(), reportMenu(), print, linkOut);
+  for (const d of bar.querySelectorAll('details')) keepOnScreen(d);
 }
 
 function casesMenu(): HTMLElement {
@@ -333,12 +347,14 @@ function casesMenu(): HTMLElement {
     const file = imp.files?.[0];
     if (!file) return;
     try {
-      const incoming = state.parseCases(await file.text());
+      const read = await readTextFile(file, 'a file of saved cases (JSON)');
+      const incoming = state.parseCases(read.text);
       state.storeCases({ ...state.loadCases(), ...incoming });
-      msg.textContent = `Imported ${Object.keys(incoming).length} case(s).`;
+      msg.textContent = `Imported ${Object.keys(incoming).length} case(s)${encodingNote(read)}.`;
       render();
     } catch (e) {
-      msg.textContent = `Could not import ${file.name}: the file ${e instanceof Error ? e.message : String(e)}.`;
+      if (e instanceof FileRefused) msg.textContent = e.message;
+      else msg.textContent = `Could not import ${file.name}: the file ${e instanceof Error ? e.message : String(e)}.`;
     }
     imp.value = '';
   });

@@ -6,6 +6,7 @@ import type { CubicDesignResult, CubicIdentifyResult, CubicInput, CubicLayoutRep
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields, numberField } from '../ui/fields';
+import { encodingNote, FileRefused, readTextFile } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -59,7 +60,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   fileLabel.append(file);
   const fileRow = el('div', { class: 'file-row' });
   fileRow.append(fileLabel);
-  inputs.groups.get('Identification')?.querySelector('legend')?.after(fileRow);
+  const fileMsg = el('p', { class: 'field-hint', id: 'cb-file-msg', 'aria-live': 'polite' });
+  inputs.groups.get('Identification')?.querySelector('legend')?.after(fileRow, fileMsg);
   const csvArea = form.querySelector<HTMLTextAreaElement>('#cb-csv');
   if (csvArea) csvArea.placeholder = 'zone,height_um,slope_x,slope_y\nI,0,,\nII-1,-5.4,0.00002,0\n…';
 
@@ -454,11 +456,23 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!f) return;
     file.value = '';
     if (f.size > 1_000_000) {
+      fileMsg.textContent = `${f.name} is larger than 1 MB: not a file of measured zones.`;
       setAlert(`${f.name} is larger than 1 MB: not a file of measured zones. The previous results were removed.`);
       clearIdentification(el('p', { class: 'warn' }, `No identification: ${f.name} is not a file of measured zones.`));
       return;
     }
-    const text = await f.text();
+    let read;
+    try {
+      read = await readTextFile(f);
+    } catch (e) {
+      if (!(e instanceof FileRefused)) throw e;
+      fileMsg.textContent = e.message;
+      setAlert(`${e.message} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${e.message}`));
+      return;
+    }
+    const { text } = read;
+    fileMsg.textContent = `Read ${f.name}${encodingNote(read)}.`;
     source = { name: f.name, at: new Date() };
     sourceCsv = text;
     clearIdentification(el('p', { class: 'field-hint' }, `Identifying ${f.name}…`));

@@ -7,6 +7,7 @@ import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult } from
 import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
+import { encodingNote, FileRefused, readTextFile } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -369,9 +370,23 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       fileMsg.textContent = `${f.name} is larger than 5 MB: not a trace file.`;
       return;
     }
-    fields.get('rv-csv')?.setText(await f.text());
-    fileMsg.textContent = `Loaded ${f.name}.`;
     file.value = '';
+    let read;
+    try {
+      read = await readTextFile(f);
+    } catch (e) {
+      if (!(e instanceof FileRefused)) throw e;
+      // The fit shown is of another trace: greyed, and no longer in the verdict.
+      fileMsg.textContent = e.message;
+      runFit.cancel();
+      lastFit = null;
+      if (fresh) judgeSim();
+      for (const p of [fitPlot, residualPlot]) stale(p.p, true, `${e.message} Greyed: the fit of the trace before it.`);
+      stale(fitBox, true, e.message);
+      return;
+    }
+    fields.get('rv-csv')?.setText(read.text);
+    fileMsg.textContent = `Loaded ${f.name}${encodingNote(read)}.`;
   });
 
   form.addEventListener('input', (e) => {

@@ -7,6 +7,7 @@ import type { Machine, SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutR
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
+import { encodingNote, FileRefused, readTextFile } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -382,13 +383,23 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       clearIdentification(el('p', { class: 'warn' }, `No identification: ${f.name} is not a measurement file.`));
       return;
     }
-    const text = await f.text();
+    file.value = '';
+    let read;
+    try {
+      read = await readTextFile(f);
+    } catch (e) {
+      if (!(e instanceof FileRefused)) throw e;
+      fileMsg.textContent = e.message;
+      setAlert(`${e.message} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${e.message}`));
+      return;
+    }
+    const { text } = read;
     setSource(f.name, text);
     // The last identification goes at once: it belongs to the previous file.
     clearIdentification(el('p', { class: 'field-hint' }, `Identifying ${f.name}…`));
     fields.get('ss-csv')?.setText(text);
-    fileMsg.textContent = `Read ${f.name} (${text.split(/\r?\n/).length} lines); the result below says whether it could be used.`;
-    file.value = '';
+    fileMsg.textContent = `Read ${f.name}${encodingNote(read)} (${text.split(/\r?\n/).length} lines); the result below says whether it could be used.`;
   });
 
   form.addEventListener('input', (e) => {

@@ -8,10 +8,11 @@ import type { Machine, ParsedToolpath, Report, ToolpathAnalysis, ToolpathPath, T
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
 import { deltaSeries, MOST_IN_3D, pathPoints } from '../toolpath/decimate';
-import { rankTypes, readToolpath, TYPES } from '../toolpath/pool';
+import { rankTypes, readToolpath, TYPES, type ReadFile } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
 import { download } from '../ui/export';
 import { el, selectField } from '../ui/fields';
+import { checkFile, FileRefused, WINDOWS_1252_NOTE } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { blockedBy, invalidFields } from '../ui/status';
@@ -173,7 +174,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   /** What the reader found, in the file box: the dialect line, the unit line, frames and notes. */
-  const showReport = (name: string, p: ParsedToolpath) => {
+  const showReport = (name: string, p: ReadFile) => {
     const r: Report = p.report;
     readBox.replaceChildren();
     const tcp = r.tcp ? `, tool-centre-point control: ${r.tcp}` : '';
@@ -205,7 +206,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       d.append(ul);
       readBox.append(d);
     }
-    fileText(`Read ${name}: ${count(p.count)} points (${p.format.toUpperCase()}, ${count(p.linesRead)} lines).`);
+    fileText(`Read ${name}${p.windows1252 ? ` (${WINDOWS_1252_NOTE})` : ''}: ${count(p.count)} points (${p.format.toUpperCase()}, ${count(p.linesRead)} lines).`);
   };
 
   /** Reads a file in a worker; on a bad line the message names it and the results are greyed
@@ -226,6 +227,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       const source = await get();
       if (mine !== loads) return;
       chosen = { name, source, key: ro.key };
+      // An image, a PDF, an archive: refused by its first bytes, never read as a program.
+      const refused = typeof source === 'string' ? null : await checkFile(source, name);
+      if (mine !== loads) return;
+      if (refused) throw new FileRefused(refused);
       progress.hidden = false;
       progress.value = 0;
       const parsed = await readToolpath(source, ro.options, (f) => {
@@ -239,12 +244,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } catch (err) {
       if (mine !== loads) return;
       progress.hidden = true;
-      const e = showAtField(err, inputs.byPath, machine);
       readBox.replaceChildren();
-      const why = e ? sentence(e.message.replace(/^toolpath: /, '')) : 'See the field marked.';
-      fileText(`${name} could not be read: ${why}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`, true);
+      let said: string;
+      if (err instanceof FileRefused) said = err.message;
+      else {
+        const e = showAtField(err, inputs.byPath, machine);
+        said = `${name} could not be read: ${e ? sentence(e.message.replace(/^toolpath: /, '')) : 'See the field marked.'}`;
+      }
+      fileText(`${said}${loaded ? ` The results below are still those of ${loaded.name}.` : ''}`, true);
       // The reason in the verdict too: on a phone the file box is far below it.
-      greyAll(`${name} could not be read: ${why}${loaded ? ` Greyed below: ${loaded.name}.` : ''}`);
+      greyAll(`${said}${loaded ? ` Greyed below: ${loaded.name}.` : ''}`);
     }
   };
 

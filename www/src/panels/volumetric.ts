@@ -8,6 +8,7 @@ import { debounced } from '../engine/idle';
 import type { MachineSection, MotionFunction } from '../machine/section';
 import { download } from '../ui/export';
 import { el, selectField, type NumberField } from '../ui/fields';
+import { FileRefused, readTextFile, WINDOWS_1252_NOTE } from '../ui/files';
 import { displayQuantity, loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, plotBox, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -63,6 +64,8 @@ interface MotionRow {
   plot: HTMLElement;
   /** The key of what the plot shows (redrawn only when it changes). */
   shown: string;
+  /** The name of the last file loaded here when it was read as Windows-1252. */
+  windows1252?: string;
 }
 
 async function mount(root: HTMLElement, machine: MachineSection) {
@@ -463,18 +466,21 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       file.value = '';
       if (!f) return;
       try {
-        const t = await call('volumetricReadTable', { name: def.name, text: await f.text() });
+        const read = await readTextFile(f);
+        const t = await call('volumetricReadTable', { name: def.name, text: read.text });
         delete msg.dataset.csv;
+        r.windows1252 = read.windows1252 ? f.name : undefined;
         machine.setMotion(def.name, { position: t.position, value: t.value, file: f.name, units: t.units });
       } catch (err) {
         // The machine keeps what it had: the results stay, greyed, with the reason.
-        const e = EngineError.of(err);
+        const refused = err instanceof FileRefused;
+        const e = refused ? null : EngineError.of(err);
         msg.classList.remove('ok');
         msg.dataset.csv = 'bad';
-        msg.textContent = `${f.name} was not loaded: ${e.message}`;
+        msg.textContent = e ? `${f.name} was not loaded: ${e.message}` : (err as Error).message;
         runMap.cancel();
         runPaper.cancel();
-        note(mapPlot.p, `${def.name}: ${f.name} was not loaded (${e.message}); the results are still those of the errors before it.`);
+        note(mapPlot.p, `${def.name}: ${e ? `${f.name} was not loaded (${e.message})` : (err as Error).message.replace(/\.$/, '')}; the results are still those of the errors before it.`);
         greyAll();
       }
     });
@@ -501,7 +507,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const unit = ['X', 'Y', 'Z'].includes(row.def.axis) ? 'mm' : '°';
     row.msg.classList.add('ok');
     row.msg.textContent = fn && !('poly' in fn)
-      ? `${fn.file ?? 'Table'}: ${fn.position.length} points, ${row.def.axis} from ${fmt.num(fn.position[0])} to ${fmt.num(fn.position[fn.position.length - 1])} ${unit}, interpolated linearly.`
+      ? `${fn.file ?? 'Table'}${fn.file && fn.file === row.windows1252 ? ` (${WINDOWS_1252_NOTE})` : ''}: ${fn.position.length} points, ${row.def.axis} from ${fmt.num(fn.position[0])} to ${fmt.num(fn.position[fn.position.length - 1])} ${unit}, interpolated linearly.`
       : '';
   }
 

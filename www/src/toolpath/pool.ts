@@ -67,10 +67,13 @@ function run<T>(i: number, message: Record<string, unknown>, progress?: (f: numb
   });
 }
 
+/** A file read by a worker: the engine's reading, and whether its bytes were not all UTF-8. */
+export type ReadFile = ParsedToolpath & { windows1252: boolean };
+
 /** Reads a toolpath file (or text) in a worker, piece by piece; `progress` gets the fraction read. */
-export function readToolpath(file: Blob | string, options: ToolpathReadInput, progress?: (fraction: number) => void): Promise<ParsedToolpath> {
+export function readToolpath(file: Blob | string, options: ToolpathReadInput, progress?: (fraction: number) => void): Promise<ReadFile> {
   const blob = typeof file === 'string' ? new Blob([file], { type: 'text/plain' }) : file;
-  return run<ParsedToolpath>(0, { op: 'read', file: blob, options }, progress);
+  return run<ReadFile>(0, { op: 'read', file: blob, options }, progress);
 }
 
 /**

@@ -68,13 +68,43 @@ export interface NumberField {
   setError(message: string | null): void;
 }
 
-/** Parses a number the way a user types it: "1.5", "-0.00017", "1e-3", "2,5". */
-export function parseNumber(text: string): number | null {
-  const t = text.trim().replace(/^\+/, '').replace(/^(-?\d*),(\d+)$/, '$1.$2');
-  if (t === '' || !/^-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t)) return null;
-  const v = Number(t);
-  return Number.isFinite(v) ? v : null;
+/** Minus signs and dashes typed or pasted for "-": U+2212 minus, the hyphens U+2010 and
+ *  U+2011, the figure and en dashes U+2012 and U+2013, the small hyphen-minus U+FE63. */
+const MINUS_LIKE = /[\u2212\u2010-\u2013\uFE63]/g;
+
+/** The text with full-width forms (U+FF01–U+FF5E: `１２`, `－３．５`) as their ASCII characters,
+ *  the ideographic space as a space and minus look-alikes as "-". */
+export function asciiText(text: string): string {
+  return text
+    .replace(/[\uFF01-\uFF5E]/g, (c) => String.fromCharCode(c.charCodeAt(0) - 0xfee0))
+    .replace(/\u3000/g, ' ')
+    .replace(MINUS_LIKE, '-');
 }
+
+/** A number as a user types it ("1.5", "-0.00017", "1e-3", "2,5", "１２", "−3.5"): its value,
+ *  ±Infinity beyond the range of a double ("1e400"), or null when it is not a number. */
+export function parseNumberText(text: string): number | null {
+  const t = asciiText(text).trim().replace(/^\+/, '').replace(/^(-?\d*),(\d+)$/, '$1.$2');
+  if (t === '' || !/^-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t)) return null;
+  return Number(t);
+}
+
+/** [`parseNumberText`], finite values only. */
+export function parseNumber(text: string): number | null {
+  const v = parseNumberText(text);
+  return v !== null && Number.isFinite(v) ? v : null;
+}
+
+/** The `pattern` of a signed number field: what `parseNumberText` reads, full-width forms
+ *  included (a hint for the browser, compiled in its `v` mode; the field's own check decides). */
+export const SIGNED_PATTERN = (() => {
+  const digit = '[0-9\\uFF10-\\uFF19]';
+  const sign = '[+\\-\\u2212\\u2010-\\u2013\\uFE63\\uFF0B\\uFF0D]';
+  const dot = '[.\\uFF0E]';
+  const comma = '[,\\uFF0C]';
+  const exp = `[eE\\uFF25\\uFF45]${sign}?${digit}+`;
+  return `\\s*${sign}?(${digit}+(${dot}${digit}*|${comma}${digit}+)?|(${dot}|${comma})${digit}+)(${exp})?\\s*`;
+})();
 
 function fieldShell(id: string, labelText: string, hint?: string) {
   const root = el('div', { class: 'field' });
@@ -100,13 +130,18 @@ export function numberField(o: NumberFieldOptions): NumberField {
   const q: Quantity = o.quantity ?? 'none';
   const shell = fieldShell(o.id, o.label, o.hint);
   const row = el('div', { class: 'field-row' });
+  // A field that takes negative values: iOS's decimal keypad has no minus key, so the full
+  // keyboard, with the pattern as a hint.
+  const signed = o.min < 0;
   const input = el('input', {
     id: o.id,
     name: o.id,
     type: 'text',
-    inputmode: 'decimal',
+    inputmode: signed ? 'text' : 'decimal',
+    ...(signed ? { pattern: SIGNED_PATTERN } : {}),
     autocomplete: 'off',
     spellcheck: 'false',
+    'data-number': '',
   });
   const unitEl = el('span', { class: 'unit' });
   row.append(input, unitEl);
@@ -133,16 +168,26 @@ export function numberField(o: NumberFieldOptions): NumberField {
 
   const setError = (m: string | null) => shell.setError(input, m);
   const limit = (base: number) => `${numberText(toDisplay(q, base))}${unitEl.textContent ? ` ${unitEl.textContent}` : ''}`;
+  /** The field's limits in words: "must be between 0 mm and 500 mm", or one of them, or none. */
+  const bounds = () => {
+    const [lo, hi] = [Number.isFinite(o.min), Number.isFinite(o.max)];
+    if (lo && hi) return `must be between ${limit(o.min)} and ${limit(o.max)}`;
+    if (lo) return `must be at least ${limit(o.min)}`;
+    if (hi) return `must be at most ${limit(o.max)}`;
+    return 'too large for a number';
+  };
   const read = (): number | null | undefined => {
     const text = input.value;
     if (text.trim() === '' && o.optional) return setError(null), undefined;
     if (text.trim() === '') return setError('Enter a value.'), null;
-    const shown = parseNumber(text);
+    const shown = parseNumberText(text);
     if (shown === null) return setError(`"${excerpt(text)}" is not a number.`), null;
+    if (!Number.isFinite(shown)) return setError(`"${excerpt(text)}" is out of range: ${bounds()}.`), null;
     if (o.integer && !Number.isInteger(shown)) return setError('Enter a whole number.'), null;
     const v = fromDisplay(q, shown);
     if (o.positive && v <= 0) return setError('Must be greater than 0.'), null;
     if (v < o.min || v > o.max) return setError(`Must be between ${limit(o.min)} and ${limit(o.max)}.`), null;
+    if (!Number.isFinite(v)) return setError(`"${excerpt(text)}" is out of range: ${bounds()}.`), null;
     setError(null);
     return v;
   };
@@ -230,13 +275,14 @@ export function listField(id: string, labelText: string, value: number[], min: n
   shell.finish(input);
   const setError = (m: string | null) => shell.setError(input, m);
   const read = (): number[] | null => {
-    const parts = input.value.split(/[,;\s]+/).filter((p) => p !== '');
+    const parts = asciiText(input.value).split(/[,;\s]+/).filter((p) => p !== '');
     if (parts.length < minLen) return setError(minLen === 1 ? 'Enter at least one value.' : `Enter ${minLen} values.`), null;
     if (parts.length > maxLen) return setError(`At most ${maxLen} values.`), null;
     const out: number[] = [];
     for (const p of parts) {
-      const v = parseNumber(p);
+      const v = parseNumberText(p);
       if (v === null) return setError(`"${excerpt(p)}" is not a number.`), null;
+      if (!Number.isFinite(v)) return setError(`"${excerpt(p)}" is out of range: each value must be between ${min} and ${max}.`), null;
       if (v < min || v > max || (nonzero && v === 0)) return setError(`Each value must be${nonzero ? ' non-zero,' : ''} between ${min} and ${max}.`), null;
       out.push(v);
     }
