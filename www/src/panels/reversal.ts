@@ -422,7 +422,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return v.reduce((s, x) => s + x, 0) / Math.max(1, v.length);
     };
     setSummary('rv-sum-came', 'Computed for', came);
-    setSummary('rv-sum-dent', 'Friction dent', r.dent.depth > 0
+    setSummary('rv-sum-dent', 'Friction dent (simulated)', r.dent.depth > 0
       ? `${show('errLength', r.dent.depth)} deep at ${fmt.num(r.dent.angle, 4)}° (C reverses at 180°), ${fmt.num(r.dent.width, 3)}° wide at half depth`
       : 'none');
     setSummary('rv-sum-radius', 'Radius change (servo lag)', `${show('errLength', mean(dry, 30, 150))} before the reversal, ${show('errLength', mean(dry, 210, 330))} after (without friction)`);
