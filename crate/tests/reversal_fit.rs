@@ -7,7 +7,7 @@
 mod common;
 
 use common::Rng;
-use fiveaxis::reversal::fit::{fit, parse_trace};
+use fiveaxis::reversal::fit::{declared_machine, fit, parse_trace};
 use fiveaxis::reversal::{simulate, ReversalCase};
 use serde_json::{json, Value};
 
@@ -175,12 +175,36 @@ fn a_trace_without_a_dent_is_refused() {
     assert_eq!(e.field, "csv", "{e}");
 }
 
+/// The machine preset the sample file is made on (public/presets/machines.json), named in its
+/// `# machine:` line.
+const SAMPLE_MACHINE: &str = "B/C tilting table, vertical spindle (Li et al. 2021)";
+
+fn preset_machine(name: &str) -> Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../public/presets/machines.json"
+    ))
+    .unwrap();
+    let all: Value = serde_json::from_str(&text).unwrap();
+    all["presets"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == name)
+        .unwrap()["machine"]
+        .clone()
+}
+
 fn sample_text() -> String {
-    let truth = case(json!({"c": {"friction": 12, "frictionSlope": 800, "positionGain": 28}}));
+    let truth = case(json!({
+        "machine": preset_machine(SAMPLE_MACHINE),
+        "c": {"friction": 12, "frictionSlope": 800, "positionGain": 28}
+    }));
     let header = format!(
         "# Rotary-axis reversal test (Nishiguchi et al. 2017): a ball-bar trace, SIMULATED.\n\
+         # machine: {SAMPLE_MACHINE}\n\
          # Made by crate/tests/reversal_fit.rs (write_the_sample_file) with the calculator's model:\n\
-         # the default B/C tilting table, R = 50 mm, r = 25 mm, F = 1000 mm/min, C 0 -> 90 -> 0 deg,\n\
+         # that machine preset, R = 50 mm, r = 25 mm, F = 1000 mm/min, C 0 -> 90 -> 0 deg,\n\
          # default drives without feed-forward, C friction f_c = 12 N.m, a = 800 1/rad, C position-loop\n\
          # gain 28 1/s; plus Gaussian noise of {} um (seed {SAMPLE_SEED}).\n\
          # angle_deg: trace angle (reversal of C at 180 deg); deviation_mm: radial, + outwards.\n",
@@ -208,4 +232,24 @@ fn the_sample_file_is_reproducible_and_fits() {
     for (e, v) in [(f.fc, 12.0), (f.slope, 800.0), (f.kp, 28.0)] {
         assert!(e.low <= v && v <= e.high, "{e:?} should hold {v}");
     }
+    // It names its machine, a preset of the page.
+    assert_eq!(declared_machine(&text), Some(SAMPLE_MACHINE));
+}
+
+#[test]
+fn a_trace_names_its_machine_in_a_comment_line() {
+    assert_eq!(declared_machine("angle_deg,deviation_mm\n1,0\n"), None);
+    assert_eq!(
+        declared_machine(
+            "\u{feff}# a note: not it\n#  Machine :  A/C trunnion  \n# machine: later\n"
+        ),
+        Some("A/C trunnion")
+    );
+    assert_eq!(declared_machine("# machine:   \n"), None);
+    // The reader skips the line.
+    let t = "# machine: X\nangle_deg,deviation_mm\n".to_string()
+        + &(1..60)
+            .map(|i| format!("{},0\n", 170.0 + i as f64 * 0.3))
+            .collect::<String>();
+    assert_eq!(parse_trace(&t).unwrap().angle.len(), 59);
 }

@@ -255,6 +255,7 @@ export const SPECS = {
   reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
   reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] , weight: 0.1 },
+  reversalTrace: { args: [{ ...reversalCase, csv: reversalCsv }] },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

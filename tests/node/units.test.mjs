@@ -320,6 +320,7 @@ const BASE = {
   reversalDents: [{}],
   reversalFit: [{ csv: REVERSAL }],
   reversalSimulate: [{}],
+  reversalTrace: [{ csv: REVERSAL }],
   sshapeDefects: [{ machine: CHANAL }],
   sshapeIdentify: [{ machine: CHANAL, csv: SAMPLE }],
   sshapeOvercut: [{ nu: 14, nv: 2 }],

@@ -91,6 +91,7 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
     put("reversalDents", fields::<ReversalCase>());
     put("reversalFit", both::<ReversalCase, ReversalFitInput>());
+    put("reversalTrace", both::<ReversalCase, ReversalFitInput>());
     output(&Schema {
         machine: describe(Machine::FIELDS, "machine"),
         errors: TABLE.to_vec(),

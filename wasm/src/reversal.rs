@@ -3,6 +3,7 @@
 
 use crate::{degrees, f64_array, js_error, json, output, Series};
 use fiveaxis::reversal::fit::{self, Estimate};
+use fiveaxis::reversal::measure::{compensation, measure_dent};
 use fiveaxis::reversal::{
     self, direction_checks, ReversalCase, ReversalFitInput, ReversalRunInput,
 };
@@ -279,6 +280,15 @@ pub struct ReversalFitResult {
     pub sigma: f64,
     /// Iterations.
     pub iterations: usize,
+    /// C's rated torque the shares are of, N·m (the input `c.ratedTorque`).
+    pub rated_torque: f64,
+    /// Fitted f_c over the rated torque.
+    pub friction_share: f64,
+    /// The torque step a friction compensator needs at each reversal, 2·f_c, N·m (with the
+    /// interval of f_c doubled).
+    pub torque_step: ReversalEstimate,
+    /// The torque step over the rated torque.
+    pub torque_step_share: f64,
 }
 
 /// Fits C's friction (f_c, a) and position-loop gain to a measured trace (`csv`), the other
@@ -291,7 +301,18 @@ pub fn reversal_fit(
         ReversalCase::read_with::<ReversalFitInput>(&json(&value)?).map_err(js_error)?;
     let m = fit::parse_trace(&own.csv).map_err(js_error)?;
     let f = fit::fit(&case, &m).map_err(js_error)?;
+    let k = compensation(f.fc.value, case.c.rated_torque);
+    let low = compensation(f.fc.low, case.c.rated_torque).step;
+    let high = compensation(f.fc.high, case.c.rated_torque).step;
     output(&ReversalFitResult {
+        rated_torque: k.rated,
+        friction_share: k.friction_share,
+        torque_step: ReversalEstimate {
+            value: k.step,
+            low,
+            high,
+        },
+        torque_step_share: k.step_share,
         friction: estimate(f.fc),
         friction_slope: estimate(f.slope),
         position_gain: estimate(f.kp),
@@ -303,5 +324,73 @@ pub fn reversal_fit(
         residuals: f64_array(&f.residuals),
         sigma: f.sigma,
         iterations: f.iterations,
+    })
+}
+
+/// The dent measured from a trace itself (see `fiveaxis::reversal::measure`).
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+#[serde(rename_all = "camelCase")]
+pub struct ReversalMeasuredDent {
+    /// The trace's level before the reversal (median over 170°–179°), mm.
+    pub baseline: f64,
+    /// Depth: the largest fall below the baseline over 180°–190°, mm (0: no dent).
+    pub depth: f64,
+    /// Trace angle of the deepest point, degrees.
+    pub angle: f64,
+    /// Width at half depth, degrees of trace angle (a lower bound when `open`).
+    pub width: f64,
+    /// Where the fall crosses half depth before the deepest point, degrees.
+    pub low: f64,
+    /// And after it, degrees.
+    pub high: f64,
+    /// Still at half depth or more at 190°: a step more than a dent.
+    pub open: bool,
+    /// The width as a time at the test's feed on its circle, W·R/F, s.
+    pub duration: f64,
+    /// The level after the reversal (median over 188°–190°), mm.
+    pub level_after: f64,
+    /// Baseline − level after, mm.
+    pub step: f64,
+}
+
+/// A measured trace read and its dent measured, without a fit.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null, hashmap_as_object)]
+pub struct ReversalTraceResult {
+    /// The machine the file names (`# machine: <name>`), or null.
+    pub machine: Option<String>,
+    /// Points read.
+    pub points: usize,
+    /// The dent measured from the trace.
+    pub dent: ReversalMeasuredDent,
+}
+
+/// Reads a measured trace (`csv`) and measures its dent: depth and width from the trace itself,
+/// and the machine its file names. Fast (no simulation); the test's R and F give the width in
+/// time.
+#[wasm_bindgen(js_name = reversalTrace, unchecked_return_type = "ReversalTraceResult")]
+pub fn reversal_trace(
+    #[wasm_bindgen(unchecked_param_type = "ReversalCase & ReversalFitInput")] value: JsValue,
+) -> Result<JsValue, JsError> {
+    let (case, own) =
+        ReversalCase::read_with::<ReversalFitInput>(&json(&value)?).map_err(js_error)?;
+    let m = fit::parse_trace(&own.csv).map_err(js_error)?;
+    let d = measure_dent(&m.angle, &m.deviation).map_err(js_error)?;
+    output(&ReversalTraceResult {
+        machine: fit::declared_machine(&own.csv).map(str::to_string),
+        points: m.angle.len(),
+        dent: ReversalMeasuredDent {
+            baseline: d.baseline,
+            depth: d.depth,
+            angle: d.angle.to_degrees(),
+            width: d.width.to_degrees(),
+            low: d.low.to_degrees(),
+            high: d.high.to_degrees(),
+            open: d.open,
+            duration: d.duration(case.test.radius, case.test.feed),
+            level_after: d.level_after,
+            step: d.step,
+        },
     })
 }

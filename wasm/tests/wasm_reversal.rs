@@ -133,6 +133,10 @@ struct Fit {
     friction_slope: Est,
     position_gain: Est,
     halfway: f64,
+    rated_torque: f64,
+    friction_share: f64,
+    torque_step: Est,
+    torque_step_share: f64,
 }
 
 #[wasm_bindgen_test]
@@ -156,6 +160,13 @@ fn a_simulated_trace_fits_back_to_its_friction() {
     let start = json!({"test": {"feed": 3000}, "step": 1.0, "csv": csv,
                        "c": {"friction": 8, "frictionSlope": 500, "positionGain": 30}});
     let f: Fit = read(fa::reversal_fit(jv(&start)));
+    // The drive's terms: the default rated torque 250 N·m, the step 2·f_c with its interval.
+    assert_eq!(f.rated_torque, 250.0);
+    assert!((f.friction_share - f.friction.value / 250.0).abs() < 1e-15);
+    assert!((f.torque_step.value - 2.0 * f.friction.value).abs() < 1e-12);
+    assert!((f.torque_step.low - 2.0 * f.friction.low).abs() < 1e-12);
+    assert!((f.torque_step.high - 2.0 * f.friction.high).abs() < 1e-12);
+    assert!((f.torque_step_share - 2.0 * f.friction.value / 250.0).abs() < 1e-15);
     for (e, v) in [
         (&f.friction, 12.0),
         (&f.friction_slope, 800.0),
@@ -167,4 +178,59 @@ fn a_simulated_trace_fits_back_to_its_friction() {
     // atanh(1/2)/a in degrees.
     let want = 0.5f64.atanh() / 800.0 * 180.0 / std::f64::consts::PI;
     assert!((f.halfway / want - 1.0).abs() < 0.01, "{}", f.halfway);
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct MeasuredDent {
+    baseline: f64,
+    depth: f64,
+    angle: f64,
+    width: f64,
+    open: bool,
+    duration: f64,
+}
+
+#[derive(Deserialize)]
+struct Trace {
+    machine: Option<String>,
+    points: usize,
+    dent: MeasuredDent,
+}
+
+#[wasm_bindgen_test]
+fn a_trace_s_dent_crosses_in_degrees_and_its_machine_is_named() {
+    // A 2 µm level and a triangular dent 6 µm deep at 182°, its base 3° wide (1.5° at half
+    // depth), every 0.1°, in µm with a decimal comma.
+    let mut csv =
+        String::from("# machine: A/C trunnion table, vertical spindle\nangle_deg;deviation_um\n");
+    for i in 1..3600 {
+        let a = i as f64 * 0.1;
+        let d = 2.0 - 6.0 * (1.0 - (a - 182.0).abs() / 1.5).max(0.0);
+        csv.push_str(&format!("{a:.1};{d}\n").replace('.', ","));
+    }
+    let t: Trace = read(fa::reversal_trace(jv(
+        &json!({"csv": csv, "test": {"radius": 40, "feed": 2000}}),
+    )));
+    assert_eq!(
+        t.machine.as_deref(),
+        Some("A/C trunnion table, vertical spindle")
+    );
+    assert_eq!(t.points, 3599);
+    assert!((t.dent.baseline - 0.002).abs() < 1e-12);
+    assert!((t.dent.depth - 0.006).abs() < 1e-12, "{}", t.dent.depth);
+    assert!((t.dent.angle - 182.0).abs() < 1e-9);
+    assert!((t.dent.width - 1.5).abs() < 1e-9, "{}", t.dent.width);
+    assert!(!t.dent.open);
+    // W·R/F in s: 1.5° on a 40 mm circle at 2000 mm/min.
+    let want = 1.5f64.to_radians() * 40.0 / (2000.0 / 60.0);
+    assert!(
+        (t.dent.duration - want).abs() < 1e-12,
+        "{}",
+        t.dent.duration
+    );
+    let m = error_message(fa::reversal_trace(jv(
+        &json!({"csv": "angle_deg,deviation_mm\n"}),
+    )));
+    assert!(m.starts_with("csv: 0 points"), "{m}");
 }

@@ -9,6 +9,11 @@
 //! degrees in this study's convention (0° at the start, the reversal of C at 180°, counter-clockwise
 //! in table coordinates) and the radial deviation (+ outwards). Angles must increase.
 //!
+//! A comment line `# machine: <name>` (before or among the data, the first one counts) names
+//! the machine the trace was made on, as a preset of `public/presets/machines.json` is named
+//! ([`declared_machine`]): a trace fits only on the machine it was made on, and the page offers
+//! to switch to it.
+//!
 //! # The fit
 //! The model is the simulated trace of the case (the machine, the motion, every other drive
 //! parameter as entered) with `f_c`, `a` and `K_p` of C free, interpolated linearly at the
@@ -146,6 +151,21 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
         ));
     }
     Ok(m)
+}
+
+/// The machine a trace file names in a comment line `# machine: <name>` (module docs), trimmed;
+/// `None` without one (or with an empty name).
+pub fn declared_machine(text: &str) -> Option<&str> {
+    text.lines()
+        .filter_map(|l| l.trim().trim_start_matches('\u{feff}').strip_prefix('#'))
+        .find_map(|c| {
+            let c = c.trim();
+            let (key, rest) = c.split_once(':')?;
+            key.trim()
+                .eq_ignore_ascii_case("machine")
+                .then(|| rest.trim())
+        })
+        .filter(|n| !n.is_empty())
 }
 
 /// One fitted parameter with its 95 % confidence interval.

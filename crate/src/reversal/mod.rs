@@ -19,13 +19,15 @@
 //! bandwidths of some tens of Hz to 100 Hz, integral times of some ms): linear axes 400 kg
 //! moved, `K_p` 30 1/s, velocity loop 60 Hz with a 10 ms integral time, 1 kN·s/m damping, 20 kN
 //! limit, no friction; C a direct-drive table of 2 kg·m² (table and workpiece), `K_p` 30 1/s,
-//! velocity loop 40 Hz, 15 ms, 5 N·m·s/rad, 500 N·m, `f_c` = 10 N·m and `a` = 500 1/rad (the
+//! velocity loop 40 Hz, 15 ms, 5 N·m·s/rad, 500 N·m (peak), 250 N·m rated (a torque motor gives about
+//! half its peak torque continuously), `f_c` = 10 N·m and `a` = 500 1/rad (the
 //! friction has turned half way 0.063° after a reversal: a few milliseconds at the test's C
 //! speeds, comparable to the velocity loop, as the paper's Fig 8 spring suggests). The ball bar is 50 mm long: with `r` = 50 mm X then stops at the reversal without
 //! changing direction, as the paper reports (Section 5.2). All are inputs.
 
 pub mod drive;
 pub mod fit;
+pub mod measure;
 pub mod motion;
 
 use crate::error::{Error, Result};
@@ -228,6 +230,14 @@ crate::inputs! {
             default: DefaultValue::Num(500.0),
             group: "C axis",
         },
+        /// Rated torque, N·m.
+        pub rated_torque: f64 = "ratedTorque" optional {
+            label: "Rated torque (N·m)",
+            help: "The C drive's rated (continuous) torque, from its name plate: the fitted friction is also given as a share of it, the unit a drive takes its friction compensation in. At most the torque limit.",
+            kind: schema::Kind::Number { quantity: Quantity::Number, min: 0.01, max: 1e7, exclusive_min: false },
+            default: DefaultValue::Num(250.0),
+            group: "C axis",
+        },
         /// Coulomb friction f_c, N·m.
         pub friction: f64 = "friction" optional {
             label: "Coulomb friction torque (N·m)",
@@ -318,15 +328,30 @@ impl ReversalCase {
     /// Reads a case and an export's own inputs from one object (the keys of `B` go to `B`).
     pub fn read_with<B: schema::Inputs>(value: &Value) -> Result<(Self, B)> {
         let (c, b): (Self, B) = schema::read_split(value, "")?;
-        c.machine.validate("machine")?;
+        c.check()?;
         Ok((c, b))
     }
 
     /// Reads a case (and checks the machine).
     pub fn read(value: &Value) -> Result<Self> {
         let c: ReversalCase = schema::read(<Self as schema::Inputs>::FIELDS, value, "")?;
-        c.machine.validate("machine")?;
+        c.check()?;
         Ok(c)
+    }
+
+    /// The checks across fields: the machine, and C's rated torque at most its torque limit.
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")?;
+        if self.c.rated_torque > self.c.torque_limit {
+            return Err(Error::field(
+                "c.ratedTorque",
+                format!(
+                    "{} N·m is above the torque limit ({} N·m): a drive's rated (continuous) torque is at most its peak",
+                    self.c.rated_torque, self.c.torque_limit
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The same case with C's friction `f_c` set to `fc`.

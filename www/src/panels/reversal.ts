@@ -2,10 +2,14 @@
 // the Machine section. C reciprocates 0° → 90° → 0° while X and Y keep the tool on a circle in
 // table coordinates; the simulated ball-bar trace with and without C's friction (eq 2), the axes
 // against time, the dent for Table 1's feeds and radii, and friction fitted from a measured trace.
+// With a measured trace loaded the verdict is on the trace: the engine's depth and width of its
+// dent (`reversalTrace`, measured from the trace itself), and the fitted friction in a drive's
+// terms; a trace file that names its machine (`# machine: <preset>`) is checked against the
+// machine above, with an offer to switch to it.
 import type { Data, Layout } from 'plotly.js';
-import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult } from '@engine';
-import { channel, SUPERSEDED } from '../engine/client';
-import type { MachineSection } from '../machine/section';
+import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult, ReversalTraceResult } from '@engine';
+import { channel, EngineError, SUPERSEDED } from '../engine/client';
+import type { MachinePreset, MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
 import { encodingNote, FileRefused, readTextFile } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
@@ -14,7 +18,8 @@ import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, type Panel } from './panel';
-import { verdictBox } from '../ui/verdict';
+import { extent } from '../ui/arrays';
+import { judge, verdictBox } from '../ui/verdict';
 
 export const reversalPanel: Panel = {
   id: 'reversal',
@@ -25,6 +30,18 @@ export const reversalPanel: Panel = {
 };
 
 const SAMPLE = 'samples/reversal-measured.csv';
+
+/** What the reversal test sees of a machine: its layout and the axes' directions (travel
+ *  limits, heights and lengths do not change the circle the test draws with B or A at 0). */
+const LAYOUT = ['kind', 'type', 'linear', 'rotary.kReversed', 'rotary.mReversed'];
+
+/** The layout keys in which `m` differs from `preset`'s machine (schema defaults for keys the
+ *  preset leaves out: false for the directions). */
+function layoutDifferences(preset: MachinePreset, m: Machine | null): string[] {
+  if (!m) return [];
+  const at = (o: unknown, path: string) => path.split('.').reduce<unknown>((v, k) => (v && typeof v === 'object' ? (v as Record<string, unknown>)[k] : undefined), o);
+  return LAYOUT.filter((k) => (at(preset.machine, k) ?? false) !== (at(m, k) ?? false));
+}
 
 /** A "nice" scale per division (1, 2 or 5 × 10^k) that puts `span` in about three divisions. */
 function perDivision(span: number): number {
@@ -66,6 +83,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     onTolerance: () => judgeSim(),
   });
   const summary = el('dl', { class: 'summary', id: 'rv-summary', 'aria-live': 'polite' });
+  /** The machine a loaded trace names, against the machine above (with a switch button). */
+  const traceMachine = el('div', { class: 'trace-machine', id: 'rv-trace-machine', 'aria-live': 'polite' });
+  traceMachine.hidden = true;
   const plot = (id: string, wide = false, tall = false) => {
     const wrap = el('div', { class: wide ? 'plot-wrap wide' : 'plot-wrap' });
     const p = el('div', { class: 'plot', id });
@@ -86,7 +106,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fitPlots = el('div', { class: 'plots' });
   fitPlots.append(fitPlot.wrap, residualPlot.wrap);
   results.append(
-    verdict.root, summary, plots,
+    verdict.root, traceMachine, summary, plots,
     el('h3', {}, 'The dent for Table 1’s feeds and radii'), dentsBox,
     el('h3', {}, 'Friction from a measured trace'), fitBox, fitPlots,
   );
@@ -101,6 +121,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const runSim = channel('reversalSimulate');
   const runDents = channel('reversalDents');
   const runFit = channel('reversalFit');
+  const runTrace = channel('reversalTrace');
   const engineError = engineErrors(inputs.byPath, machine);
   let last: ReversalResult | null = null;
   let lastCase = '';
@@ -127,26 +148,109 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let fresh = false;
   /** The last fit of a measured trace, while it answers the inputs. */
   let lastFit: ReversalFitResult | null = null;
-  /** The verdict: the engine's dent depth against the tolerance, and the fitted friction. */
+  /** The fit: none (no trace), on its way, done, or refused (its message). */
+  let fitState: { s: 'none' } | { s: 'pending' } | { s: 'ok' } | { s: 'error'; message: string } = { s: 'none' };
+  /** The measured trace: none loaded, being read, read (its dent), or refused (its message). */
+  let traceState: { s: 'none' } | { s: 'pending' } | { s: 'ok'; r: ReversalTraceResult } | { s: 'error'; message: string } = { s: 'none' };
+  /** Where the trace came from, for the verdict ("reversal-measured.csv", "the pasted trace"). */
+  let traceName = 'the trace in the field';
+  /** The machine preset a trace names and how the machine above differs from it. */
+  let traceOn: { name: string; preset: MachinePreset | null; differs: string[] } | null = null;
+
+  /** The fitted friction in a drive's terms, for the verdict's notes. */
+  const frictionNotes = (k: string): string[] => {
+    if (fitState.s === 'pending') return [`Fitting ${k}’s friction to the trace… (a few dozen simulations)`];
+    if (fitState.s === 'error') return [`${k}’s friction could not be fitted: ${fitState.message}`];
+    if (!lastFit) return [];
+    const f = lastFit;
+    return [
+      `Fitted friction of ${k} (eq 2): f_c = ${fmt.num(f.friction.value, 4)} N·m (95 % interval ${fmt.num(f.friction.low, 4)} to ${fmt.num(f.friction.high, 4)}), ` +
+        `${fmt.percent(f.frictionShare, 4)} of the drive’s rated torque (${fmt.num(f.ratedTorque, 6)} N·m).`,
+      `A friction compensator on ${k} needs a torque step of 2·f_c = ${fmt.num(f.torqueStep.value, 4)} N·m at each reversal ` +
+        `(${fmt.percent(f.torqueStepShare, 4)} of the rated torque), built up over the first ${fmt.num(f.halfway, 3)}° of travel (half way).`,
+    ];
+  };
+
+  /** The verdict on the loaded trace: the dent the engine measured from it, and the fit. */
+  const judgeTrace = (tol: number) => {
+    const k = machine.context()?.k ?? 'C';
+    const t = show('errLength', tol);
+    const ts = traceState;
+    if (ts.s === 'pending' || ts.s === 'none') return verdict.pending();
+    if (ts.s === 'error') {
+      return verdict.none(`No verdict on the measured trace: it could not be read (${ts.message}). Fix the file or clear the field to judge the simulation.`);
+    }
+    const d = ts.r.dent;
+    const mismatch = traceOn && traceOn.differs.length
+      ? [`This trace was made on “${traceOn.name}” (its file says so), not on the machine above: switch to that machine (the button under this verdict) to fit it where it was made.`]
+      : [];
+    const how = `Measured from the trace itself (${ts.r.points} points): depth = how far it falls below its level before the reversal ` +
+      `(the median over 170°–179° of trace angle) within 180°–190°; width = where it lies at least half that deep.`;
+    const notes = [...mismatch, ...frictionNotes(k), how];
+    if (!(d.depth > 0)) {
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes, sentence: `On the measured trace (${traceName}): it does not fall below its level before ${k}’s reversal, no dent (within the ${t} tolerance).` });
+    }
+    const status = judge(d.depth, tol);
+    const width = d.open
+      ? `and stays down to 190° and beyond: a step of ${show('errLength', d.step)} (its level after the reversal) rather than a dent, at least ${fmt.num(d.width, 3)}° wide at half depth`
+      : `${fmt.num(d.width, 3)}° wide at half depth (${fmt.num(d.duration * 1e3, 3)} ms at the feed entered)`;
+    const advice = status === 'pass' ? '.'
+      : d.open
+        ? `: ${k}’s following error changes side when it reverses; velocity feed-forward on ${k}, or a smaller offset r, would reduce the step.`
+        : `: friction compensation on ${k} (the torque step below) would reduce it.`;
+    verdict.show({
+      status, worst: d.depth, tolerance: tol, notes,
+      sentence: `On the measured trace (${traceName}): after ${k}’s reversal the trace falls ${show('errLength', d.depth)} below its level before it ` +
+        `(deepest at ${fmt.num(d.angle, 4)}°), ${width}; ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance${advice}`,
+    });
+  };
+
+  /** The verdict: on the loaded trace when there is one, else on the simulation (and it says so). */
   const judgeSim = () => {
     const tol = verdict.tolerance();
     if (tol === null) return verdict.invalid();
+    if (traceState.s !== 'none') return judgeTrace(tol);
     if (!last || !fresh) return;
     const d = last.dent;
     const t = show('errLength', tol);
     const k = machine.context()?.k ?? 'C';
-    const notes = lastFit
-      ? [`From the measured trace: Coulomb friction of ${k} ${fmt.num(lastFit.friction.value, 3)} N·m (95 % interval ${fmt.num(lastFit.friction.low, 3)} to ${fmt.num(lastFit.friction.high, 3)}); a friction compensator needs a torque step of ${fmt.num(2 * lastFit.friction.value, 3)} N·m at each reversal.`]
-      : ['Load a measured ball-bar trace (below) to fit the friction of your machine.'];
+    const notes = ['No measured trace is loaded: this is the simulation of the inputs entered. Load a ball-bar trace of your machine (below) to judge it and fit its friction.'];
     if (!(d.depth > 0)) {
-      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes, sentence: `No friction dent at ${k}’s reversal (within the ${t} tolerance).` });
+      return verdict.show({ status: 'pass', worst: 0, tolerance: tol, notes, sentence: `Simulated: no friction dent at ${k}’s reversal (within the ${t} tolerance).` });
     }
-    const status = d.depth <= tol ? 'pass' : 'fail';
+    const status = judge(d.depth, tol);
     verdict.show({
       status, worst: d.depth, tolerance: tol, notes,
-      sentence: `The friction dent at ${k}’s reversal is ${show('errLength', d.depth)} deep (at ${fmt.num(d.angle, 4)}° of the trace, ${fmt.num(d.width, 3)}° wide), ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
+      sentence: `Simulated (no measured trace loaded): the friction dent at ${k}’s reversal is ${show('errLength', d.depth)} deep (at ${fmt.num(d.angle, 4)}° of the trace, ${fmt.num(d.width, 3)}° wide), ${status === 'pass' ? 'within' : 'above'} the ${t} tolerance` +
         (status === 'fail' ? ': friction compensation on the C axis, or a smaller circle offset from the C axis, would reduce it.' : '.'),
     });
+  };
+
+  /** Which machine the loaded trace names, against the machine above; offers to switch. */
+  const showTraceMachine = async (r: ReversalTraceResult | null) => {
+    traceOn = null;
+    traceMachine.replaceChildren();
+    traceMachine.hidden = true;
+    if (!r || !r.machine) return;
+    const name = r.machine;
+    const presets = await machine.presets().catch(() => [] as MachinePreset[]);
+    const preset = presets.find((p) => p.name === name) ?? null;
+    const differs = preset ? layoutDifferences(preset, machine.current()) : [];
+    traceOn = { name, preset, differs };
+    traceMachine.hidden = false;
+    traceMachine.classList.toggle('mismatch', differs.length > 0 || !preset);
+    if (!preset) {
+      traceMachine.append(el('p', {}, `The trace names its machine: “${name}”, not a machine preset of this page. The fit only holds on that machine: check the machine above.`));
+    } else if (differs.length) {
+      const button = el('button', { type: 'button', id: 'rv-switch-machine' }, `Switch to ${name}`);
+      button.addEventListener('click', () => machine.apply(preset.machine));
+      traceMachine.append(
+        el('p', {}, `This trace was made on “${name}” (its file says so). The machine above is another one (its ${differs.join(', ')} differ${differs.length === 1 ? 's' : ''}): the fit below runs on the machine above, not on the one the trace was made on.`),
+        button,
+      );
+    } else {
+      traceMachine.append(el('p', {}, `This trace was made on “${name}”, the layout of the machine above.`));
+    }
   };
 
   const update = () => {
@@ -154,11 +258,13 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!i) {
       fresh = false;
       lastFit = null;
+      fitState = { s: 'none' };
+      traceState = { s: 'none' };
       verdict.invalid();
       for (const p of [polar, radial, timePlot, linearPlot, fitPlot, residualPlot]) stale(p.p, true);
       stale(dentsBox, true);
       stale(fitBox, true);
-      for (const run of [runSim, runDents, runFit]) run.cancel();
+      for (const run of [runSim, runDents, runFit, runTrace]) run.cancel();
       return;
     }
     const input = { machine: i.machine, ...i.rest };
@@ -190,23 +296,50 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const fit = (i: NonNullable<ReturnType<typeof read>>, input: Record<string, unknown>, came: string) => {
     lastFit = null;
     if (i.csv.trim() === '') {
+      fitState = { s: 'none' };
+      traceState = { s: 'none' };
+      runTrace.cancel();
+      void showTraceMachine(null);
       inputs.byPath.csv?.setError(null);
       fitBox.replaceChildren(el('p', { class: 'field-hint' }, 'Paste a measured trace (trace angle, radial deviation), choose a file, or load the sample trace (simulated with f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s and 0.3 µm of noise) to fit C’s friction.'));
       stale(fitBox, false);
       return;
     }
     fitBox.replaceChildren(el('p', { class: 'field-hint' }, 'Fitting… (a few dozen simulations)'));
+    traceState = { s: 'pending' };
+    fitState = { s: 'pending' };
+    // The trace's own dent and the machine it names first (no simulation), then the fit.
+    runTrace({ ...input, csv: i.csv } as never).then(async (r) => {
+      if (r === SUPERSEDED) return;
+      traceState = { s: 'ok', r };
+      await showTraceMachine(r);
+      judgeSim();
+    }, (e) => {
+      traceState = { s: 'error', message: EngineError.of(e).text };
+      void showTraceMachine(null);
+      judgeSim();
+    });
     runFit({ ...input, csv: i.csv } as never).then((f) => {
       if (f === SUPERSEDED) return;
       inputs.byPath.csv?.setError(null);
       lastFit = f;
+      fitState = { s: 'ok' };
       showFit(f, came);
       judgeSim();
     }, (e) => {
-      fitBox.replaceChildren(el('p', { class: 'warn' }, 'No fit: see the message at the field or above the plot.'));
+      let err = EngineError.of(e);
+      // A trace made on another machine cannot be fitted on this one: say so with the reason.
+      if (traceOn && traceOn.differs.length && err.field === 'csv') {
+        err = new EngineError(`${err.message} This trace was made on “${traceOn.name}” (its file says so), not on the machine above: switch to that machine, or load a trace made on this one.`);
+      }
+      fitState = { s: 'error', message: err.text };
+      fitBox.replaceChildren(el('p', { class: 'warn', id: 'rv-fit-error' }, traceOn && traceOn.differs.length
+        ? `No fit: the trace was made on “${traceOn.name}”, another machine (see the message at the field).`
+        : 'No fit: see the message at the field or above the plot.'));
       stale(fitBox, false);
-      engineError(e, fitPlot.p);
+      engineError(err, fitPlot.p);
       stale(residualPlot.p, true);
+      judgeSim();
     });
   };
 
@@ -218,7 +351,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const theta = Array.from(r.theta);
     const dev = Array.from(r.deviation);
     const dry = Array.from(r.withoutFriction);
-    const span = Math.max(...dev.map(Math.abs), ...dry.map(Math.abs));
+    const [dLo, dHi] = extent(dev);
+    const [yLo, yHi] = extent(dry);
+    const span = Math.max(-dLo, dHi, -yLo, yHi);
     const div = perDivision(span);
     const base = 4; // the nominal circle at 4 divisions
     const rp = (d: number[]) => d.map((v) => base + v / div);
@@ -291,7 +426,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return v.reduce((s, x) => s + x, 0) / Math.max(1, v.length);
     };
     setSummary('rv-sum-came', 'Computed for', came);
-    setSummary('rv-sum-dent', 'Friction dent', r.dent.depth > 0
+    setSummary('rv-sum-dent', 'Friction dent (simulated)', r.dent.depth > 0
       ? `${show('errLength', r.dent.depth)} deep at ${fmt.num(r.dent.angle, 4)}° (C reverses at 180°), ${fmt.num(r.dent.width, 3)}° wide at half depth`
       : 'none');
     setSummary('rv-sum-radius', 'Radius change (servo lag)', `${show('errLength', mean(dry, 30, 150))} before the reversal, ${show('errLength', mean(dry, 210, 330))} after (without friction)`);
@@ -336,11 +471,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     row('C position-loop gain', 'positionGain', f.positionGain, '1/s');
     row(`radius offset (${lu()})`, 'offset', { value: D(f.offset.value), low: D(f.offset.low), high: D(f.offset.high) }, '');
     fitBox.replaceChildren(
-      el('p', { id: 'rv-compensator' }, `For a friction compensator: a torque step of 2·f_c = ${fmt.num(2 * f.friction.value, 4)} N·m at each reversal of C, ` +
-        `built up over the first ${fmt.num(f.halfway, 3)}° of travel (half way; eq 2 with a = ${fmt.num(f.frictionSlope.value, 4)} 1/rad), C’s position-loop gain ${fmt.num(f.positionGain.value, 4)} 1/s.`),
+      el('p', { id: 'rv-compensator' }, `For a friction compensator: a torque step of 2·f_c = ${fmt.num(f.torqueStep.value, 4)} N·m at each reversal of C ` +
+        `(${fmt.percent(f.torqueStepShare, 4)} of the rated torque ${fmt.num(f.ratedTorque, 6)} N·m; 95 % interval ${fmt.num(f.torqueStep.low, 4)} to ${fmt.num(f.torqueStep.high, 4)} N·m), ` +
+        `built up over the first ${fmt.num(f.halfway, 3)}° of travel (half way; eq 2 with a = ${fmt.num(f.frictionSlope.value, 4)} 1/rad), C’s position-loop gain ${fmt.num(f.positionGain.value, 4)} 1/s. ` +
+        `The friction itself, f_c = ${fmt.num(f.friction.value, 4)} N·m, is ${fmt.percent(f.frictionShare, 4)} of the rated torque.`),
       table,
       el('p', {}, `Residuals: ${show('errLength', f.sigma, 2)} standard deviation, ${f.iterations} iterations. Fitted with ${came}.`),
     );
+    if (traceOn && traceOn.differs.length) {
+      fitBox.prepend(el('p', { class: 'warn', id: 'rv-fit-machine' }, `Fitted on the machine above, but the trace was made on “${traceOn.name}” (its file says so): switch to that machine to fit it where it was made.`));
+    }
     stale(fitBox, false);
     const x = Array.from(f.angle);
     draw(fitPlot.p, 'Measured and fitted trace<br>around the reversal', [
@@ -357,8 +497,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     try {
       const res = await fetch(SAMPLE);
       if (!res.ok) throw new Error(`${res.status} ${res.statusText}`);
+      traceName = 'the sample trace';
       fields.get('rv-csv')?.setText(await res.text());
-      fileMsg.textContent = 'Loaded the sample trace (simulated with the default inputs but f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s; 0.3 µm noise).';
+      fileMsg.textContent = 'Loaded the sample trace (simulated on the B/C tilting table preset with the default inputs but f_c = 12 N·m, a = 800 1/rad, C gain 28 1/s; 0.3 µm noise).';
     } catch (e) {
       fileMsg.textContent = `Could not load the sample trace: ${String(e)}`;
     }
@@ -385,12 +526,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       stale(fitBox, true, e.message);
       return;
     }
+    traceName = f.name;
     fields.get('rv-csv')?.setText(read.text);
     fileMsg.textContent = `Loaded ${f.name}${encodingNote(read)}.`;
   });
 
   form.addEventListener('input', (e) => {
-    if ((e.target as HTMLElement).id !== 'rv-file') update();
+    const id = (e.target as HTMLElement).id;
+    // Typed or pasted into the field: no longer the file loaded.
+    if (id === 'rv-csv' && e.isTrusted) traceName = 'the trace in the field';
+    if (id !== 'rv-file') update();
   });
   machine.onChange(update);
   onUnitsChange(() => {
