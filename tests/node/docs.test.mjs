@@ -1,5 +1,5 @@
 // The documents: docs/api.md is what scripts/api-doc.mjs generates from the built package (not
-// stale), and it names every function the JS module exports.
+// stale), it names every function the JS module exports, and the README stays short.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, existsSync } from 'node:fs';
@@ -39,5 +39,21 @@ test('every export of schema() has its inputs in docs/api.md', () => {
   const api = read('docs/api.md');
   for (const name of Object.keys(mod.schema().exports)) {
     assert.ok(api.includes(`**Inputs** (\`schema().exports.${name}\`)`), name);
+  }
+});
+
+test('README.md is at most 250 lines', () => {
+  const lines = read('README.md').split('\n').length - 1;
+  assert.ok(lines <= 250, `README.md has ${lines} lines; move detail to docs/ (at most 250)`);
+});
+
+test('the README and the docs link only to files that exist', () => {
+  for (const doc of ['README.md', 'CONTRIBUTING.md', 'docs/science.md', 'docs/testing.md', 'docs/using.md', 'docs/page.md']) {
+    const text = read(doc);
+    const base = new URL(doc, root);
+    for (const [, target] of text.matchAll(/\]\(([^)#\s]+)(?:#[^)]*)?\)/g)) {
+      if (/^[a-z]+:/.test(target)) continue;
+      assert.ok(existsSync(new URL(target, base)), `${doc}: link to ${target}, which does not exist`);
+    }
   }
 });
