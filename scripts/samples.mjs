@@ -1,6 +1,6 @@
 // `node scripts/samples.mjs [dir]`: writes the sample toolpaths of public/samples/ (or of `dir`) (CL data in
 // workpiece coordinates: tool tip in mm, unit tool axis from the tip towards the spindle). The
-// geometry is written out here so that anyone can check what the samples are; the README explains
+// geometry is written out here so that anyone can check what the samples are; docs/science.md explains
 // how the twelve rotary-axis types rank on them.
 import { writeFileSync } from 'node:fs';
 

@@ -1,13 +1,65 @@
-// The README's examples, run as a Node script runs them, each checked against a value derived
-// here independently of the engine (closed forms written out below).
+// The examples of README.md and docs/using.md: first each file's `js` blocks run as written (as
+// a Node script in the repository's root runs them), then each example's values checked against
+// a value derived here independently of the engine (closed forms written out below).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import * as fs from 'node:fs';
 import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import * as engine from '../../wasm/pkg/fiveaxis.js';
 import { initSync, nonlinearMove, cubicTest, sshapeDefects, sshapeIdentify, toolpathParse, toolpathCompare, volumetricMap, reversalSimulate } from '../../wasm/pkg/fiveaxis.js';
 
 initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const presets = JSON.parse(readFileSync(new URL('../../public/presets/machines.json', import.meta.url), 'utf8')).presets;
 const rad = (d) => (d * Math.PI) / 180;
+
+// A document's `js` blocks as one script: its imports of node:fs and of the built package become
+// lookups in those modules (so a name the package does not export fails), run from the root, with
+// the named variables returned.
+function runBlocks(doc, names) {
+  const text = readFileSync(new URL(`../../${doc}`, import.meta.url), 'utf8');
+  const blocks = [...text.matchAll(/^```js\n([\s\S]*?)^```$/gm)].map((m) => m[1]);
+  assert.ok(blocks.length > 0, `${doc} has no js block`);
+  const modules = { 'node:fs': fs, './wasm/pkg/fiveaxis.js': engine };
+  const code = blocks.join('\n').replace(/import\s*\{([^}]*)\}\s*from\s*'([^']+)';/g, (_, list, from) => {
+    assert.ok(from in modules, `${doc} imports from ${from}`);
+    return list.split(',').map((n) => n.trim()).filter(Boolean)
+      .map((n) => { assert.ok(n in modules[from], `${doc}: ${from} has no export ${n}`); return `const ${n} = __modules[${JSON.stringify(from)}].${n};`; }).join('\n');
+  });
+  const cwd = process.cwd();
+  process.chdir(fileURLToPath(new URL('../../', import.meta.url)));
+  try {
+    return new Function('__modules', `${code}\nreturn { ${names.join(', ')} };`)(modules);
+  } finally {
+    process.chdir(cwd);
+  }
+}
+
+test('README.md: its example runs as written and gives the values its comments state', () => {
+  const { r, c } = runBlocks('README.md', ['r', 'c']);
+  assert.equal(r.length, 100);
+  assert.ok(Math.abs(r.max - 10.94) < 0.005, `${r.max}`);
+  assert.ok(r.delta instanceof Float64Array && r.delta.length === r.u.length);
+  assert.equal(c.zones[1].name, 'II-1');
+  assert.ok(Math.abs(c.zones[1].k - 90) < 1e-9 && Math.abs(c.zones[1].m - 30) < 1e-9);
+  assert.ok(Math.abs(c.zones[1].height - -0.00296) < 5e-6);
+  assert.equal(c.kHeight.length, 9 * c.errorNames.length);
+  for (const name of ['E_Z0C', 'E_C0C']) assert.ok(c.visibility.invisible.includes(name), name);
+});
+
+test('docs/using.md: its examples run as written and give the values their comments state', () => {
+  const x = runBlocks('docs/using.md', ['r', 'n', 'v', 'd', 'f', 'g', 'a', 'b']);
+  assert.ok(Math.abs(x.r.zones[1].height - -0.0053976) < 1e-7);
+  assert.ok(Math.abs(x.r.kHeight[x.n + x.r.errorNames.indexOf('E_X0B')] - 0.5) < 1e-12);
+  assert.equal(x.v.budget[0].name, 'E_C0Y');
+  assert.match(x.v.summary, /^The tool tip is off by up to 6\.2 µm \(at X 300, Y -200, Z 0 mm\)/);
+  assert.equal(x.d.total.length, 100);
+  assert.equal(x.f.estimates[0].name, 'E_C0Y');
+  assert.deepEqual(x.g.estimates.filter((e) => e.verdict === 'present').map((e) => e.name), ['E_X0B', 'E_A0B', 'dR']);
+  assert.equal(x.g.goodness.explains, true);
+  assert.ok(Math.abs(x.b.dent.depth / x.a.dent.depth - 2) < 0.01);
+  assert.deepEqual(x.a.directions.map((e) => [e.name, e.reverses]), [['X', false], ['Y', false], ['Z', false]]);
+});
 
 const machine = { kind: 'table-table', type: 'CAZ', geometry: { tableHeight: 100 }, rotary: { mFrom: -120, mTo: 30 }, errors: { E_Z0A: -0.02, E_A0C: 0.001 } };
 
@@ -44,7 +96,7 @@ test('README: the cubic test on the trunnion, II-1 by hand', () => {
   assert.equal(c.kHeight.length, 9 * c.errorNames.length);
 });
 
-test('README: Li et al.\'s Table 5 machine', () => {
+test('docs/using.md: Li et al.\'s Table 5 machine', () => {
   const li = structuredClone(presets[0].machine);
   li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
   const r = cubicTest({ machine: li });
@@ -58,7 +110,7 @@ test('README: Li et al.\'s Table 5 machine', () => {
   assert.ok(Math.abs(r.kHeight[n + r.errorNames.indexOf('E_X0B')] - 0.5) < 1e-12);
 });
 
-test('README: the S-shape on Chanal et al.\'s machine', () => {
+test('docs/using.md: the S-shape on Chanal et al.\'s machine', () => {
   const chanal = presets[1].machine;
   const d = sshapeDefects({ machine: { ...chanal, errors: { E_X0B: 0.0294, E_A0B: 0.018575 } } });
   assert.equal(d.total.length, 100);
@@ -74,7 +126,7 @@ test('README: the S-shape on Chanal et al.\'s machine', () => {
   assert.equal(all.estimates.length, 16);
   assert.ok(all.rank < 16);
   assert.ok(all.groups.some((g) => g.members.includes('E_X0B')));
-  // The decisions (Identification API): with the sample's stated 2 µm noise and a 5 µm
+  // The decisions (docs/using.md, Identification API): with the sample's stated 2 µm noise and a 5 µm
   // tolerance, present are exactly the errors its header says it was made with (Table 4's E_X0B
   // and E_A0B, the tool 0.02 mm small), each within three standard errors of its estimate (a
   // 95 % interval misses the truth in one draw of twenty: this draw puts E_A0B 2.3 σ off).
@@ -90,7 +142,7 @@ test('README: the S-shape on Chanal et al.\'s machine', () => {
   assert.match(g.summary[0], /^E_X0B = 29\.6 µm ± 0\.536 µm: the B axis line lies 29\.6 µm towards \+X/);
 });
 
-test('README: the dome sample on the twelve types', () => {
+test('docs/using.md: the dome sample on the twelve types', () => {
   const p = toolpathParse(readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8'), {});
   assert.equal(p.count, 81);
   const rows = toolpathCompare({ machine: { type: 'CBZ' }, tolerance: 0.01 }, p.path);
@@ -104,7 +156,7 @@ test('README: the dome sample on the twelve types', () => {
   assert.ok(row('BCY').max < 0.0025 && row('CAZ').max > 0.1);
 });
 
-test('README: the volumetric map of an X table with positioning, pitch and squareness, by hand', () => {
+test('docs/using.md: the volumetric map of an X table with positioning, pitch and squareness, by hand', () => {
   const tanLim = { kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 },
     rotary: { mFrom: -120, mTo: 120 },
     errors: { E_C0Y: 0.001 },
@@ -141,7 +193,7 @@ test('README: the volumetric map of an X table with positioning, pitch and squar
   assert.match(v.summary, /^The tool tip is off by up to 6\.2 µm \(at X 300, Y -200, Z 0 mm\)/);
 });
 
-test('README: the reversal dent doubles with r, X and Y keep their direction', () => {
+test('docs/using.md: the reversal dent doubles with r, X and Y keep their direction', () => {
   const a = reversalSimulate({ test: { offset: 25 } });
   const b = reversalSimulate({ test: { offset: 50 } });
   // The dent is C's error at the reversal copied onto the circle at the radius r (Figs 12, 13):

@@ -23,7 +23,7 @@ const norm = (a) => Math.sqrt(dot(a, a));
 const close = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} vs ${b} (tol ${tol})`);
 
 // ---------------------------------------------------------------------------------------------
-// Chanal et al.'s machine in closed form (Section 5.2, Appendix A; README "The machine"):
+// Chanal et al.'s machine in closed form (Section 5.2, Appendix A; docs/using.md "The machine"):
 // chain Y (under the table), C (table, turning the table by +C), X, Z, B (head); every axis
 // through the origin at zero, the tool tip L0 below B along the tool. With the axes at
 // (X, Y, Z, B, C):
@@ -226,7 +226,7 @@ test('nonlinearMove: start/end in degrees, sweepAngle in degrees, approx, approx
 });
 
 test('nonlinearGrid, nonlinearSweepK, nonlinearSweepM: increments and start angles in degrees', () => {
-  // From the pole of CAZ (m = 0): δ(u) = L·|sin(u·Δm)·sin((1 − u)·Δk)| (README, eq 26's curve).
+  // From the pole of CAZ (m = 0): δ(u) = L·|sin(u·Δm)·sin((1 − u)·Δk)| (docs/science.md, eq 26's curve).
   const poleMax = (L, dK, dM) => {
     let best = 0;
     for (let i = 0; i <= 20000; i++) {
