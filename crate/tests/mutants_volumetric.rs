@@ -34,7 +34,7 @@ fn input_of(motions: Value, region: Value) -> VolumetricInput {
 fn the_maps_rms_and_worst_point_are_those_of_the_grid() {
     let m = map_of(
         json!({ "E_XX": { "poly": [0, 1e-5] }, "E_YY": { "poly": [0, 1e-5] } }),
-        json!({ "uFrom": -100, "uTo": 300, "vFrom": -200, "vTo": 50, "steps": 9 }),
+        json!({ "uFrom": -100, "uTo": 300, "vFrom": -200, "vTo": 50, "at": 0, "steps": 9 }),
     );
     assert_eq!(m.worst.position, [300.0, -200.0, 0.0]);
     let want = 1e-5 * (300.0_f64.powi(2) + 200.0_f64.powi(2)).sqrt();
@@ -56,7 +56,7 @@ fn the_maps_rms_and_worst_point_are_those_of_the_grid() {
 fn of_equal_points_the_first_is_the_worst() {
     let m = map_of(
         json!({}),
-        json!({ "uFrom": -40, "uTo": 60, "vFrom": 10, "vTo": 90, "steps": 4 }),
+        json!({ "uFrom": -40, "uTo": 60, "vFrom": 10, "vTo": 90, "at": 0, "steps": 4 }),
     );
     assert!(m.norm.iter().all(|&v| v == 0.0));
     assert_eq!(m.worst.position, [-40.0, 10.0, 0.0]);
@@ -200,7 +200,7 @@ fn the_paper_comparison_refuses_a_machine_that_differs_in_any_one_way() {
 fn a_table_short_of_the_region_names_the_pose_rounded() {
     let input = input_of(
         json!({ "E_XX": { "position": [-100, 10], "value": [0.001, 0.002] } }),
-        json!({ "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "steps": 4 }),
+        json!({ "uFrom": -50, "uTo": 50, "vFrom": -50, "vTo": 150, "at": 0, "steps": 4 }),
     );
     let e = map(&input).unwrap_err();
     assert!(

@@ -420,7 +420,8 @@ fn the_schema_lists_every_exports_inputs() {
     assert!(s.exports["cubicDesign"]
         .iter()
         .any(|f| f.path == "maxTilt" && f.unit == "deg"));
-    assert_eq!(s.exports.len(), 27);
+    assert!(s.exports["reversalTrace"].iter().any(|f| f.path == "csv"));
+    assert_eq!(s.exports.len(), 28);
 }
 
 fn tan_lim() -> Value {
