@@ -256,14 +256,24 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   const fitted = fitToBox(millimetres({ ...baseLayout, title: titleLayout, ...layout, margin, meta } as Partial<Layout>, traces), el);
   // Each drawing a task of its own: two plots drawn from one result (the toolpath's δ plot and
   // its 3D path) would otherwise hold the main thread as one long task.
+  const box = el.closest<HTMLElement>('.plot-wrap') ?? el;
+  const greyedBefore = greyedAt.get(box);
   await new Promise((resolve) => setTimeout(resolve, 0));
   await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
-  stale(el, false);
-  el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
+  // Greyed while it was being drawn (an input turned invalid meanwhile): it stays greyed, since
+  // what it shows no longer answers the inputs.
+  if (greyedAt.get(box) === greyedBefore) {
+    stale(el, false);
+    el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
+  }
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
 }
 
+
+/** When each box was last greyed (a count): a drawing started before it leaves it greyed. */
+const greyedAt = new WeakMap<HTMLElement, number>();
+let greyings = 0;
 
 /**
  * Greys what no longer shows what the inputs ask for: a plot (its wrapper), or any other output
@@ -275,6 +285,7 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
 export function stale(target: HTMLElement, on: boolean, why?: string) {
   const box = target.closest<HTMLElement>('.plot-wrap') ?? target;
   box.classList.toggle('stale', on);
+  if (on) greyedAt.set(box, ++greyings);
   // The label sits in the plot's frame (not greyed with the plot), or just before the element.
   const isPlot = box !== target;
   let label = isPlot ? box.querySelector<HTMLElement>(':scope > .stale-label') : box.previousElementSibling?.classList.contains('stale-label') ? (box.previousElementSibling as HTMLElement) : null;
