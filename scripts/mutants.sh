@@ -9,8 +9,8 @@
 #   npm run mutants -- chain -- --shard 1/4 --baseline skip
 #                                         anything after a second `--` goes to cargo-mutants
 #
-# A scope is a set of source files and the test binaries run against each of their mutants, in
-# two passes (see `quick` below): every mutant against the scope's quick tests, then the
+# A scope is a module of the engine (its source files) and the tests named for it, run against
+# each of its mutants in two passes (see `quick` below): every mutant against the scope's quick tests, then the
 # survivors against every test. Run one scope at a time: two runs side by side on two cores
 # take longer than the same runs one after the other.
 #
@@ -58,37 +58,41 @@ filters() {
     *) echo "" ;;
   esac
 }
-# Two passes per scope. The first runs every mutant against the scope's quick test binaries
-# (a few seconds a mutant: most of it is the rebuild). The second (`--re`, by name from the
-# ledger) runs the first pass's survivors again, except those listed as equivalent, against every test binary of the
-# crate: a mutant survives only when no test kills it. The slow binaries run in the second pass
-# of the scopes whose code they reach: reversal_fit (≈ 30 s) for reversal, nonlinear_fast_peak
-# and nonlinear_paper (≈ 7 s and 5 s, the rotary-axis types and the chain) for nonlinear,
-# rotary and chain.
-quick() {
+# Two passes per scope. The first runs every mutant against the scope's own tests: the unit tests
+# (`--lib`) and the test binaries named for the scope's module, crate/tests/<scope>_*.rs (the
+# test files mirror crate/src: chain_model.rs tests chain.rs, machine_travel.rs machine/ …), so
+# a new test file joins its scope by its name. The second (`--re`, by name from the ledger) runs
+# the first pass's survivors again, except those listed as equivalent, against every test
+# binary of the crate: a mutant survives only when no test kills it.
+# Slow binaries (`slow` below) run only in the second pass, and only of the scopes whose code
+# they reach: reversal_fit (≈ 30 s) for reversal, nonlinear_fast_peak and nonlinear_paper (≈ 7 s
+# and 5 s: the rotary-axis types and the chain) for nonlinear, rotary and chain.
+slow() {
   case "$1" in
-    chain) echo "--test mutants_chain --test chain_model --test machine_model --test rotary_kinematics --test volumetric_map --test cubic_any_machine --test sshape_any_machine" ;;
-    rotary) echo "--lib --test mutants_rotary --test rotary_kinematics --test nonlinear_outputs --test nonlinear_split --test chain_model" ;;
-    binding) echo "--lib" ;;
-    nonlinear) echo "--lib --test mutants_nonlinear --test mutants_nonlinear_inputs --test nonlinear_outputs --test nonlinear_split --test rotary_kinematics --test toolpath_compare" ;;
-    cubic) echo "--lib --test mutants_cubic --test mutants_cubic_analysis --test mutants_cubic_design --test cubic_paper --test cubic_design --test cubic_identify --test cubic_any_machine" ;;
-    sshape) echo "--lib --test mutants_sshape --test sshape_geometry --test sshape_machine --test sshape_overcut --test sshape_identify --test sshape_any_machine --test sshape_eq14_vs_chain" ;;
-    volumetric) echo "--lib --test mutants_volumetric --test volumetric_map --test volumetric_paper" ;;
-    reversal) echo "--lib --test mutants_reversal --test reversal_friction --test reversal_motion" ;;
-    toolpath) echo "--lib --test mutants_toolpath --test mutants_toolpath_parse --test toolpath_parse --test toolpath_compare --test toolpath_read_iso --test toolpath_read_siemens --test toolpath_read_heidenhain --test toolpath_read_apt --test toolpath_program --test toolpath_real_files" ;;
-    identify) echo "--lib --test mutants_identify --test identify_stats --test identify_monte_carlo --test cubic_identify --test sshape_identify" ;;
-    machine) echo "--lib --test mutants_machine --test machine_model --test chain_model --test cubic_any_machine --test sshape_any_machine --test volumetric_map" ;;
+    reversal_fit) echo "reversal" ;;
+    nonlinear_fast_peak | nonlinear_paper) echo "nonlinear rotary chain" ;;
+    *) return 1 ;;
   esac
+}
+quick() {
+  [ "$1" = binding ] && { echo "--lib"; return; }
+  printf -- '--lib'
+  for f in crate/tests/"$1"_*.rs; do
+    [ -e "$f" ] || continue
+    t=$(basename "$f" .rs)
+    slow "$t" >/dev/null && continue
+    printf -- ' --test %s' "$t"
+  done
+  echo
 }
 every() {
   [ "$1" = binding ] && { echo "--lib"; return; }
   printf -- '--lib'
   for f in crate/tests/*.rs; do
     t=$(basename "$f" .rs)
-    case "$t" in
-      reversal_fit) [ "$1" = reversal ] || continue ;;
-      nonlinear_fast_peak | nonlinear_paper) case "$1" in nonlinear | rotary | chain) ;; *) continue ;; esac ;;
-    esac
+    if scopes_of=$(slow "$t"); then
+      case " $scopes_of " in *" $1 "*) ;; *) continue ;; esac
+    fi
     printf -- ' --test %s' "$t"
   done
   echo

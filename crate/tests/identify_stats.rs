@@ -63,3 +63,37 @@ fn holm_adjusts_by_rank_and_keeps_the_order() {
     }
     assert_eq!(holm(&[0.9, 0.8]), vec![1.0, 1.0]);
 }
+
+// Found by cargo-mutants: a mutant in `crate/src/identify/stats.rs` survived every other test.
+/// Far in the tail: with one degree of freedom `P(|T| ≥ t) = 1 − 2·atan(t)/π`, so the
+/// two-sided quantile of p is `cot(π·p/2)`; for p = 1e-11 that is 6.366e10, found by doubling the
+/// bracket from 1 (36 doublings), then Newton.
+#[test]
+fn a_far_tail_quantile_is_cot_pi_p_over_2_with_one_degree_of_freedom() {
+    use fiveaxis::identify::stats::t_quantile_two_sided;
+    for p in [1e-11, 1e-9, 1e-6, 0.05] {
+        let want = 1.0 / (std::f64::consts::PI * p / 2.0).tan();
+        let got = t_quantile_two_sided(p, 1.0);
+        close(got / want, 1.0, 1e-9, &format!("p = {p}"));
+    }
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/identify/stats.rs` survived every other test.
+/// The χ² upper tail where its continued fraction is used (x/2 ≥ k/2 + 1), against the closed
+/// forms for even degrees of freedom: `Q(k/2, y) = e^(−y)·Σ_{n<k/2} yⁿ/n!`, y = x/2.
+#[test]
+fn the_chi2_tail_far_out_is_its_closed_form_for_even_degrees_of_freedom() {
+    use fiveaxis::identify::stats::chi2_upper;
+    for x in [0.5, 3.0, 10.0, 30.0, 80.0] {
+        let y: f64 = x / 2.0;
+        for (k, poly) in [(2.0, 1.0), (4.0, 1.0 + y), (6.0, 1.0 + y + y * y / 2.0)] {
+            let want = (-y).exp() * poly;
+            close(
+                chi2_upper(x, k) / want,
+                1.0,
+                1e-10,
+                &format!("x {x}, k {k}"),
+            );
+        }
+    }
+}

@@ -6,10 +6,11 @@
 #![allow(clippy::unwrap_used)]
 mod common;
 
-use common::{close, Rng};
+use common::{close, close3, machine, Rng};
 use fiveaxis::chain::{Chain, Link, Setup};
 use fiveaxis::geometry::{rotate, Axis};
 use fiveaxis::machine::errors::TABLE;
+use fiveaxis::machine::schematic::schematic;
 use fiveaxis::machine::{fit, BranchRule, Machine, MachineKind};
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
@@ -19,10 +20,6 @@ use std::f64::consts::{PI, TAU};
 
 const KINDS: [&str; 3] = ["table-table", "head-table", "head-head"];
 const LINEAR: [&str; 5] = ["spindle-xyz", "table-y", "table-x", "table-xy", "table-z"];
-
-fn machine(v: Value) -> Machine {
-    Machine::from_value(&v, "machine").unwrap()
-}
 
 #[test]
 fn the_tool_vector_is_r_k_r_m_e_h_for_every_kind_type_layout_and_sense() {
@@ -296,4 +293,147 @@ fn swing_length_and_standard_machine() {
     );
     close(h.swing_length().unwrap(), 330.0, 1e-12, "pivot + tool");
     let _ = Pose::new(0.0, 0.0);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/machine/mod.rs` survived every other test.
+#[test]
+fn without_errors_drops_the_errors_and_error_motions_and_keeps_everything_else() {
+    let m = machine(json!({
+        "kind": "head-table", "type": "CBZ",
+        "geometry": { "tableHeight": 40, "pivotLength": 250, "toolLength": 80 },
+        "errors": { "E_X0B": 0.01, "E_A0C": 0.002 },
+        "motions": { "E_XX": 0.002 },
+    }));
+    let bare = machine(json!({
+        "kind": "head-table", "type": "CBZ",
+        "geometry": { "tableHeight": 40, "pivotLength": 250, "toolLength": 80 },
+    }));
+    assert_ne!(
+        m, bare,
+        "the machine with errors differs from the one without"
+    );
+    assert_eq!(m.without_errors(), bare);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/machine/mod.rs` survived every other test.
+/// The machine's axes in chain order with what each does: for a table-table A/C trunnion with
+/// X, Y, Z on the spindle, A (M, the tilting axis) on the bed, C (K) on A, then X, Y, Z.
+#[test]
+fn the_axes_of_a_trunnion_are_a_then_c_on_the_table_and_x_y_z_on_the_spindle() {
+    let m = machine(json!({ "kind": "table-table", "type": "CAZ" }));
+    let axes = m.axes();
+    let got: Vec<(&str, &str, &str, &str)> = axes
+        .iter()
+        .map(|a| (a.name.as_str(), a.motion, a.side, a.role))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("A", "rotary", "table", "M"),
+            ("C", "rotary", "table", "K"),
+            ("X", "linear", "spindle", ""),
+            ("Y", "linear", "spindle", ""),
+            ("Z", "linear", "spindle", ""),
+        ]
+    );
+    let words: Vec<&str> = axes.iter().map(|a| a.description.as_str()).collect();
+    assert_eq!(
+        words,
+        [
+            "A (M): table axis on the bed, carries C",
+            "C (K): table axis on A, carries the workpiece",
+            "X: linear axis, moves the spindle",
+            "Y: linear axis, moves the spindle",
+            "Z: linear axis, moves the spindle",
+        ]
+    );
+    // The drawing lists the same axes.
+    let drawn: Vec<_> = schematic(&m, 0.3, 0.2, 10.0)
+        .unwrap()
+        .axes
+        .into_iter()
+        .map(|a| a.axis)
+        .collect();
+    assert_eq!(drawn, axes);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/machine/mod.rs` survived every other test.
+/// One rotary axis on each side (head-table B/C on a cross table: Y on the bed, X on Y, as the
+/// layout's help says): each rotary axis is alone
+/// on its branch, so it sits on nothing named and carries the branch's end.
+#[test]
+fn the_axes_of_a_head_table_machine_each_carry_their_branchs_end() {
+    let m = machine(json!({ "kind": "head-table", "type": "CBZ", "linear": "table-xy" }));
+    let got: Vec<(String, &str, &str, String)> = m
+        .axes()
+        .into_iter()
+        .map(|a| (a.name, a.side, a.role, a.description))
+        .collect();
+    let want = [
+        ("Y", "table", "", "Y: linear axis, moves the table"),
+        ("X", "table", "", "X: linear axis, moves the table"),
+        (
+            "C",
+            "table",
+            "K",
+            "C (K): table axis, carries the workpiece",
+        ),
+        ("Z", "spindle", "", "Z: linear axis, moves the spindle"),
+        ("B", "spindle", "M", "B (M): head axis, carries the spindle"),
+    ];
+    let want: Vec<(String, &str, &str, String)> = want
+        .iter()
+        .map(|(n, s, r, d)| (n.to_string(), *s, *r, d.to_string()))
+        .collect();
+    assert_eq!(got, want);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/machine/mod.rs` survived every other test.
+/// Table-table CAZ, X Y Z on the spindle (module docs, "MachineGeometry"): with every axis at
+/// zero the spindle nose is at the machine origin, the tool tip `toolLength` from it along −Z
+/// and the table surface (the workpiece origin) `tableHeight` above it. So the nominal tip on
+/// the workpiece at `X, Y, Z` (spindle moves by +q) is `(X, Y, Z − tableHeight − toolLength)`
+/// turned with the table: C turns the table by −C (ISO 841), which turns what is fixed to the
+/// machine by +C about Z as the workpiece sees it; the height stays.
+#[test]
+fn the_tool_tip_of_a_trunnion_lies_the_tool_length_below_the_spindle_nose() {
+    let (h, tool) = (40.0, 120.0);
+    let m = machine(json!({
+        "kind": "table-table", "type": "CAZ",
+        "geometry": { "tableHeight": h, "toolLength": tool },
+    }));
+    let chain = m.nominal_chain();
+    close3(
+        chain.tool_tip.into(),
+        [0.0, 0.0, -tool],
+        "tool tip in the spindle frame",
+    );
+    close3(chain.work_origin.into(), [0.0, 0.0, h], "table surface");
+    for (c, [x, y, z]) in [
+        (0.0_f64, [0.0, 0.0, 0.0]),
+        (0.0, [15.0, -30.0, 200.0]),
+        (0.8, [25.0, 10.0, 90.0]),
+    ] {
+        // Chain order: A, C, X, Y, Z.
+        let pose = chain
+            .tool_pose(&[0.0, c, x, y, z], false, &Setup::None)
+            .unwrap();
+        let (s, k) = c.sin_cos();
+        close3(
+            pose.tip.into(),
+            [k * x - s * y, s * x + k * y, z - h - tool],
+            "tool tip on the workpiece",
+        );
+        let built = m
+            .build()
+            .unwrap()
+            .chain
+            .tool_pose(&[0.0, c, x, y, z], true, &Setup::None)
+            .unwrap();
+        close3(
+            built.tip.into(),
+            pose.tip.into(),
+            "the built machine without errors",
+        );
+    }
 }

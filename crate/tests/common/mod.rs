@@ -117,3 +117,27 @@ pub fn machine_preset(prefix: &str) -> serde_json::Value {
         .unwrap_or_else(|| panic!("no machine preset named {prefix}…"))["machine"]
         .clone()
 }
+
+/// A machine read from its JSON form, as the page sends it.
+#[allow(clippy::unwrap_used)] // test helper: a failure should stop the test
+pub fn machine(v: serde_json::Value) -> fiveaxis::machine::Machine {
+    use fiveaxis::schema::Inputs;
+    fiveaxis::machine::Machine::from_value(&v, "machine").unwrap()
+}
+
+/// `a − b` of two points given as arrays.
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// The length of a vector given as an array.
+pub fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+/// Each component of `got` within 1e-9 of `want`.
+pub fn close3(got: [f64; 3], want: [f64; 3], what: &str) {
+    for i in 0..3 {
+        close(got[i], want[i], 1e-9, &format!("{what}[{i}]"));
+    }
+}

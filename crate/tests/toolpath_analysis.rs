@@ -1,9 +1,8 @@
-//! Tests written for mutants of `crate/src/toolpath/mod.rs` that a sampled mutation run let
-//! survive (`npm run mutants -- toolpath`): the case layer the exports read (file format, `L`,
-//! the ranking), checked against the documented meaning of each input.
+//! The toolpath analysis by its definitions: K's sense per segment against dense sampling, flips
+//! and arcs over the pole, the arc distance's closed form, slerp, the first of equal maxima, the
+//! ranking's rows, the swing length and the file formats' parsers.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
-
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use common::toolpath::tilted;
@@ -17,6 +16,7 @@ use fiveaxis::toolpath::{
 use nalgebra::Vector3;
 use serde_json::json;
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// Each named format is the parser's format of that name; `auto` leaves it to detection.
 #[test]
 fn each_file_format_names_its_parser() {
@@ -32,6 +32,7 @@ fn each_file_format_names_its_parser() {
     assert_eq!(format("nc"), Some(Format::Nc));
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// `L` as given; left out, a head's pivot length plus tool length (the README's definition:
 /// 250 + 120 = 370 mm).
 #[test]
@@ -44,6 +45,7 @@ fn the_swing_length_is_the_given_one_or_pivot_plus_tool() {
     assert_eq!(machine.length().unwrap(), 370.0);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// A ranking has one row per type asked for, each of that type, each over every segment of the
 /// path (n points: n − 1 segments).
 #[test]
@@ -81,6 +83,7 @@ fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// With K turning against ISO 841 (`kReversed`) and M not, each segment's δ is the largest
 /// distance of `L·P(u)` from the plane of its ends, where `P(u)` is the tool axis of the
 /// linearly interpolated commands with K's sense applied: sampled densely here (2001 points),
@@ -121,6 +124,7 @@ fn a_reversed_k_axis_is_applied_to_the_commands_of_each_segment() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// A flip (module docs): the larger of |ΔK|, |ΔM| above 30° *and* |ΔK| + |ΔM| above 10 times
 /// the angle the tool turns. A 40° turn of C at a tilt of 60° turns the tool by 34.4° (far more
 /// than a tenth of 40°): no flip. Leaving the vertical (the pole of C) in a 3.1° tilt towards an
@@ -156,6 +160,7 @@ fn a_flip_needs_a_large_command_and_far_more_command_than_tool_turn() {
     assert!(a.segments[1].flip);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// The pole flag follows the whole arc, not its ends: at a tilt of 80° from the vertical, from
 /// azimuth 0° to 180°, the tool passes right over the vertical (the pole of C on CAZ), 80° from
 /// either end. The same on ABZ near −X (its K = A, the tool along −X at B = −90°): the arc from
@@ -178,6 +183,7 @@ fn an_arc_over_the_pole_is_flagged_though_its_ends_are_far_from_it() {
     assert!(!analyse(&abz, &aside, 100.0, 1.0).unwrap().segments[0].pole);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// Tool axes of any length (module docs): a path given as vectors 1000 mm long is analysed as
 /// the unit path, including the pole flag of a short segment that starts 0.6° from the pole.
 #[test]
@@ -194,6 +200,7 @@ fn tool_axes_of_any_length_give_the_analysis_of_the_unit_axes() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// The arc's angular distance from a point, against the closed form: the great circle through
 /// `x` and `e = (0, sin d, cos d)` has normal `(0, −cos d, sin d)`, so +Z is `d` from it, its
 /// foot `e` inside the arc from −80° to +80° about `e`. Off the arc's span, the nearer end
@@ -218,6 +225,7 @@ fn the_distance_from_an_arc_is_to_its_nearest_point() {
     assert!((q - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// Slerp: a unit vector `u·θ` from `a` on the arc to `b`; of opposite vectors, the normalised
 /// straight interpolation (module docs): `a` before the middle and at it, `b` after.
 #[test]
@@ -236,6 +244,7 @@ fn slerp_is_uniform_on_the_arc_and_picks_an_end_of_opposite_vectors() {
     assert!((slerp(&a, &-a, 0.75) + a).norm() < 1e-15);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// The statistics at their edges: a segment whose δ equals the tolerance is not above it, one
 /// a hair over is; of equal largest δ (points repeated: δ = 0) the first segment is named.
 #[test]
@@ -257,6 +266,7 @@ fn a_delta_at_the_tolerance_is_within_it_and_the_first_of_equal_maxima_is_named(
     assert_eq!((s.max, s.max_segment), (0.0, 0));
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// Refinement keeps each original point's tip and puts the inserted ones at equal fractions of
 /// the straight line between the segment's end tips (equal pieces, module docs). A path of two
 /// points is enough; one point, or tips and axes of different counts, are refused.

@@ -1,9 +1,9 @@
-//! Tests written for mutants of `crate/src/nonlinear/` that a mutation run let survive
-//! (`npm run mutants -- nonlinear`): the deviation function of a move against its definition in
-//! the module docs (eqs 9, 10, 19–21 and the coincident-ends chord), its maximum against a brute
-//! force, and the documented evaluation counts of the three ways to the maximum.
+//! The deviation function of a move against its definition in the module docs (eqs 9, 10, 19–21
+//! and the coincident-ends chord), its maximum against a brute force, the documented evaluation
+//! counts of the three ways to the maximum, eqs 25/26/30, `analyze`'s lengths, and the
+//! opposite-ends plane as the least-squares eigenvector.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use common::{close, Rng};
@@ -33,6 +33,7 @@ fn random_move(rng: &mut Rng, t: RotaryType, span: f64) -> Move {
     Move::new(t, start, end)
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_deviation_is_the_distance_from_the_plane_of_the_ends() {
     // δ(u)/L = |P(u)·n|, n = V0 × V1/|V0 × V1|; plane_sine = |V0 × V1|; the maximum is the
@@ -73,6 +74,7 @@ fn the_deviation_is_the_distance_from_the_plane_of_the_ends() {
     assert!(checked > 100, "{checked}");
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn coincident_ends_give_the_chord_from_the_start() {
     // A full turn of K (θm fixed off the pole) brings the tool back: V0 = V1, and δ(u)/L is the
@@ -103,6 +105,7 @@ fn coincident_ends_give_the_chord_from_the_start() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_evaluations_counted_are_those_the_docs_state() {
     // Module docs, "Exact maximum": a move of one axis takes one evaluation; the dense method at
@@ -156,6 +159,7 @@ fn the_evaluations_counted_are_those_the_docs_state() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_dense_method_finds_the_largest_deviation_of_any_move() {
     // `peak_dense`, the reference method for every move: its maximum is that of δ over [0, 1],
@@ -187,6 +191,7 @@ fn the_dense_method_finds_the_largest_deviation_of_any_move() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_dense_method_samples_16_plus_4_s_steps() {
     // Module docs: g is sampled at 16 + 4·S steps (S in radians), then each local maximum is
@@ -208,6 +213,7 @@ fn the_dense_method_samples_16_plus_4_s_steps() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn eqs_25_and_30_are_the_deviation_at_mid_move() {
     // Eq 25 (Group I) and eq 30 (Group II) give δ(½)/L in closed form from θm0, Δθm, Δθk: the
@@ -232,6 +238,7 @@ fn eqs_25_and_30_are_the_deviation_at_mid_move() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn opposite_ends_take_the_least_squares_plane_of_the_path() {
     // V1 = −V0 (module docs): the reference plane through ±V0 fitted to the path sampled at
@@ -321,6 +328,7 @@ fn g_jet_by_differences(mv: &Move) -> (f64, f64) {
     (g2, g3)
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_fast_path_answers_exactly_where_the_docs_prove_g_has_one_bend() {
     // Module docs, "Exact maximum": with S = |Δθk| + |Δθm|, g'' keeps its sign on [0, 1] (and the
@@ -368,6 +376,7 @@ fn pole(g: Group) -> f64 {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn a_move_starts_at_the_pole_within_1e_12_of_its_group_s_angles() {
     for g in [Group::I, Group::II] {
@@ -383,6 +392,7 @@ fn a_move_starts_at_the_pole_within_1e_12_of_its_group_s_angles() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn at_the_pole_the_error_is_eq_26_at_half_and_its_product_form_along_the_move() {
     // Module docs of closed_form_pole: from the pole the tool's error is
@@ -415,6 +425,7 @@ fn at_the_pole_the_error_is_eq_26_at_half_and_its_product_form_along_the_move() 
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn analyze_gives_every_length_in_mm_and_the_curve_at_even_steps_of_u() {
     // Each length is the fraction of L from the deviation's definition times L (= 250 mm); the
@@ -469,6 +480,7 @@ fn analyze_gives_every_length_in_mm_and_the_curve_at_even_steps_of_u() {
     assert_eq!(a.approx_shortfall, None);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn bulk_maxima_and_the_fig_7_approximation_are_each_moves_own() {
     let mut rng = Rng::new(781);
@@ -508,6 +520,7 @@ fn bulk_maxima_and_the_fig_7_approximation_are_each_moves_own() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn a_split_move_of_both_axes_steps_each_axis_by_its_share() {
     // n equal steps of a move of both axes: each axis steps |Δθ|/n, and the n pieces' largest
@@ -529,6 +542,7 @@ fn a_split_move_of_both_axes_steps_each_axis_by_its_share() {
     assert!(s.max <= 0.01);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/mod.rs` survived every other test.
 #[test]
 fn the_increment_grid_gives_u_of_the_maximum_where_there_is_an_error() {
     let t = RotaryType::parse("CBZ").unwrap();

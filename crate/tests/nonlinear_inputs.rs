@@ -1,13 +1,13 @@
-//! Tests written for mutants of `crate/src/nonlinear/inputs.rs` that a mutation run let survive:
-//! the study's inputs as the page and Node send them (commands in degrees, the machine's senses
+//! The study's inputs as the page and Node send them (commands in degrees, the machine's senses
 //! of rotation, `L` given or the machine's), read natively, each export's numbers against the
 //! same move built by hand in the study's angles (θ = −command on a reversed axis, module docs
 //! of `fiveaxis::machine`). A reversed sense mirrors the path and leaves its errors as they are
 //! (the last test), so the sweeps are checked on all four senses for their ranges and keys; the
-//! senses themselves show in `angles` and `compare_types`. The maximum of one move (`Deviation::peak`) is checked against brute
-//! force in `mutants_nonlinear.rs`; here it is the reference for what the inputs feed it.
+//! senses themselves show in `angles` and `compare_types`. The maximum of one move
+//! (`Deviation::peak`) is checked against brute force in `nonlinear_deviation.rs`; here it is the
+//! reference for what the inputs feed it.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use common::close;
@@ -65,6 +65,7 @@ fn by_hand(t: RotaryType, (sk, sm): (f64, f64), start: (f64, f64), end: (f64, f6
         * L
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 #[test]
 fn l_is_the_given_one_or_the_machines_swing() {
     let given = case_of(&json!({ "length": 80 }));
@@ -81,6 +82,7 @@ fn l_is_the_given_one_or_the_machines_swing() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 #[test]
 fn a_reversed_axis_flips_the_sign_of_its_command_only() {
     for (kr, mr) in SENSES {
@@ -90,6 +92,7 @@ fn a_reversed_axis_flips_the_sign_of_its_command_only() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// Fig 4 on every sense: each start command of K (its `n` commands from `from` to `to`,
 /// inclusive, equally spaced) against the move built by hand; the error does not depend on
 /// where K starts (the whole move turns about K), which the flat curve shows.
@@ -116,6 +119,7 @@ fn sweep_of_the_start_of_k_is_the_commanded_moves_errors() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// Fig 7 on every sense: one curve per ratio of the commands' increments ΔK/ΔM, labelled with
 /// the ratio as given, each point the move from (0, M) to (ratio·ΔM, M + ΔM) in commands.
 #[test]
@@ -149,6 +153,7 @@ fn sweep_of_the_start_of_m_is_the_commanded_moves_errors_per_ratio() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// Figs 3, 5, 8 on every sense: the grid's increments are the commands as asked (degrees in,
 /// radians out, columns K, rows M, ends included) and each cell the move from (0, M) by them.
 #[test]
@@ -194,6 +199,7 @@ fn grid_of_increments_is_in_commands_and_each_cell_the_commanded_move() {
     assert!(e.contains("dK") && e.contains("empty"), "{e}");
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// The same move on the twelve types: every type reached makes the start and end tool vectors
 /// of the machine's own move with its commands (in its senses), and errs as that move by hand;
 /// the machine's own type keeps the commands as given (K = 200° is not folded to −160°).
@@ -264,6 +270,7 @@ fn every_type_makes_the_same_tool_vectors_and_the_own_type_the_commands_given() 
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// `linspace`: `n` values from `a` to `b`, both included, equal steps; `[a]` when `n < 2`.
 #[test]
 fn linspace_is_equal_steps_with_both_ends() {
@@ -274,6 +281,7 @@ fn linspace_is_equal_steps_with_both_ends() {
     assert_eq!(linspace(2.0, 7.0, 0), vec![2.0]);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/nonlinear/inputs.rs` survived every other test.
 /// A reversed axis mirrors the path: turning K, M or both the other way gives a path congruent
 /// to the first (R_K(−θ) = S·R_K(θ)·S with S the reflection that fixes K's axis and e_H), so
 /// every error and its u are the same on all four senses. The senses therefore show only in the

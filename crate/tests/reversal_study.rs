@@ -1,5 +1,4 @@
-//! Tests written for the reversal study's surviving mutants (`npm run mutants -- reversal`), each
-//! against a second method or a closed form:
+//! The reversal study's parts, each against a second method or a closed form:
 //! - the drives: gains from their labels; the loop gain `Drive::response` against the loop's
 //!   equations integrated with a sine; the integral held at the torque limit; a step over a
 //!   reversal against 10 µs steps (where the friction switches, and the state after it);
@@ -25,6 +24,7 @@ fn case(v: Value) -> ReversalCase {
     ReversalCase::read(&v).unwrap()
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_drives_gains_are_what_their_labels_say() {
     // "K_v = mass · 2π · bandwidth", "K_i = K_v / integral time" (ms), slope 1/mm → 1/m.
@@ -57,6 +57,7 @@ fn the_drives_gains_are_what_their_labels_say() {
     assert_eq!((rot.fc, rot.slope), (7.0, 600.0));
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_trace_has_at_most_samples_plus_one_points_from_rest_to_the_end() {
     let c = case(json!({}));
@@ -132,6 +133,7 @@ fn against_differences(t: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
     (gap, top)
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn each_recorded_quantity_against_a_second_method() {
     let (m, tr) = every_step(json!({"samples": 200000, "test": {"offset": 40}}));
@@ -177,6 +179,7 @@ fn each_recorded_quantity_against_a_second_method() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn every_moving_axis_lags_its_command_without_feed_forward() {
     // A P position loop: in the steady state the error is v/K_p; an axis whose command moves
@@ -216,6 +219,7 @@ fn sign_changes(v: &[f64]) -> usize {
     n
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_friction_sees_the_direction_changes_of_the_velocity_and_no_others() {
     // The direction memory changes where the velocity changes sign (drive's docs), and starts
@@ -268,6 +272,7 @@ fn synthetic(theta: &[f64], deviation: Vec<f64>) -> Trace {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_dent_of_a_triangle_is_its_depth_at_its_apex_and_half_its_base_wide() {
     // θ_i = i/100, i = 0..=100. The trace with friction dips by a triangle of depth D and half
@@ -294,6 +299,7 @@ fn the_dent_of_a_triangle_is_its_depth_at_its_apex_and_half_its_base_wide() {
     assert_eq!((got.depth, got.width, got.bump), (0.0, 0.0, 0.0));
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn before_and_after_are_the_commanded_velocities_a_reversal_time_either_side() {
     // r > R: X and Y change direction with C; their velocities either side differ.
@@ -320,6 +326,7 @@ fn before_and_after_are_the_commanded_velocities_a_reversal_time_either_side() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_step_check_compares_the_two_runs_at_the_same_instants_only() {
     // The check's difference, against the test's own pair of runs: every step at h and every
@@ -351,6 +358,7 @@ fn the_step_check_compares_the_two_runs_at_the_same_instants_only() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_step_checks_relative_figure_is_the_difference_over_the_largest_deviation() {
     let c = case(json!({"test": {"feed": 2000}}));
@@ -373,6 +381,7 @@ fn the_step_checks_relative_figure_is_the_difference_over_the_largest_deviation(
     assert_eq!(s.step, c.step * 1e-3);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_closed_loop_gain_is_what_the_integrated_drive_does_with_a_sine() {
     // Drive::response, the transfer function of the loop's equations, against the same
@@ -417,6 +426,7 @@ fn the_closed_loop_gain_is_what_the_integrated_drive_does_with_a_sine() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_recorded_friction_is_eq2_at_the_travel_since_the_last_reversal() {
     // f = f_c·(2·tanh(a·|x′|) − 1)·sgn(ẋ′) (eq 2), x′ the travel of C's actual position since
@@ -480,6 +490,7 @@ fn unit_drive(limit: f64, fc: f64, slope: f64) -> fiveaxis::reversal::drive::Dri
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on() {
     // A unit-inertia drive with a 5 N·m limit told to move at ±1 rad/s from rest: it saturates
@@ -521,6 +532,7 @@ fn the_integral_holds_while_the_torque_is_at_its_limit_and_the_error_pushes_on()
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_readers_limits_are_those_its_messages_state() {
     use fiveaxis::reversal::fit::parse_trace;
@@ -552,6 +564,7 @@ fn the_readers_limits_are_those_its_messages_state() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn a_step_over_a_reversal_puts_the_switch_where_the_velocity_crosses_zero() {
     // A drive with friction follows x_r = ±sin 2πt (SI) and turns round near t = 0.25 s. The
@@ -652,6 +665,7 @@ fn trace_at(c: &ReversalCase, angles: &[f64], offset: f64) -> Vec<f64> {
         .collect()
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
     // A trace simulated with f_c = 12 N·m, a = 800 1/rad, K_p = 28 1/s and a ball bar 3 µm
@@ -757,6 +771,7 @@ fn a_fit_returns_the_truth_and_intervals_from_its_own_jacobian() {
     assert!((f.halfway - 0.5f64.atanh() / f.slope.value).abs() < 1e-15);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn a_fit_needs_four_parameters_and_thirty_degrees_of_freedom() {
     // n − 4 ≥ 30 (fit's docs): 33 points are refused for their number, 34 and 60 are not.
@@ -795,6 +810,7 @@ fn a_fit_needs_four_parameters_and_thirty_degrees_of_freedom() {
     assert!((f.fc.value / 10.0).ln().abs() < 3.0 * sd, "{:?}", f.fc);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
     // Along the circle: s(t), ṡ and s̈ against central differences of each other, at rest
@@ -859,6 +875,7 @@ fn the_path_is_its_velocitys_integral_from_rest_to_rest() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/reversal/` survived every other test.
 #[test]
 fn a_fit_whose_interval_spans_more_than_a_factor_ten_is_refused() {
     // A small dent (f_c = 2 N·m) under 1 µm of noise: a's 95 % interval spans 14 to 476 1/rad

@@ -1,6 +1,4 @@
-//! Tests written for mutants of `crate/src/cubic/design.rs` that a mutation run let survive
-//! (`npm run mutants -- cubic`). Each checks the designer's public result against what its
-//! module docs define, rebuilt here independently:
+//! The cubic test's designer against what its module docs define, rebuilt here independently:
 //! - the scaled matrix `S` (10 µm / 10⁻⁴ rad typical sizes, heights over the noise, slopes over
 //!   the noise per half zone), rebuilt from each zone's public sensitivities: its singular
 //!   values, rank (relative threshold 10⁻⁶), `σ_r` and the condition `σ₁/σ_r`;
@@ -12,6 +10,7 @@
 //! - the start (30° towards the face centre), seen where the search cannot improve on it;
 //! - the paper's layout (tilt and azimuth of its tool vectors, condition infinite when its rank
 //!   is short) and the fit's view of a layout with as many values as errors.
+
 #![allow(clippy::unwrap_used)]
 mod common;
 
@@ -150,6 +149,7 @@ fn candidates_at(
     out
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The scaled matrix's singular values, rank, `σ_r` and condition `σ₁/σ_r` of the designed and
 /// of the paper's layout are those of `S` rebuilt here from the zones' sensitivities with the
 /// documented scaling. A zone of 12 mm (half: 6 mm, so neither `zone/2 = zone % 2` nor
@@ -223,6 +223,7 @@ fn singular_values_rank_and_condition_are_those_of_the_documented_scaled_matrix(
     assert_eq!(paper.condition, f64::INFINITY);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The noise only divides `S` by a constant: the rank of every candidate together and of the
 /// designed layout are the same at 1 mm, 1 µm and 1 nm, with σ₁ from about 10⁻² to 10⁴ (so a
 /// rank threshold not relative to σ₁ would count rounding noise or drop the weak directions).
@@ -242,6 +243,7 @@ fn the_noise_scales_the_matrix_and_changes_no_rank() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The chosen errors are the matrix's columns, in the order given.
 #[test]
 fn the_named_errors_are_the_columns_in_the_given_order() {
@@ -262,6 +264,7 @@ fn the_named_errors_are_the_columns_in_the_given_order() {
     assert_eq!(fit, names);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The zones of a 3 × 3 grid in two set-ups: names, centres, set-ups, the piece's place, and each
 /// zone's sensitivities those of its tool vector at its place (rebuilt with `layout` in that
 /// set-up). The piece stands 20 mm off the table's axis, the second set-up 150 mm further.
@@ -327,6 +330,7 @@ fn zones_sit_on_the_documented_grid_in_both_set_ups() {
     assert_eq!(seen.len(), 18);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The search ends where no sweep improves (module docs): no single zone swapped for another
 /// candidate of its place (rebuilt here with `layout` from the documented tilts and azimuths)
 /// raises the rank or the r-th singular value. Two set-ups of a 2 × 2 grid, heights only: this
@@ -370,6 +374,7 @@ fn no_single_zone_swap_improves_the_designed_layout() {
     assert_eq!(d.candidates, count);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The start: each zone's tool leans 30° towards the face centre (the paper's rule), or as near
 /// to that as the candidates go: at min(maxTilt, 30°). It is what the design keeps where nothing
 /// beats it: with E_Z0B alone (B's line moved along Z by δ) a zone's height moves by
@@ -431,6 +436,7 @@ fn a_zone_nothing_improves_keeps_the_start_towards_the_centre() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// The fit's view of a layout needs a residual degree of freedom: four heights (a 2 × 2 grid,
 /// no slopes) of four errors the design makes independent determine all four, each alone.
 #[test]
@@ -449,6 +455,7 @@ fn four_heights_identify_four_independent_errors() {
     assert!(r.fit.estimates.iter().all(|e| e.value.is_some()));
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/design.rs` survived every other test.
 /// While the rank is short of the reachable rank (a 2 × 2 grid of heights only: 4 values
 /// against r ≥ 5), the search ranks layouts by their rank, then by the sum of the logarithms
 /// of their singular values (module docs): no single zone swapped for another candidate of its

@@ -1,8 +1,11 @@
-//! Tests written for mutants of `crate/src/sshape/` that a sampled mutation run let survive
-//! (`npm run mutants -- sshape`): the B-spline, the measurement file, eq 6 and the overcut map,
-//! the exact gouge's search window, and the machine poses carried along the path.
+//! The S-shape's functions against their definitions, each by a second route: the B-spline on
+//! odd knot vectors against the Cox–de Boor sum and its derivatives, eq 6 from the surface's points,
+//! `eq6_max` and the overcut map's grid point by point, the peaks of hand-written maps, the gouge
+//! search kept in its window, the machine poses the same asked alone or among many, the arc-length
+//! parameter against a polyline, the curve lengths, labels, the sensitivity columns' cosines, and
+//! surface B with the paper's N giving its 0.0125 mm.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use fiveaxis::machine::Machine;
@@ -15,6 +18,7 @@ use fiveaxis::sshape::part::{Part, Surface, SurfaceId};
 use fiveaxis::sshape::study::{Design, SShapeModel, SShapeTool};
 use nalgebra::Vector3;
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 /// A clamped cubic needs p + 1 = 4 points. With exactly 4 it is the Bézier curve (knots
 /// 0,0,0,0,1,1,1,1), whose midpoint is (P0 + 3·P1 + 3·P2 + P3)/8 (Bernstein weights at ½);
 /// with 3 or 2 points it is refused.
@@ -92,6 +96,7 @@ fn cox_de_boor(t: &[f64], i: usize, a: usize, u: f64, span: (usize, usize), last
         + f(t[i + a + 1] - u, t[i + a + 1] - t[i + 1]) * cox_de_boor(t, i + 1, a - 1, u, span, last)
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_domain_the_span_and_the_point_follow_their_definitions_on_any_knot_vector() {
     for c in odd_curves() {
@@ -133,6 +138,7 @@ fn the_domain_the_span_and_the_point_follow_their_definitions_on_any_knot_vector
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_derivatives_are_those_of_the_cox_de_boor_sum() {
     // Central differences of the module docs' sum, away from the knots (where a derivative may
@@ -175,6 +181,7 @@ fn the_derivatives_are_those_of_the_cox_de_boor_sum() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn a_missing_point_is_named_on_its_own_curve() {
     // Module docs of `sshape::identify`: 50 points on each curve, a missing point is named.
@@ -234,6 +241,7 @@ fn on_grid(i: usize, n: usize) -> f64 {
     i as f64 / (n - 1) as f64
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn eq6_is_the_tool_radius_times_one_less_sin_theta() {
     let part = Part::standard().unwrap();
@@ -260,6 +268,7 @@ fn eq6_is_the_tool_radius_times_one_less_sin_theta() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_largest_eq6_is_taken_over_the_whole_grid_corners_included() {
     // `eq6_max` over nu × nv points u = i/(nu − 1), v = j/(nv − 1): the largest of eq 6 there.
@@ -288,6 +297,7 @@ fn the_largest_eq6_is_taken_over_the_whole_grid_corners_included() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_overcut_map_holds_eq6_and_the_gouge_at_each_grid_point_row_major() {
     let part = Part::standard().unwrap();
@@ -333,6 +343,7 @@ fn hand_map(eq6: Vec<f64>, exact: Vec<f64>) -> OvercutMap {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_peaks_are_the_largest_values_where_they_are_the_first_of_ties() {
     // `max_of`: the largest value of a row-major field [iv·nu + iu] and its (u[iu], v[iv]).
@@ -367,6 +378,7 @@ fn the_peaks_are_the_largest_values_where_they_are_the_first_of_ties() {
     assert_eq!(p.gouge, 0.0);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_exact_deviation_is_searched_inside_its_window_only() {
     // `deviation_in(p, lo, hi)`: the smallest clearance of p from the tool at u' ∈ [lo, hi],
@@ -395,6 +407,7 @@ fn the_exact_deviation_is_searched_inside_its_window_only() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_poses_do_not_depend_on_which_parameters_are_asked_for() {
     // `poses_along` follows the path from u = 0 in small steps whatever `us` holds, so the pose
@@ -423,6 +436,7 @@ fn the_poses_do_not_depend_on_which_parameters_are_asked_for() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn eq6_is_largest_at_the_bottom_of_every_ruling() {
     // Eq 6 is zero at v = 1, where the tool's section at h = L_tool touches the top curve
@@ -453,12 +467,14 @@ fn eq6_is_largest_at_the_bottom_of_every_ruling() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_surfaces_are_named_a_and_b() {
     assert_eq!(SurfaceId::A.name(), "A");
     assert_eq!(SurfaceId::B.name(), "B");
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_mesh_is_the_surface_at_an_even_grid_row_major() {
     // `mesh(nu, nv)`: S(iu/(nu − 1), iv/(nv − 1)) at [iv·nu + iu], x, y and z apart.
@@ -497,6 +513,7 @@ fn polyline_length(s: &Surface, v: f64, u: f64) -> f64 {
     (4.0 * fine - coarse) / 3.0
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_parameter_at_an_arc_length_is_where_the_curve_is_that_long() {
     // `u_at_arc_length(v, s)`: the u at which the iso-curve v has length s from u = 0, s clamped
@@ -522,6 +539,7 @@ fn the_parameter_at_an_arc_length_is_where_the_curve_is_that_long() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_four_curve_lengths_are_top_a_top_b_bottom_a_bottom_b() {
     // `curve_lengths`: the measurement curves at z = 25 mm (top) and 11 mm (bottom), v = z/30.
@@ -539,6 +557,7 @@ fn the_four_curve_lengths_are_top_a_top_b_bottom_a_bottom_b() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn a_point_is_labelled_by_its_curve_and_number() {
     let points = Part::standard_points().unwrap();
@@ -571,6 +590,7 @@ fn trunnion_design() -> Design {
     .unwrap()
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_column_cosine_and_the_alike_pairs_follow_the_sensitivity_columns() {
     // `column_cosine(a, b)`: a·b/(‖a‖·‖b‖) of the two errors' columns of `rows`, None for a name
@@ -623,6 +643,7 @@ fn the_column_cosine_and_the_alike_pairs_follow_the_sensitivity_columns() {
     assert_eq!(got, want);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn the_design_points_are_the_standard_points_in_list_order() {
     let d = trunnion_design();
@@ -635,6 +656,7 @@ fn the_design_points_are_the_standard_points_in_list_order() {
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 #[test]
 fn surface_b_with_the_papers_sign_of_n_gives_the_papers_overcut() {
     // Chanal et al. print 0.0125 mm for surface B's eq 6 maximum, with N = R × T on both

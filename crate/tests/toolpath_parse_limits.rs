@@ -1,12 +1,7 @@
-//! Tests written for mutants of `crate/src/toolpath/parse.rs` that a mutation run let survive
-//! (`npm run mutants -- toolpath`): the rules of the module docs at their edges. Format
-//! detection line by line, line lengths at exactly [`MAX_LINE`], the error column of each
-//! field, APT's count of numbers, NC words and keywords, ranges at their limits, and the APT
-//! writer's 72-character lines. Every expected value is read off the documented format, not
-//! off the parser.
+//! The toolpath reader's documented rules at their edges: detection, lines of exactly `MAX_LINE`
+//! bytes, error columns, NC words, limits, APT lines of 72 and 73 characters.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
-
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use common::toolpath::{at, caz_head, error};
@@ -27,6 +22,7 @@ fn tips(text: &str, format: Format, machine: Option<&Machine>) -> Vec<Vector3<f6
 // ---------------------------------------------------------------------------------------------
 // Format detection: the first telling line decides
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// `PARTNO` and `PPRINT` followed by text are APT; another APT word followed by text (not `/`)
 /// decides nothing; a line of numbers decides CSV even when a later line looks like NC.
 #[test]
@@ -54,6 +50,7 @@ fn comment(len: usize) -> String {
     format!("#{}", "x".repeat(len - 1))
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// A line of exactly [`MAX_LINE`] bytes is read, whether it comes whole or in pieces; one more
 /// byte is the too-long error, in pieces as soon as the carried part passes the limit.
 #[test]
@@ -83,6 +80,7 @@ fn a_line_of_exactly_max_line_bytes_is_read() {
     assert!(e.message.starts_with(too_long), "{}", e.message);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// A continued APT statement of exactly [`MAX_LINE`] bytes before its last line is read; one
 /// byte more is refused at the line that passes the limit.
 #[test]
@@ -105,6 +103,7 @@ fn a_continued_apt_statement_of_exactly_max_line_bytes_is_read() {
     );
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// "A file without points is an error" counts the points of this file, not what the caller's
 /// vector already holds, and a caller that drains the vector loses nothing.
 #[test]
@@ -136,6 +135,7 @@ fn the_points_of_the_file_are_counted_not_the_callers_vector() {
 // ---------------------------------------------------------------------------------------------
 // CSV fields
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// Each non-finite tool-axis component is reported at its own column.
 #[test]
 fn a_non_finite_axis_component_is_reported_at_its_column() {
@@ -160,6 +160,7 @@ fn a_non_finite_axis_component_is_reported_at_its_column() {
     );
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// With `;` or a tab as separator a comma is a decimal comma, and a decimal point still reads.
 #[test]
 fn a_decimal_point_reads_in_semicolon_and_tab_lines() {
@@ -177,6 +178,7 @@ fn a_decimal_point_reads_in_semicolon_and_tab_lines() {
 // ---------------------------------------------------------------------------------------------
 // APT: the count of numbers
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// The error points at the first number that does not fit: the 4th of a 4- or 5-number GOTO,
 /// the 7th of a longer one (however many follow), one past the end when numbers are missing.
 #[test]
@@ -215,6 +217,7 @@ fn a_wrong_count_of_apt_numbers_is_reported_where_it_goes_wrong() {
 // ---------------------------------------------------------------------------------------------
 // NC words
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// The word rules of the ISO reader's docs: `X 12.5`, `X=12.5` and `X = 12.5` are one word; a
 /// leading `/` is block delete, a `/` after a word is no word; a run of two letters is a keyword
 /// of another dialect, refused with its column.
@@ -254,6 +257,7 @@ fn nc_words_keywords_and_slashes() {
     );
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// ±100000 mm and ±360000° are accepted, in inch the position reached in mm counts:
 /// 3937.0078 in = 99999.998 mm is in range, 3937.0079 in = 100000.0007 mm is not.
 #[test]
@@ -284,6 +288,7 @@ fn nc_positions_at_their_limits() {
 // ---------------------------------------------------------------------------------------------
 // The APT writer's line width
 
+// Found by cargo-mutants: a mutant in `crate/src/toolpath/` survived every other test.
 /// A GOTO is continued with `$` after z exactly when its one-line form would be longer than
 /// 72 characters; no written line is longer.
 #[test]

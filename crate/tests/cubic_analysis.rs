@@ -1,10 +1,10 @@
-//! Tests written for mutants of `crate/src/cubic/mod.rs` that a mutation run let survive
-//! (`npm run mutants -- cubic`): the zone planes' arithmetic, the three references, the first
-//! order's slopes, and what the test says it can and cannot see ([`Visibility`]), each against
-//! its documented meaning and a sensitivity table of central differences of the exact heights
-//! computed here (each error alone, ±h), not the engine's own table.
+//! The cubic test's analysis against its documented meaning: the piece's limits at and just past
+//! their bounds, the zone planes' arithmetic, the three references, the first order's slopes, and
+//! what the test says it can and cannot see ([`Visibility`]), each against a sensitivity table of
+//! central differences of the exact heights computed here (each error alone, ±h), not the engine's
+//! own table; the height map's trapezoid averages and levelling.
 
-#![allow(clippy::unwrap_used)] // test helpers: a failure should stop the test
+#![allow(clippy::unwrap_used)]
 mod common;
 
 use common::{close, machine_preset};
@@ -13,10 +13,59 @@ use fiveaxis::cubic::{
     analyze, height_map, Analysis, CubicGrid, CubicInput, CubicReference, Options, ZonePlane,
     MAX_GRID_POINTS,
 };
+use fiveaxis::cubic::{CubicPiece, MAX_PASSES_PER_ZONE};
 use fiveaxis::machine::Machine;
 use fiveaxis::schema::{read_split, Inputs, Quantity};
 use nalgebra::DMatrix;
 use serde_json::json;
+
+fn piece(zone: f64, radius: f64, pick: f64) -> CubicPiece {
+    CubicPiece::from_value(
+        &json!({ "zoneSize": zone, "toolRadius": radius, "pick": pick }),
+        "",
+    )
+    .unwrap()
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
+/// The pick feed must be less than the ball's diameter 2r: with r = 3 mm, 5.9 mm is accepted
+/// and 6 mm refused.
+#[test]
+fn the_pick_must_be_less_than_the_ball_diameter() {
+    assert!(piece(16.0, 3.0, 5.9).validate().is_ok());
+    let e = piece(16.0, 3.0, 6.0).validate().unwrap_err();
+    assert_eq!(e.field, "setup.pick");
+    assert!(e.message.contains("diameter 6 mm"), "{}", e.message);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
+/// The pick feed may equal the zone size (one pass at each edge: 2 passes) but not exceed it.
+#[test]
+fn the_pick_may_equal_the_zone_but_not_exceed_it() {
+    let at = piece(16.0, 10.0, 16.0);
+    assert!(at.validate().is_ok());
+    assert_eq!(at.passes_per_zone(), 2);
+    let e = piece(16.0, 10.0, 17.0).validate().unwrap_err();
+    assert!(e.message.contains("zone size 16 mm"), "{}", e.message);
+}
+
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
+/// `n = ⌈zone/pick⌉` intervals make n + 1 passes: exactly MAX_PASSES_PER_ZONE is accepted
+/// (zone 20 mm, pick 20/19999 mm), one more (pick 0.001 mm: 20001 passes) refused.
+#[test]
+fn exactly_the_largest_number_of_passes_is_accepted() {
+    let n = (MAX_PASSES_PER_ZONE - 1) as f64;
+    let at = piece(20.0, 3.0, 20.0 / n);
+    assert_eq!(at.passes_per_zone(), MAX_PASSES_PER_ZONE);
+    assert!(at.validate().is_ok());
+    let past = piece(20.0, 3.0, 0.001);
+    assert_eq!(past.passes_per_zone(), 20_001);
+    assert!(past
+        .validate()
+        .unwrap_err()
+        .message
+        .contains("passes per zone"));
+}
 
 fn machine(prefix: &str) -> Machine {
     Machine::from_value(&machine_preset(prefix), "machine").unwrap()
@@ -36,6 +85,7 @@ const PRESETS: [&str; 6] = [
     "B swivel head with C table",
 ];
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_zone_plane_is_its_height_plus_its_slopes_times_the_offset_from_its_centre() {
     // h = 1 mm, ∂h/∂x = 0.5, ∂h/∂y = −0.25 about the centre (10, 20): at (14, 16) the plane is
@@ -50,6 +100,7 @@ fn a_zone_plane_is_its_height_plus_its_slopes_times_the_offset_from_its_centre()
     assert_eq!(p.at((10.0, 20.0), 10.0, 24.0), 0.0);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn the_options_are_the_inputs_transform_and_reference() {
     for (transform, key, reference) in [
@@ -86,6 +137,7 @@ fn erroneous_trunnion(scale: f64) -> Machine {
     m
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn heights_from_zone_i_are_the_workpiece_heights_less_zone_is_height_or_plane() {
     // Module docs: "zone1-height" subtracts ZONE I's height from every zone and keeps the
@@ -161,6 +213,7 @@ fn heights_from_zone_i_are_the_workpiece_heights_less_zone_is_height_or_plane() 
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn the_first_order_slopes_follow_the_exact_slopes_of_several_errors_together() {
     // `linear` is Σ k·ε over the errors (height and both slopes); with angles up to 3·10⁻⁵ rad
@@ -212,6 +265,7 @@ fn sensitivity_by_differences(m: &Machine, errors: &[&str]) -> Vec<Vec<ZonePlane
     k
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn the_test_reports_what_it_cannot_see_and_what_it_cannot_tell_apart_on_every_preset() {
     // Against central differences of the exact heights (each error alone), in the errors' own
@@ -323,6 +377,7 @@ fn the_test_reports_what_it_cannot_see_and_what_it_cannot_tell_apart_on_every_pr
     assert!(seen_tilt_only >= 2 && seen_groups >= 6);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_table_axis_offset_across_it_and_along_the_spindle_act_alike_by_tan_15_degrees() {
     // Li et al.'s B/C table, axes intersecting: an offset t of B moves a workpiece point by
@@ -345,6 +400,7 @@ fn a_table_axis_offset_across_it_and_along_the_spindle_act_alike_by_tan_15_degre
     close(t15, 15f64.to_radians().tan(), 1e-15, "tan 15°");
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_measured_zone_without_piece_x_is_on_the_pieces_own_place_and_slopes_in_um_per_mm_are_thousandths(
 ) {
@@ -368,6 +424,7 @@ fn a_measured_zone_without_piece_x_is_on_the_pieces_own_place_and_slopes_in_um_p
     assert_eq!(zones[1].slope_y, None);
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_file_too_short_to_fit_is_the_files_fault() {
     // One zone's height cannot be fitted (the fit needs two measurements at least): the error
@@ -380,6 +437,7 @@ fn a_file_too_short_to_fit_is_the_files_fault() {
     assert!(e.message.contains("nothing to fit"), "{e}");
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_height_map_of_more_than_four_million_points_is_refused_before_anything_is_cut() {
     // A trunnion whose A stops at 20° cannot cut ZONE II-1 (A = 30°): a grid within the limit
@@ -422,6 +480,7 @@ fn trapezoid(v: &[f64], c: f64, half: f64) -> Vec<(usize, f64)> {
         .collect()
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn the_height_map_averages_each_zone_by_the_trapezoid_rule_and_levels_on_zone_is_centre() {
     // Module docs of `height_map`: zone averages by the trapezoidal rule (borders count half);
@@ -492,6 +551,7 @@ fn the_height_map_averages_each_zone_by_the_trapezoid_rule_and_levels_on_zone_is
     }
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_coarse_map_levelled_on_one_column_of_zone_i_stays_finite() {
     // 5 × 5 points over three 16 mm zones (12 mm apart): ZONE I's central square (inset by the
@@ -521,6 +581,7 @@ fn li_with_e_zx(e_zx: serde_json::Value) -> Machine {
     Machine::from_value(&v, "machine").unwrap()
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn a_curved_straightness_gives_the_slope_of_the_secant_over_half_a_zone() {
     // Module docs: the tilt comes from three actual centres, the zone centre and zoneSize/2
@@ -544,6 +605,7 @@ fn a_curved_straightness_gives_the_slope_of_the_secant_over_half_a_zone() {
     );
 }
 
+// Found by cargo-mutants: a mutant in `crate/src/cubic/mod.rs` survived every other test.
 #[test]
 fn errors_that_tilt_a_zone_by_more_than_60_degrees_are_refused() {
     // E_ZX rising 4 mm over X from 0 to 1 mm: on 2 mm zones ZONE I's secant over 1 mm rises
