@@ -9,9 +9,8 @@ use fiveaxis::cubic::identify::{identify_zones, CubicIdentifyInput};
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
-use fiveaxis::schema::Inputs;
-use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
-use fiveaxis::sshape::{identify, overcut::ToolPath};
+use fiveaxis::sshape::overcut::ToolPath;
+use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput, SShapeIdentifyInput};
 use fiveaxis::volumetric;
 use serde_json::{json, Value};
 use std::time::Instant;
@@ -234,48 +233,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{{\"name\":\"toolpath: 10^6 points on the 12 types\",\"ms\":{ms:.3},\"check\":{check:.12e},\"evaluations\":{per:.3}}}"
     );
     // Reading: a 22,000-statement CLSF and a 16,000-block ISO program (target: under 0.5 s as
-    // wasm), checksums the count and the sum of the tips.
-    let trunnion =
-        fiveaxis::machine::Machine::from_value(&preset("A/C trunnion table")?, "machine")?;
-    let sum = |r: &fiveaxis::error::Result<(
-        Vec<fiveaxis::toolpath::read::Point>,
-        fiveaxis::toolpath::read::Report,
-    )>| {
-        r.as_ref().map_or(f64::NAN, |(p, _)| {
-            p.len() as f64 + p.iter().map(|q| q.tip.x + q.tip.y + q.tip.z).sum::<f64>()
+    // wasm), checksums the count and the sum of the tips. As `toolpathParse` does: the options
+    // read from JSON (the machine built) on each call, the bytes read, the points flattened.
+    let read = |bytes: &[u8], options: &Value| -> fiveaxis::Result<(Vec<f64>, usize)> {
+        let o = fiveaxis::toolpath::ToolpathReadInput::read(options)?;
+        let format = o
+            .format
+            .format()
+            .ok_or_else(|| fiveaxis::Error::field("format", "bench: a format"))?;
+        let (p, _) =
+            fiveaxis::toolpath::read::read_bytes(bytes, format, Some(&o.machine), o.options())?;
+        let flat: Vec<f64> = p
+            .iter()
+            .flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z])
+            .collect();
+        Ok((flat, p.len()))
+    };
+    let sum = |r: &fiveaxis::Result<(Vec<f64>, usize)>| {
+        r.as_ref().map_or(f64::NAN, |(flat, n)| {
+            *n as f64 + flat.chunks(6).map(|q| q[0] + q[1] + q[2]).sum::<f64>()
         })
     };
     let cl = clsf(22_000);
+    let apt = json!({ "format": "apt" });
     report(
         "toolpath read: CLSF, 22000 statements",
-        time(
-            10,
-            || {
-                fiveaxis::toolpath::read::read_bytes(
-                    cl.as_bytes(),
-                    fiveaxis::toolpath::read::Format::Apt,
-                    None,
-                    Default::default(),
-                )
-            },
-            sum,
-        ),
+        time(10, || read(cl.as_bytes(), &apt), sum),
     );
     let nc = iso(16_000);
+    let trunnion = json!({ "format": "nc", "machine": preset("A/C trunnion table")? });
     report(
         "toolpath read: ISO program, 16000 blocks",
-        time(
-            10,
-            || {
-                fiveaxis::toolpath::read::read_bytes(
-                    nc.as_bytes(),
-                    fiveaxis::toolpath::read::Format::Nc,
-                    Some(&trunnion),
-                    Default::default(),
-                )
-            },
-            sum,
-        ),
+        time(10, || read(nc.as_bytes(), &trunnion), sum),
     );
     // Volumetric: 10^6 exact poses on Tan & Lim's machine with error motions of every kind
     // (the same input as scripts/bench.mjs).
@@ -383,24 +372,39 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
         ),
     );
-    // A new design per run (the wasm side has a cache, so each run uses another pivot).
+    // A new design per run (the engine keeps designs in a cache, so each run uses another
+    // pivot), read from the same JSON and computed as `sshapeDefects` does.
     let chanal = preset("B swivel head, C rotary table, Y under the table")?;
-    let case_at = |run: usize| -> fiveaxis::Result<(SShapeCase, SShapeDefectsInput)> {
+    let machine_at = |run: usize| -> Value {
         let mut m = chanal.clone();
         m["geometry"]["pivotLength"] = json!(399.889 + 0.001 * run as f64);
         m["errors"] = json!({ "E_X0B": 0.0294, "E_A0B": 3.2419e-4f64.to_degrees() });
-        SShapeCase::read_with(&json!({ "machine": m }))
+        m
     };
-    let mut run = 0;
+    // Round r of scripts/bench.mjs (BENCH_ROUND) starts after the pivots of rounds 1 … r − 1,
+    // as the wasm side does (1 untimed + 3 timed runs per round).
+    let round: usize = std::env::var("BENCH_ROUND")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(1);
+    let mut run = 4 * round.saturating_sub(1);
     report(
         "sshape: eq 14 model (IK along both paths) + defects",
         time(
             3,
             || {
                 run += 1;
-                let (c, own) = case_at(run)?;
-                let d = study::Design::new(&c.machine, &c.tool, &c.model)?;
-                Ok::<_, fiveaxis::Error>(d.simulate(&c.machine.errors, own.d_r))
+                let (c, own) = SShapeCase::read_with::<SShapeDefectsInput>(
+                    &json!({ "machine": machine_at(run) }),
+                )?;
+                let d = study::Design::cached(&c)?;
+                let total = d.simulate(&c.machine.errors, own.d_r);
+                std::hint::black_box((
+                    d.contributions(&c.machine.errors).concat(),
+                    d.radius_deviation(own.d_r),
+                    d.alike_pairs(0.95),
+                ));
+                Ok::<_, fiveaxis::Error>(total)
             },
             |r| r.as_ref().map_or(f64::NAN, |v| v.iter().sum()),
         ),
@@ -409,14 +413,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         env!("CARGO_MANIFEST_DIR"),
         "/../public/samples/sshape-measured.csv"
     ))?;
-    let (c, _) = case_at(0)?;
-    let design = study::Design::new(&c.machine, &c.tool, &c.model)?;
-    let paper: Vec<String> = [
+    let paper = [
         "E_C0Y", "E_A0Z", "E_B0Z", "E_A0C", "E_B0C", "E_X0B", "E_A0B", "E_C0B",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    ];
+    // As the page does: the defects first (the design built and cached), then each
+    // identification reads the same JSON as `sshapeIdentify` and calls its engine entry point.
+    SShapeCase::read_with::<SShapeDefectsInput>(&json!({ "machine": machine_at(0) }))
+        .and_then(|(c, _)| study::Design::cached(&c))?;
+    let ident = json!({ "machine": machine_at(0), "csv": csv, "parameters": paper });
     report(
         "sshape: identification of the 100-point sample (parse + SVD fit), 100 times",
         time(
@@ -424,17 +428,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             || {
                 let mut fit = None;
                 for _ in 0..100 {
-                    let d = identify::parse_measurements(&csv)?;
-                    // The decisions as the export makes them by default (α 5 %, tolerance 1 µm).
-                    let options = fiveaxis::identify::Options {
-                        tolerance: Some(0.001),
-                        ..Default::default()
-                    };
-                    fit = Some(
-                        design
-                            .judge(&d, Some(&paper), true, identify::DEFAULT_RTOL, &options)?
-                            .fit,
-                    );
+                    let (c, i) = SShapeCase::read_with::<SShapeIdentifyInput>(&ident)?;
+                    fit = Some(study::identify_case(&c, &i)?.1.fit);
                 }
                 fit.ok_or_else(|| fiveaxis::Error::field("bench", "no run"))
             },

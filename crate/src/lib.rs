@@ -23,6 +23,7 @@
 
 pub mod schema;
 
+pub mod cache;
 pub mod chain;
 pub mod csv;
 pub mod cubic;

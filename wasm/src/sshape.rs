@@ -4,7 +4,6 @@
 use crate::identify::{identification, Identification};
 use crate::{f64_array, js_error, json, output, Series};
 use fiveaxis::schema::{Inputs, Quantity};
-use fiveaxis::sshape::identify::parse_measurements;
 use fiveaxis::sshape::overcut::OvercutMap;
 use fiveaxis::sshape::part::{MeasurementPoint, Part, SurfaceId};
 use fiveaxis::sshape::study::{
@@ -12,40 +11,8 @@ use fiveaxis::sshape::study::{
     SShapePartInput,
 };
 use serde::Serialize;
-use std::cell::RefCell;
-use std::rc::Rc;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
-
-thread_local! {
-    /// The last few designs: the page asks for defects and an identification with the same
-    /// machine, and a design costs a few milliseconds.
-    static DESIGNS: RefCell<Vec<(String, Rc<Design>)>> = const { RefCell::new(Vec::new()) };
-}
-
-/// The eq 14 model of a case (the machine without its errors, the tool, the options), cached.
-fn design(c: &SShapeCase) -> Result<Rc<Design>, JsError> {
-    let key = serde_json::to_string(&(&c.machine.without_errors(), &c.tool, &c.model))
-        .map_err(js_error)?;
-    if let Some(d) = DESIGNS.with(|cache| {
-        cache
-            .borrow()
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, d)| d.clone())
-    }) {
-        return Ok(d);
-    }
-    let d = Rc::new(Design::new(&c.machine, &c.tool, &c.model).map_err(js_error)?);
-    DESIGNS.with(|cache| {
-        let mut cache = cache.borrow_mut();
-        if cache.len() >= 16 {
-            cache.remove(0);
-        }
-        cache.push((key, d.clone()));
-    });
-    Ok(d)
-}
 
 /// One surface of the part on a grid.
 #[derive(Serialize, Tsify)]
@@ -259,7 +226,7 @@ pub fn sshape_defects(
 ) -> Result<JsValue, JsError> {
     let (c, own): (SShapeCase, SShapeDefectsInput) =
         SShapeCase::read_with(&json(&value)?).map_err(js_error)?;
-    let d = design(&c)?;
+    let d = Design::cached(&c).map_err(js_error)?;
     let total = d.simulate(&c.machine.errors, own.d_r);
     let errors = d.errors();
     let contributions: Vec<f64> = d.contributions(&c.machine.errors).concat();
@@ -348,17 +315,7 @@ pub fn sshape_identify(
 ) -> Result<JsValue, JsError> {
     let (c, i): (SShapeCase, SShapeIdentifyInput) =
         SShapeCase::read_with(&json(&value)?).map_err(js_error)?;
-    let measured = parse_measurements(&i.csv).map_err(js_error)?;
-    let d = design(&c)?;
-    let j = d
-        .judge(
-            &measured,
-            i.parameters.as_deref(),
-            i.radius_term,
-            i.rtol,
-            &i.decision.options(),
-        )
-        .map_err(js_error)?;
+    let (measured, j) = study::identify_case(&c, &i).map_err(js_error)?;
     let f = &j.fit;
     output(&SShapeIdentifyResult {
         measured: f64_array(&measured),

@@ -28,6 +28,7 @@
 
 use super::zones::{Test, ZoneSpec};
 use super::{relative, CubicPiece, Options, ZonePlane, ZONES};
+use crate::cache::{self, Models};
 use crate::error::{check_range, quote, Error, Result};
 use crate::identify::csv::{line_error, Table};
 use crate::identify::{DecisionInput, Judgement, Param, DEFAULT_RTOL};
@@ -35,6 +36,8 @@ use crate::machine::errors::ErrorDef;
 use crate::machine::Machine;
 use crate::schema::{DefaultValue, Kind, Quantity};
 use nalgebra::DMatrix;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// One zone of a layout on the machine, with its sensitivities.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,6 +109,28 @@ pub fn layout(
         }
     }
     Ok(out.into_iter().flatten().collect())
+}
+
+/// [`layout`], built once per machine, piece, options, zones and errors and kept in a small
+/// per-thread cache ([`crate::cache`]): the page identifies again and again on one layout.
+pub fn cached_layout(
+    machine: &Machine,
+    piece: &CubicPiece,
+    options: &Options,
+    specs: &[(ZoneSpec, f64)],
+    errors: &[&'static ErrorDef],
+) -> Result<Rc<Vec<LayoutZone>>> {
+    thread_local! {
+        static LAYOUTS: Models<Vec<LayoutZone>> = const { RefCell::new(Vec::new()) };
+    }
+    let names: Vec<&str> = errors.iter().map(|d| d.name).collect();
+    let key = format!(
+        "{}|{piece:?}|{options:?}|{specs:?}|{names:?}",
+        serde_json::to_string(machine).map_err(|e| Error::field("machine", e.to_string()))?
+    );
+    cache::get_or_build(&LAYOUTS, key, || {
+        layout(machine, piece, options, specs, errors)
+    })
 }
 
 /// The tool vector in the face frame for a tilt `τ` and azimuth `φ` (rad).
@@ -315,7 +340,7 @@ pub fn system(
     errors: &[&'static ErrorDef],
 ) -> Result<(DMatrix<f64>, Vec<f64>, Vec<LayoutZone>)> {
     let specs: Vec<(ZoneSpec, f64)> = measured.iter().map(|m| m.zone.clone()).collect();
-    let zones = layout(machine, piece, options, &specs, errors).map_err(|e| {
+    let zones = cached_layout(machine, piece, options, &specs, errors).map_err(|e| {
         Error::field(
             "csv",
             format!(
@@ -326,10 +351,11 @@ pub fn system(
     })?;
     // A slope enters as the height it makes over half a zone (mm), so that one noise level
     // stands for heights and slopes alike.
+    let zones: &[LayoutZone] = &zones;
     let lever = piece.zone_size / 2.0;
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let mut d = Vec::new();
-    for (m, z) in measured.iter().zip(&zones) {
+    for (m, z) in measured.iter().zip(zones) {
         rows.push(z.sensitivity.iter().map(|p| p.height).collect());
         d.push(m.height);
         if let Some(s) = m.slope_x {
@@ -342,7 +368,7 @@ pub fn system(
         }
     }
     let a = DMatrix::from_fn(rows.len(), errors.len(), |r, c| rows[r][c]);
-    Ok((a, d, zones))
+    Ok((a, d, zones.to_vec()))
 }
 
 crate::inputs! {

@@ -8,6 +8,7 @@ use super::machine::{
 };
 use super::overcut::{eq6_max, overcut_map, Basis, OvercutMap, ToolPath};
 use super::part::{MeasurementPoint, Part, SurfaceId, N_POINTS};
+use crate::cache::{self, Models};
 use crate::error::{Error, Result};
 use crate::identify::{self, Fit, DEFAULT_RTOL};
 use crate::machine::errors::{ErrorDef, ErrorValues};
@@ -15,6 +16,8 @@ use crate::machine::Machine;
 use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
 use nalgebra::DMatrix;
 use serde_json::Value;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// Name of the tool-radius parameter in a fit: `ΔR = R' − R_tool`, mm.
 pub const RADIUS_NAME: &str = "dR";
@@ -213,6 +216,24 @@ impl SShapeCase {
     }
 }
 
+/// The identification of a case from its measurement file (`sshapeIdentify`): the file read,
+/// the cached design ([`Design::cached`]), the fit and its decisions. Returns the measured
+/// deviations (list order, mm) and the judgement.
+pub fn identify_case(
+    case: &SShapeCase,
+    input: &SShapeIdentifyInput,
+) -> Result<(Vec<f64>, identify::Judgement)> {
+    let measured = super::identify::parse_measurements(&input.csv)?;
+    let judgement = Design::cached(case)?.judge(
+        &measured,
+        input.parameters.as_deref(),
+        input.radius_term,
+        input.rtol,
+        &input.decision.options(),
+    )?;
+    Ok((measured, judgement))
+}
+
 /// Everything the eq 14 model needs, computed once for a machine, tool and model.
 #[derive(Debug, Clone)]
 pub struct Design {
@@ -257,6 +278,20 @@ impl Design {
             poses,
             rows,
             radius,
+        })
+    }
+
+    /// The design of a case, built once per machine (without its errors), tool and model and
+    /// kept in a small per-thread cache ([`crate::cache`]): what the exports use, as the page
+    /// asks for the defects and identifications with the same machine.
+    pub fn cached(case: &SShapeCase) -> Result<Rc<Self>> {
+        thread_local! {
+            static DESIGNS: Models<Design> = const { RefCell::new(Vec::new()) };
+        }
+        let key = serde_json::to_string(&(&case.machine.without_errors(), &case.tool, &case.model))
+            .map_err(|e| Error::field("machine", e.to_string()))?;
+        cache::get_or_build(&DESIGNS, key, || {
+            Self::new(&case.machine, &case.tool, &case.model)
         })
     }
 
