@@ -49,6 +49,7 @@
 //! then follow exactly ([`Chain::solve_linear`]).
 
 pub mod errors;
+pub mod follow;
 pub mod motions;
 pub mod schematic;
 
