@@ -64,7 +64,7 @@ crate::inputs! {
         pub parameters: Option<Vec<String>> = "parameters" optional {
             label: "Errors to identify",
             help: "The machine's errors the test should separate; left out: all of them.",
-            kind: Kind::ErrorNames,
+            kind: crate::machine::errors::NAMES,
             group: "Test design",
         },
         /// Zones per side of the face.

@@ -385,7 +385,7 @@ crate::inputs! {
         pub parameters: Option<Vec<String>> = "parameters" optional {
             label: "Errors to identify",
             help: "The machine's errors the fit may use; left out: all of them. Those the test cannot see or separate are named.",
-            kind: Kind::ErrorNames,
+            kind: crate::machine::errors::NAMES,
             group: "Identification",
         },
         /// Relative singular-value threshold of the rank decision.

@@ -25,7 +25,7 @@
 //! [`super::motions`], given in `machine.motions` as constants, polynomials or measured tables.
 
 use crate::error::{Error, Result};
-use crate::schema::{check_number, closest, join, Quantity};
+use crate::schema::{check_number, closest, join, Custom, Kind, Quantity};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
@@ -413,8 +413,23 @@ fn unknown_name(path: &str, name: &str) -> Error {
     )
 }
 
+/// The schema kind of the machine's error values: an object of ISO 230-1 names to numbers, each
+/// in the unit and within the limit of its entry in [`TABLE`].
+pub const VALUES: Kind = Kind::Custom(&Custom {
+    name: "errors",
+    read: read_values,
+    list: false,
+});
+
+/// The schema kind of a list of ISO 230-1 error names (e.g. the errors to identify), no repeats.
+pub const NAMES: Kind = Kind::Custom(&Custom {
+    name: "errorNames",
+    read: read_names,
+    list: true,
+});
+
 /// Reads an object of error values (name → number in mm or degrees), checked against the table
-/// and converted to engine units (schema [`crate::schema::Kind::Errors`]).
+/// and converted to engine units (the schema kind [`VALUES`]).
 pub fn read_values(v: &Value, path: &str) -> Result<Value> {
     let obj = v.as_object().ok_or_else(|| {
         Error::field(
@@ -436,7 +451,7 @@ pub fn read_values(v: &Value, path: &str) -> Result<Value> {
     Ok(Value::Object(out))
 }
 
-/// Reads a list of error names (schema [`crate::schema::Kind::ErrorNames`]).
+/// Reads a list of error names (the schema kind [`NAMES`]).
 pub fn read_names(v: &Value, path: &str) -> Result<Value> {
     let list = v.as_array().ok_or_else(|| {
         Error::field(

@@ -49,6 +49,7 @@
 //! then follow exactly ([`Chain::solve_linear`]).
 
 pub mod errors;
+pub mod follow;
 pub mod motions;
 pub mod schematic;
 
@@ -301,7 +302,7 @@ crate::inputs! {
         pub errors: ErrorValues = "errors" optional {
             label: "Geometric errors (ISO 230-1)",
             help: "The location errors of the machine's axes: positions in mm, orientations in degrees; those not given are zero.",
-            kind: Kind::Errors,
+            kind: errors::VALUES,
             default: DefaultValue::Empty,
             group: "Errors",
         },
@@ -310,7 +311,7 @@ crate::inputs! {
         pub motions: ErrorMotions = "motions" optional {
             label: "Error motions (ISO 230-1)",
             help: "The errors that change along an axis (positioning, straightness, roll, pitch, yaw; radial, axial, tilt and angular error motions of the rotary axes): each a constant, a polynomial in the position or a measured table.",
-            kind: Kind::Motions,
+            kind: motions::KIND,
             default: DefaultValue::Empty,
             group: "Error motions",
         },

@@ -41,7 +41,7 @@
 use super::errors::{Alias, ErrorDef, ErrorKind, MAX_ANGLE_ERROR, MAX_POSITION_ERROR};
 use crate::chain::RigidError;
 use crate::error::{Error, Result};
-use crate::schema::{check_number, closest, join, Quantity};
+use crate::schema::{check_number, closest, join, Custom, Kind, Quantity};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
@@ -568,7 +568,15 @@ pub fn unknown(path: &str, name: &str) -> Error {
     )
 }
 
-/// Reads the error motions (schema [`crate::schema::Kind::Motions`]): name → a number, a
+/// The schema kind of the machine's error motions: an object of ISO 230-1 names to a number, a
+/// polynomial or a table against position.
+pub const KIND: Kind = Kind::Custom(&Custom {
+    name: "motions",
+    read: read_motions,
+    list: false,
+});
+
+/// Reads the error motions (the schema kind [`KIND`]): name → a number, a
 /// `{ poly }` or a `{ position, value }` table in API units, checked and converted to engine
 /// units.
 pub fn read_motions(v: &Value, path: &str) -> Result<Value> {

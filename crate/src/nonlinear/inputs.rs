@@ -290,7 +290,7 @@ impl NonlinearCase {
 
     /// The move from `start` to `end` (this machine's commands) as a tool path, its start and end
     /// tool vectors, made by each of the twelve types (the machine's kind, senses and travel;
-    /// [`crate::toolpath::follow`]: the smallest tilt at the start, the nearest solution at the
+    /// [`crate::machine::follow::follow`]: the smallest tilt at the start, the nearest solution at the
     /// end; the machine's own type by the commands given), with its exact maximum error at this
     /// `L`.
     pub fn compare_types(&self, start: &MoveStart, end: &MoveEnd) -> Result<Vec<TypeComparison>> {
@@ -301,17 +301,17 @@ impl NonlinearCase {
         RotaryType::ALL
             .iter()
             .map(|&t| {
-                let model = crate::toolpath::machine_of_type(&self.machine, t).build()?;
+                let model = crate::machine::follow::machine_of_type(&self.machine, t).build()?;
                 // The machine's own type makes the move as commanded; the others as they would
                 // follow the tool vectors.
                 let f = if t == self.rtype() {
-                    crate::toolpath::Following {
+                    crate::machine::follow::Following {
                         k: vec![start.k, end.k],
                         m: vec![start.m, end.m],
                         unreachable: None,
                     }
                 } else {
-                    crate::toolpath::follow(&model, &ends)?
+                    crate::machine::follow::follow(&model, &ends)?
                 };
                 let lay = model.layout;
                 let pose = |i: usize| Pose::new(lay.k_factor * f.k[i], lay.m_factor * f.m[i]);

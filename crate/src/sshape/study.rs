@@ -130,7 +130,7 @@ crate::inputs! {
         pub parameters: Option<Vec<String>> = "parameters" optional {
             label: "Errors to identify",
             help: "The machine's errors the fit may use; left out: all of them. Those the part cannot separate are reported as groups.",
-            kind: Kind::ErrorNames,
+            kind: crate::machine::errors::NAMES,
             group: "Identification",
         },
         /// Fit a tool-radius error too.

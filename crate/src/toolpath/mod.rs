@@ -56,6 +56,8 @@
 
 use crate::error::{check_positive, Error, Result};
 use crate::geometry::angle_between;
+/// Following tool axes lives with the machine (the nonlinear study uses it too).
+pub use crate::machine::follow::{follow, machine_of_type, Following};
 use crate::machine::{BranchRule, Machine, Model};
 use crate::nonlinear::{swing_length, Deviation, Move, MAX_LENGTH_MM};
 use crate::rotary::{Group, Pose, RotaryType};
@@ -242,18 +244,6 @@ pub const FLIP_ANGLE_DEG: f64 = 30.0;
 pub const FLIP_RATIO: f64 = 10.0;
 /// Most pieces one segment may be cut into by [`refine`].
 pub const MAX_PIECES: usize = 10_000;
-
-/// Where the machine follows the path: commands of K and M (rad) at each point reached.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Following {
-    /// K commands, rad, one per point reached.
-    pub k: Vec<f64>,
-    /// M commands, rad.
-    pub m: Vec<f64>,
-    /// The first point no solution within the travel reaches, and why; `None` when every point
-    /// is reached.
-    pub unreachable: Option<(usize, String)>,
-}
 
 /// One segment (from point `i` to `i + 1`) on one machine.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -497,52 +487,6 @@ pub fn follow_commands(model: &Model, angles: &[[f64; 2]]) -> Following {
 /// `x` to 4 decimals.
 fn round4(x: f64) -> f64 {
     (x * 1e4).round() / 1e4
-}
-
-/// The given machine with rotary-axis type `t` and no errors (the control's model).
-pub fn machine_of_type(machine: &Machine, t: RotaryType) -> Machine {
-    Machine {
-        rotary_type: t,
-        ..machine.without_errors()
-    }
-}
-
-/// Follows the tool axes `axes` (workpiece coordinates, any non-zero length) on `model` with
-/// continuity (module docs).
-pub fn follow(model: &Model, axes: &[Vector3<f64>]) -> Result<Following> {
-    let mut k = Vec::with_capacity(axes.len());
-    let mut m = Vec::with_capacity(axes.len());
-    let mut previous: Option<[f64; 2]> = None;
-    for (i, a) in axes.iter().enumerate() {
-        // The first point: the smallest tilt, each angle at the turn nearest 0 (room both ways).
-        let (rule, near) = match previous {
-            Some(p) => (BranchRule::Nearest, p),
-            None => (BranchRule::SmallestTilt, [0.0, 0.0]),
-        };
-        let o = model
-            .orientations(a, rule, Some(near))
-            .map_err(|e| Error::field(format!("points[{i}]"), e.message))?;
-        match o.chosen {
-            Some(c) => {
-                let s = o.solutions[c];
-                k.push(s.k);
-                m.push(s.m);
-                previous = Some([s.k, s.m]);
-            }
-            None => {
-                return Ok(Following {
-                    k,
-                    m,
-                    unreachable: Some((i, o.unreachable.unwrap_or_default())),
-                })
-            }
-        }
-    }
-    Ok(Following {
-        k,
-        m,
-        unreachable: None,
-    })
 }
 
 /// The segment from commands `(k0, m0)` to `(k1, m1)` (rad) on `model`, with tool axes `a0`,
