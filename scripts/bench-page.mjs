@@ -11,6 +11,7 @@ import { chromium } from 'playwright-core';
 import { serve } from './serve.mjs';
 import { LAUNCH_ARGS, startBrowser, waitIdle } from '../tests/e2e/harness.mjs';
 import { LATENCY_MS, MBIT, link, watchFirstResult } from '../tests/e2e/link.mjs';
+import { makeBigFile } from '../tests/e2e/bigfile.mjs';
 
 const rows = [];
 const budget = (what, ms, target) => rows.push({ what, ms: Math.round(ms), budget: target, within: ms <= target ? 'yes' : 'NO' });
@@ -42,15 +43,7 @@ const budget = (what, ms, target) => rows.push({ what, ms: Math.round(ms), budge
     await page.click('#tab-toolpath');
     await page.waitForSelector('#panel-toolpath[data-ready=true]');
     await waitIdle(page);
-    await page.evaluate((n) => {
-      const lines = new Array(n);
-      for (let i = 0; i < n; i++) {
-        const t = (i / n) * 40 * Math.PI;
-        const tilt = 0.3 + 0.2 * Math.sin(t / 7);
-        lines[i] = `${(50 * Math.cos(t)).toFixed(4)},${(50 * Math.sin(t)).toFixed(4)},${((i / n) * 10).toFixed(4)},${(Math.sin(tilt) * Math.cos(t)).toFixed(6)},${(Math.sin(tilt) * Math.sin(t)).toFixed(6)},${Math.cos(tilt).toFixed(6)}`;
-      }
-      window.bigFile = new File([lines.join('\n')], 'million.csv', { type: 'text/plain' });
-    }, 1_000_000);
+    await page.evaluate(makeBigFile, 1_000_000);
     // Observed from the next task on (the file's making above is a long task of its own).
     await page.evaluate(() => {
       window.events = [];

@@ -5,6 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, waitIdle, waitPlotted } from './harness.mjs';
+import { makeBigFile } from './bigfile.mjs';
 
 const N = 1_000_000;
 
@@ -17,17 +18,7 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     await waitPlotted(page, 'tp-delta');
     await waitIdle(page);
     const drawn = Number(await page.getAttribute('#tp-delta', 'data-plotted'));
-    // The file is written in the page (a helix tilting between 11° and 29°): 70 MB through the
-    // test's connection would take longer than the page does.
-    await page.evaluate((n) => {
-      const lines = new Array(n);
-      for (let i = 0; i < n; i++) {
-        const t = (i / n) * 40 * Math.PI;
-        const tilt = 0.3 + 0.2 * Math.sin(t / 7);
-        lines[i] = `${(50 * Math.cos(t)).toFixed(4)},${(50 * Math.sin(t)).toFixed(4)},${((i / n) * 10).toFixed(4)},${(Math.sin(tilt) * Math.cos(t)).toFixed(6)},${(Math.sin(tilt) * Math.sin(t)).toFixed(6)},${Math.cos(tilt).toFixed(6)}`;
-      }
-      window.bigFile = new File([lines.join('\n')], 'million.csv', { type: 'text/plain' });
-    }, N);
+    await page.evaluate(makeBigFile, N);
     await page.evaluate(() => {
       window.longest = 0;
       new PerformanceObserver((list) => {
