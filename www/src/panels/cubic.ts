@@ -6,7 +6,7 @@ import type { CubicDesignResult, CubicIdentifyResult, CubicInput, CubicLayoutRep
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields, numberField } from '../ui/fields';
-import { encodingNote, FileRefused, readTextFile } from '../ui/files';
+import { encodingNote, readOrRefuse } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -461,16 +461,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       clearIdentification(el('p', { class: 'warn' }, `No identification: ${f.name} is not a file of measured zones.`));
       return;
     }
-    let read;
-    try {
-      read = await readTextFile(f);
-    } catch (e) {
-      if (!(e instanceof FileRefused)) throw e;
-      fileMsg.textContent = e.message;
-      setAlert(`${e.message} The previous results were removed.`);
-      clearIdentification(el('p', { class: 'warn' }, `No identification: ${e.message}`));
-      return;
-    }
+    const read = await readOrRefuse(f, (message) => {
+      fileMsg.textContent = message;
+      setAlert(`${message} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${message}`));
+    });
+    if (!read) return;
     const { text } = read;
     fileMsg.textContent = `Read ${f.name}${encodingNote(read)}.`;
     source = { name: f.name, at: new Date() };

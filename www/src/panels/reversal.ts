@@ -11,7 +11,7 @@ import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult, Rever
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachinePreset, MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
-import { encodingNote, FileRefused, readTextFile } from '../ui/files';
+import { encodingNote, readOrRefuse } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -512,20 +512,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     file.value = '';
-    let read;
-    try {
-      read = await readTextFile(f);
-    } catch (e) {
-      if (!(e instanceof FileRefused)) throw e;
+    const read = await readOrRefuse(f, (message) => {
       // The fit shown is of another trace: greyed, and no longer in the verdict.
-      fileMsg.textContent = e.message;
+      fileMsg.textContent = message;
       runFit.cancel();
       lastFit = null;
       if (fresh) judgeSim();
-      for (const p of [fitPlot, residualPlot]) stale(p.p, true, `${e.message} Greyed: the fit of the trace before it.`);
-      stale(fitBox, true, e.message);
-      return;
-    }
+      for (const p of [fitPlot, residualPlot]) stale(p.p, true, `${message} Greyed: the fit of the trace before it.`);
+      stale(fitBox, true, message);
+    });
+    if (!read) return;
     traceName = f.name;
     fields.get('rv-csv')?.setText(read.text);
     fileMsg.textContent = `Loaded ${f.name}${encodingNote(read)}.`;

@@ -7,7 +7,7 @@ import type { Machine, SShapeDefectsResult, SShapeIdentifyResult, SShapeOvercutR
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
-import { encodingNote, FileRefused, readTextFile } from '../ui/files';
+import { encodingNote, readOrRefuse } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
 import { axis, draw, note, rows, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
@@ -384,16 +384,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     file.value = '';
-    let read;
-    try {
-      read = await readTextFile(f);
-    } catch (e) {
-      if (!(e instanceof FileRefused)) throw e;
-      fileMsg.textContent = e.message;
-      setAlert(`${e.message} The previous results were removed.`);
-      clearIdentification(el('p', { class: 'warn' }, `No identification: ${e.message}`));
-      return;
-    }
+    const read = await readOrRefuse(f, (message) => {
+      fileMsg.textContent = message;
+      setAlert(`${message} The previous results were removed.`);
+      clearIdentification(el('p', { class: 'warn' }, `No identification: ${message}`));
+    });
+    if (!read) return;
     const { text } = read;
     setSource(f.name, text);
     // The last identification goes at once: it belongs to the previous file.

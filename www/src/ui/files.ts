@@ -30,5 +30,17 @@ export function readTextFile(file: File, expected?: string): Promise<{ text: str
   );
 }
 
+/** `readTextFile`, or null after `refused(message)` when the file is not text (an image, a PDF,
+ *  an archive): each panel says so and greys what the file would have replaced. */
+export async function readOrRefuse(file: File, refused: (message: string) => void, expected?: string): Promise<{ text: string; windows1252: boolean } | null> {
+  try {
+    return await readTextFile(file, expected);
+  } catch (e) {
+    if (!(e instanceof FileRefused)) throw e;
+    refused(e.message);
+    return null;
+  }
+}
+
 /** " (read as Windows-1252: not valid UTF-8)" for a file read so, else "". */
 export const encodingNote = (r: { windows1252: boolean }) => (r.windows1252 ? ` (${WINDOWS_1252_NOTE})` : '');
