@@ -23,6 +23,8 @@
 
 pub mod schema;
 
+pub mod api;
+
 pub mod cache;
 pub mod chain;
 pub mod csv;

@@ -346,10 +346,11 @@ fn an_iso_error_entered_reaches_the_paper_model_as_its_symbol() {
             "{symbol} ({}): paper {printed:?}, machine {machine:?}",
             def.name
         );
-        for (t, (name, v)) in c.symbols.iter().enumerate() {
+        for (t, sym) in c.symbols.iter().enumerate() {
+            let (name, v) = (&sym.symbol, sym.value);
             assert_eq!(name, SYMBOLS[t]);
             let want = if t == s { 1e-6 * sign } else { 0.0 };
-            assert_eq!(*v, want, "{symbol}: slot {name}");
+            assert_eq!(v, want, "{symbol}: slot {name}");
         }
     }
 }

@@ -23,7 +23,6 @@ mod nonlinear;
 mod reversal;
 mod sshape;
 mod toolpath;
-mod volumetric;
 
 #[cfg(test)]
 mod native_tests;
@@ -35,7 +34,6 @@ pub use nonlinear::*;
 pub use reversal::*;
 pub use sshape::*;
 pub use toolpath::*;
-pub use volumetric::*;
 
 use fiveaxis::schema::{join, Quantity};
 use fiveaxis::Error;
@@ -116,6 +114,24 @@ fn to_json(v: &JsValue, path: &str, depth: usize) -> Result<Value, Error> {
     }
     Ok(Value::Object(out))
 }
+
+/// Writes one `#[wasm_bindgen]` function per export declared in `fiveaxis::for_each_export!`:
+/// read the input ([`json`], then the engine's reader), call the engine, write the result.
+macro_rules! wasm_exports {
+    ($( $(#[doc = $doc:tt])* $js:ident ($input:ty as $ts_in:tt) -> $ts_out:tt = $f:path; )*) => { $(
+        $(#[doc = $doc])*
+        #[allow(non_snake_case)]
+        #[wasm_bindgen(js_name = $js, unchecked_return_type = $ts_out)]
+        pub fn $js(
+            #[wasm_bindgen(unchecked_param_type = $ts_in)] input: JsValue,
+        ) -> Result<JsValue, JsError> {
+            let i = <$input as fiveaxis::api::ApiInput>::read(&json(&input)?).map_err(js_error)?;
+            output(&$f(&i).map_err(js_error)?)
+        }
+    )* };
+}
+
+fiveaxis::for_each_export!(wasm_exports);
 
 /// Writes a result object (`None` becomes `null`, maps become objects).
 pub(crate) fn output<T: Serialize>(value: &T) -> Result<JsValue, JsError> {

@@ -20,7 +20,6 @@ use fiveaxis::sshape::study::{
     SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
 };
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
-use fiveaxis::volumetric::{MotionTableInput, VolumetricInput, VolumetricPaperInput};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use tsify::Tsify;
@@ -85,13 +84,13 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("sshapeOvercut", fields::<SShapeOvercutInput>());
     put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());
     put("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>());
-    put("volumetricMap", fields::<VolumetricInput>());
-    put("volumetricPaper", fields::<VolumetricPaperInput>());
-    put("volumetricReadTable", fields::<MotionTableInput>());
     put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
     put("reversalDents", fields::<ReversalCase>());
     put("reversalFit", both::<ReversalCase, ReversalFitInput>());
     put("reversalTrace", both::<ReversalCase, ReversalFitInput>());
+    for (name, f) in fiveaxis::api::export_fields() {
+        put(name, f);
+    }
     output(&Schema {
         machine: describe(Machine::FIELDS, "machine"),
         errors: TABLE.to_vec(),

@@ -431,12 +431,12 @@ fn tan_lim() -> Value {
 #[wasm_bindgen_test]
 fn volumetric_exports_refuse_unknown_inputs_and_error_motions() {
     let base = json!({ "machine": tan_lim(), "region": { "steps": 3 } });
-    refuses(fa::volumetric_map, base.clone());
-    let m = error_message(fa::volumetric_map(with(&base, "region.plane", json!("XW"))));
+    refuses(fa::volumetricMap, base.clone());
+    let m = error_message(fa::volumetricMap(with(&base, "region.plane", json!("XW"))));
     assert!(m.starts_with("region.plane:"), "{m}");
-    let m = error_message(fa::volumetric_map(with(&base, "region.stepz", json!(3))));
+    let m = error_message(fa::volumetricMap(with(&base, "region.stepz", json!(3))));
     assert!(m.starts_with("region.stepz: unknown input"), "{m}");
-    let m = error_message(fa::volumetric_map(with(
+    let m = error_message(fa::volumetricMap(with(
         &base,
         "machine.motions",
         json!({ "E_XXX": 0.001 }),
@@ -446,7 +446,7 @@ fn volumetric_exports_refuse_unknown_inputs_and_error_motions() {
             && m.contains("Did you mean E_XX?"),
         "{m}"
     );
-    let m = error_message(fa::volumetric_map(with(
+    let m = error_message(fa::volumetricMap(with(
         &base,
         "machine.motions",
         json!({ "E_XB": 0.001 }),
@@ -455,25 +455,25 @@ fn volumetric_exports_refuse_unknown_inputs_and_error_motions() {
         m.starts_with("machine.motions.E_XB: this machine has no B axis"),
         "{m}"
     );
-    let m = error_message(fa::volumetric_map(with(
+    let m = error_message(fa::volumetricMap(with(
         &base,
         "machine.motions",
         json!({ "E_XX": { "poly": [0, 1], "extra": 1 } }),
     )));
     assert!(m.starts_with("machine.motions.E_XX.extra:"), "{m}");
     refuses(
-        fa::volumetric_paper,
+        fa::volumetricPaper,
         json!({ "machine": tan_lim(), "x": 10 }),
     );
-    let m = error_message(fa::volumetric_paper(jv(&json!({ "machine": {}, "x": 10 }))));
+    let m = error_message(fa::volumetricPaper(jv(&json!({ "machine": {}, "x": 10 }))));
     assert!(m.starts_with("machine: Tan & Lim's loop"), "{m}");
     let ok = json!({ "name": "E_XX", "text": "X (mm), E_XX (um)\n0, 0\n10, 1\n" });
-    fa::volumetric_read_table(jv(&ok)).expect("valid");
-    let m = error_message(fa::volumetric_read_table(with(&ok, "nmae", json!("E_XX"))));
+    fa::volumetricReadTable(jv(&ok)).expect("valid");
+    let m = error_message(fa::volumetricReadTable(with(&ok, "nmae", json!("E_XX"))));
     assert!(m.starts_with("nmae: unknown input"), "{m}");
-    let m = error_message(fa::volumetric_read_table(with(&ok, "name", json!("E_X0B"))));
+    let m = error_message(fa::volumetricReadTable(with(&ok, "name", json!("E_X0B"))));
     assert!(m.starts_with("name: E_X0B is a location error"), "{m}");
-    let m = error_message(fa::volumetric_read_table(with(
+    let m = error_message(fa::volumetricReadTable(with(
         &ok,
         "text",
         json!("X (mm), E_XX (um)\n0, 0\n1, x\n"),

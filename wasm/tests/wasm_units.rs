@@ -380,12 +380,12 @@ fn volumetric_outputs_are_mm_and_degrees_and_tables_are_read_in_api_units() {
         json!({ "machine": m, "region": { "steps": 3 } })
     };
     // A pitch of the spindle-side Y of 0.01° turns the tool axis by 0.01°: out in degrees.
-    let r: Map = common::read(fa::volumetric_map(common::jv(&machine(
+    let r: Map = common::read(fa::volumetricMap(common::jv(&machine(
         json!({ "E_AY": 0.01 }),
     ))));
     assert!((r.worst.tilt - 0.01).abs() < 1e-12, "{}", r.worst.tilt);
     // A positioning error of Y of 2 µm entered in mm moves the tip 0.002 mm.
-    let r: Map = common::read(fa::volumetric_map(common::jv(&machine(
+    let r: Map = common::read(fa::volumetricMap(common::jv(&machine(
         json!({ "E_YY": 0.002 }),
     ))));
     assert!(
@@ -409,7 +409,7 @@ fn volumetric_outputs_are_mm_and_degrees_and_tables_are_read_in_api_units() {
     let mut input = machine(json!({ "E_CC": { "poly": [0, 1e-4] } }));
     input["k"] = json!(90);
     input.as_object_mut().unwrap().remove("region");
-    let p: Paper = common::read(fa::volumetric_paper(common::jv(&input)));
+    let p: Paper = common::read(fa::volumetricPaper(common::jv(&input)));
     let g = p.symbols.iter().find(|s| s.symbol == "γ_C").unwrap();
     assert!(
         (g.value + 0.009).abs() < 1e-15 && g.unit == "deg",
@@ -422,7 +422,7 @@ fn volumetric_outputs_are_mm_and_degrees_and_tables_are_read_in_api_units() {
         position: Vec<f64>,
         value: Vec<f64>,
     }
-    let t: Table = common::read(fa::volumetric_read_table(common::jv(&json!({
+    let t: Table = common::read(fa::volumetricReadTable(common::jv(&json!({
         "name": "E_CC", "text": "C (deg), E_CC (arcsec)\n0, 0\n90, 36\n"
     }))));
     assert_eq!(t.position, vec![0.0, 90.0]);

@@ -316,8 +316,8 @@ pub fn find(name: &str) -> Option<&'static ErrorDef> {
     TABLE.iter().find(|d| d.name == name)
 }
 
-/// Values of the machine's errors by ISO name, in engine units (mm, rad). Names not present
-/// are zero.
+/// Values of the machine's errors by ISO name: mm, or degrees for an angle at the edge (radians
+/// in Rust). Names not present are zero.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(transparent)]

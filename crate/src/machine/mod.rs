@@ -190,7 +190,7 @@ crate::inputs! {
 }
 
 crate::inputs! {
-    /// RotaryTravel and sense of rotation of the two rotary axes (angles in radians inside).
+    /// RotaryTravel and sense of rotation of the two rotary axes (angles in degrees at the edge, radians in Rust).
     pub struct RotaryTravel {
         /// Lowest position of K.
         pub k_from: f64 = "kFrom" optional {

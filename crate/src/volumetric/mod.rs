@@ -40,7 +40,7 @@ use crate::machine::errors::{ErrorDef, ErrorKind};
 use crate::machine::motions;
 use crate::machine::{Machine, MachineKind, Model};
 use crate::rotary::RotaryAxis;
-use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
+use crate::schema::{self, DefaultValue, Kind, Quantity};
 use nalgebra::Vector3;
 use paper::PaperErrors;
 use serde::Serialize;
@@ -134,7 +134,7 @@ crate::inputs! {
             default: DefaultValue::Num(41.0),
             group: "Region",
         },
-        /// K command, rad.
+        /// K command, degrees (radians in Rust).
         pub k: f64 = "k" optional {
             label: "{K} at",
             help: "The rotary axis nearer the workpiece stands at this command over the whole map.",
@@ -142,7 +142,7 @@ crate::inputs! {
             default: DefaultValue::Num(0.0),
             group: "Region",
         },
-        /// M command, rad.
+        /// M command, degrees (radians in Rust).
         pub m: f64 = "m" optional {
             label: "{M} at",
             help: "The rotary axis nearer the tool stands at this command over the whole map.",
@@ -174,9 +174,14 @@ crate::inputs! {
 impl VolumetricInput {
     /// Reads and checks the inputs.
     pub fn read(value: &Value) -> Result<Self> {
-        let input = Self::from_value(value, "")?;
-        input.machine.validate("machine")?;
-        let r = &input.region;
+        <Self as crate::api::ApiInput>::read(value)
+    }
+}
+
+impl crate::api::Checked for VolumetricInput {
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")?;
+        let r = &self.region;
         for (from, to, key) in [(r.u_from, r.u_to, "uTo"), (r.v_from, r.v_to, "vTo")] {
             if to <= from {
                 return Err(Error::field(
@@ -185,7 +190,7 @@ impl VolumetricInput {
                 ));
             }
         }
-        Ok(input)
+        Ok(())
     }
 }
 
@@ -219,25 +224,41 @@ pub struct WorstPoint {
     pub deviation: [f64; 3],
     /// Its length, mm.
     pub norm: f64,
-    /// Tilt error of the tool axis there, rad.
+    /// Tilt error of the tool axis there, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub tilt: f64,
 }
 
-/// The map over the plane (module docs).
-#[derive(Debug, Clone, PartialEq)]
+/// The map over the plane (module docs). Maps are row-major, `nu × nv`: the point
+/// `(u[i], v[j])` is entry `[j·nu + i]`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct VolumetricMap {
-    /// Names of the plane's axes and the fixed one.
+    /// Names of the plane's first and second axis and the fixed one: `["X", "Y", "Z"]`.
     pub axes: [char; 3],
     /// Positions along the first axis, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub u: Vec<f64>,
     /// Positions along the second axis, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub v: Vec<f64>,
-    /// Deviation components X, Y, Z in workpiece coordinates, mm, row-major (`[j·nu + i]` at
-    /// `(u[i], v[j])`).
+    /// Deviation components X, Y, Z in workpiece coordinates, mm, row-major.
+    #[serde(serialize_with = "crate::api::series3")]
+    #[cfg_attr(
+        feature = "ts",
+        tsify(type = "[Float64Array, Float64Array, Float64Array]")
+    )]
     pub deviation: [Vec<f64>; 3],
     /// `|Δ|`, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub norm: Vec<f64>,
-    /// Tilt error of the tool axis, rad.
+    /// Tilt error of the tool axis, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub tilt: Vec<f64>,
     /// The worst point.
     pub worst: WorstPoint,
@@ -261,6 +282,8 @@ pub struct VolumetricMap {
     pub table_height: f64,
     /// The linear axis along the spindle at zero ("Z" for a vertical spindle).
     pub spindle_axis: char,
+    /// One plain sentence ([`VolumetricMap::summary`]).
+    pub summary: String,
 }
 
 /// One error of the machine that is not zero, how to get its value at a pose, and where its
@@ -486,7 +509,7 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
         })
         .collect();
     budget.sort_by(|a, b| b.share.total_cmp(&a.share).then(b.rms.total_cmp(&a.rms)));
-    Ok(VolumetricMap {
+    let mut map = VolumetricMap {
         axes: [axes[0].letter(), axes[1].letter(), axes[2].letter()],
         u,
         v,
@@ -504,7 +527,12 @@ pub fn map(input: &VolumetricInput) -> Result<VolumetricMap> {
         tip_offset: tip_offset(&input.machine),
         table_height: input.machine.geometry.table_height,
         spindle_axis: input.machine.home().letter(),
-    })
+        summary: String::new(),
+    };
+    let m = &input.machine;
+    map.summary =
+        map.summary(m.errors.0.values().filter(|v| **v != 0.0).count() + m.motions.0.len());
+    Ok(map)
 }
 
 /// Where the plane stands when `region.at` is left out: with the tool tip on the table surface
@@ -615,12 +643,63 @@ pub struct PaperComparison {
     /// The machine's deviation turned into machine-axis directions (the table's rotation undone),
     /// mm: what the paper's ΔX, ΔY, ΔZ stand for.
     pub machine_axes: [f64; 3],
-    /// The paper's symbols and their values at the pose (mm, rad), in the paper's signs.
-    pub symbols: Vec<(String, f64)>,
+    /// The paper's 33 symbols and their values at the pose, in the paper's signs.
+    pub symbols: Vec<PaperSymbol>,
     /// Errors of the machine the paper's loop does not have (location errors of the rotary
     /// axes: its rotary errors are all error motions).
     pub not_in_paper: Vec<String>,
 }
+
+/// One of Tan & Lim's symbols at the pose.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+pub struct PaperSymbol {
+    /// As printed: "δx(X)", "φ_C", "α".
+    pub symbol: String,
+    /// Its value in the paper's sign: mm, or degrees for an angle (radians in Rust).
+    pub value: f64,
+    /// "mm" or "deg": the unit `value` crosses the edge in.
+    #[cfg_attr(feature = "ts", tsify(type = "\"mm\" | \"deg\""))]
+    pub unit: &'static str,
+}
+
+impl Serialize for PaperSymbol {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("PaperSymbol", 3)?;
+        st.serialize_field("symbol", &self.symbol)?;
+        let angle = self.unit == "deg";
+        st.serialize_field(
+            "value",
+            &if angle {
+                self.value.to_degrees()
+            } else {
+                self.value
+            },
+        )?;
+        st.serialize_field("unit", self.unit)?;
+        st.end()
+    }
+}
+
+/// Tan & Lim's model beside the machine's exact one for the export's input (the machine
+/// checked, the pose's angles in radians).
+pub fn compare_input(input: &VolumetricPaperInput) -> Result<PaperComparison> {
+    compare(
+        &input.machine,
+        [input.x, input.y, input.z],
+        input.k,
+        input.m,
+    )
+}
+
+impl crate::api::Checked for VolumetricPaperInput {
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")
+    }
+}
+
+impl crate::api::Checked for MotionTableInput {}
 
 /// Whether `machine` is Tan & Lim's RRTTT: X under the table carrying A, A carrying C, Y and Z
 /// on the spindle side, A and C intersecting.
@@ -712,7 +791,12 @@ pub fn compare(machine: &Machine, p: [f64; 3], k: f64, m: f64) -> Result<PaperCo
         symbols: paper::SYMBOLS
             .iter()
             .zip(e.slots())
-            .map(|(s, v)| (s.to_string(), v))
+            .enumerate()
+            .map(|(slot, (s, value))| PaperSymbol {
+                symbol: s.to_string(),
+                value,
+                unit: if paper::is_angle(slot) { "deg" } else { "mm" },
+            })
             .collect(),
         not_in_paper,
     })
@@ -745,13 +829,13 @@ crate::inputs! {
             kind: schema::number(Quantity::Length, -MAX_POSITION, MAX_POSITION),
             default: DefaultValue::Num(0.0), group: "Pose",
         },
-        /// K (C) command, rad.
+        /// K (C) command, degrees (radians in Rust).
         pub k: f64 = "k" optional {
             label: "{K}", help: "C command.",
             kind: schema::number(Quantity::Angle, -3600.0, 3600.0),
             default: DefaultValue::Num(0.0), group: "Pose",
         },
-        /// M (A) command, rad.
+        /// M (A) command, degrees (radians in Rust).
         pub m: f64 = "m" optional {
             label: "{M}", help: "A command.",
             kind: schema::number(Quantity::Angle, -3600.0, 3600.0),
@@ -781,10 +865,15 @@ crate::inputs! {
 impl MotionTableInput {
     /// Reads the input and the table (messages: `name`, or `csv` with the line).
     pub fn read_table(value: &Value) -> Result<motions::CsvTable> {
-        let input = Self::from_value(value, "")?;
-        if motions::find(&input.name).is_none() {
-            return Err(motions::unknown("name", &input.name));
-        }
-        motions::read_table_csv(&input.text, &input.name)
+        read_table(&<Self as crate::api::ApiInput>::read(value)?)
     }
+}
+
+/// Reads the measured table of one error motion (`name`) from its CSV text: positions and
+/// values in API units (mm or degrees) from the units in the header; errors name the line.
+pub fn read_table(input: &MotionTableInput) -> Result<motions::CsvTable> {
+    if motions::find(&input.name).is_none() {
+        return Err(motions::unknown("name", &input.name));
+    }
+    motions::read_table_csv(&input.text, &input.name)
 }

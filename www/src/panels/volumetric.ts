@@ -2,7 +2,7 @@
 // the machine's location errors and its position-dependent error motions (ISO 230-1 E_XX … E_CC),
 // the worst point and the error budget; Tan & Lim's RRTTT model beside it on their machine.
 import type { Annotations, Data } from 'plotly.js';
-import type { ErrorDef, Machine, VolumetricInput, VolumetricMapResult, VolumetricPaperResult } from '@engine';
+import type { ErrorDef, Machine, VolumetricInput, VolumetricMap, PaperComparison } from '@engine';
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
 import type { MachineSection, MotionFunction } from '../machine/section';
@@ -141,7 +141,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const runMap = channel('volumetricMap');
   const runPaper = channel('volumetricPaper');
   const fieldErrors = engineErrors(inputs.byPath, machine);
-  let last: { r: VolumetricMapResult; input: VolumetricInput } | null = null;
+  let last: { r: VolumetricMap; input: VolumetricInput } | null = null;
 
   /** The verdict: the engine's worst point against the tolerance, the budget ranked. */
   const judgeMap = () => {
@@ -240,7 +240,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   /** Where the spindle axis's 0 is, in words and mm from the rotary axes, and where the map is. */
-  const zeroText = (r: VolumetricMapResult) => {
+  const zeroText = (r: VolumetricMap) => {
     const ctx = machine.context();
     const kind = machine.current()?.kind ?? 'table-table';
     const sp = r.spindleAxis;
@@ -255,11 +255,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       `This map: ${wa} ${fmt.num(r.at)} mm${onSurface ? ', on the table surface' : ''}.`;
   };
 
-  const showMap = (r: VolumetricMapResult) => {
+  const showMap = (r: VolumetricMap) => {
     const [ua, va, wa] = r.axes;
     const nu = r.u.length;
     const nv = r.v.length;
-    const comp = { X: r.dx, Y: r.dy, Z: r.dz } as Record<string, Float64Array>;
+    const comp = { X: r.deviation[0], Y: r.deviation[1], Z: r.deviation[2] } as Record<string, Float64Array>;
     const w = r.worst;
     note(mapPlot.p, null);
     sentence.textContent = r.summary;
@@ -365,7 +365,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const { r } = last;
     const key = component.select.value as 'dx' | 'dy' | 'dz';
     const label = COMPONENTS.find((c) => c.value === key)?.label ?? key;
-    const data = Array.from(r[key], D);
+    const data = Array.from(r.deviation[(['dx', 'dy', 'dz'] as const).indexOf(key)], D);
     const R = Math.max(1e-12, ...data.map(Math.abs));
     const [ua, va] = r.axes;
     drawFit(compPlot.p, `${label.split(':')[0]} over the ${ua}–${va} plane<br>${label.split(': ')[1]} (red +, blue −)`, [{
@@ -375,7 +375,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } as Data], { xaxis: axis(`${ua} (mm)`, { constrain: 'domain' }), yaxis: axis(`${va} (mm)`, { scaleanchor: 'x' }) }, `volumetric-${key}`);
   };
 
-  const budget = (r: VolumetricMapResult) => {
+  const budget = (r: VolumetricMap) => {
     if (!r.budget.length) {
       budgetTable.replaceChildren(el('p', { class: 'field-hint' }, 'No error is entered: nothing to share out.'));
       return;
@@ -398,7 +398,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   // ---- Tan & Lim's model at the worst point (their machine only; the engine says when not)
-  const comparePaper = (r: VolumetricMapResult, input: VolumetricInput) => {
+  const comparePaper = (r: VolumetricMap, input: VolumetricInput) => {
     const [x, y, z] = r.worst.position;
     const region = input.region ?? {};
     runPaper({ machine: input.machine, x, y, z, ...(region.k === undefined ? {} : { k: region.k }), ...(region.m === undefined ? {} : { m: region.m }) }).then((p) => {
@@ -412,7 +412,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     });
   };
 
-  const showPaper = (p: VolumetricPaperResult, r: VolumetricMapResult) => {
+  const showPaper = (p: PaperComparison, r: VolumetricMap) => {
     const [x, y, z] = r.worst.position;
     const vec = (v: [number, number, number]) => v.map((c) => show('errLength', c)).join(', ');
     const table = el('table', { class: 'ranking', id: 'vm-paper-table' });
@@ -580,7 +580,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 }
 
 /** The map as CSV: one row per point, units in the header (the units shown now). */
-export function mapCsv(r: VolumetricMapResult): string {
+export function mapCsv(r: VolumetricMap): string {
   const [ua, va, wa] = r.axes;
   const len = unitDef('errLength');
   const ang = unitDef('errAngle');
@@ -594,7 +594,7 @@ export function mapCsv(r: VolumetricMapResult): string {
     for (let i = 0; i < nu; i++) {
       const k = j * nu + i;
       const p: Record<string, number> = { [ua]: r.u[i], [va]: r.v[j], [wa]: at };
-      lines.push([r.u[i], r.v[j], p.X, p.Y, p.Z, r.dx[k] * len.factor, r.dy[k] * len.factor, r.dz[k] * len.factor, r.norm[k] * len.factor, r.tilt[k] * ang.factor]
+      lines.push([r.u[i], r.v[j], p.X, p.Y, p.Z, r.deviation[0][k] * len.factor, r.deviation[1][k] * len.factor, r.deviation[2][k] * len.factor, r.norm[k] * len.factor, r.tilt[k] * ang.factor]
         .map((v) => String(Number(v.toPrecision(10)))).join(','));
     }
   }
