@@ -18,11 +18,15 @@
 //!   in JSON;
 //! * field names are camelCase (`#[serde(rename_all = "camelCase")]`), `None` is `null`.
 
+use crate::machine::errors::{ErrorDef, TABLE};
+use crate::machine::motions::MOTIONS;
+use crate::machine::Machine;
 use crate::schema::{describe, FieldInfo, Inputs};
 use crate::Result;
 use serde::ser::{SerializeSeq, SerializeTuple};
-use serde::Serializer;
+use serde::{Serialize, Serializer};
 use serde_json::Value;
+use std::collections::BTreeMap;
 
 /// The input of an export: read from one JSON object, with the path of any fault in the message.
 pub trait ApiInput: Sized {
@@ -67,6 +71,59 @@ impl<A: Checked, B: Checked> ApiInput for (A, B) {
         let mut v = describe(A::FIELDS, "");
         v.extend(describe(B::FIELDS, ""));
         v
+    }
+}
+
+/// An export that takes no input (`undefined` in JavaScript).
+impl ApiInput for () {
+    fn read(value: &Value) -> Result<Self> {
+        match value {
+            Value::Null => Ok(()),
+            Value::Object(m) if m.is_empty() => Ok(()),
+            Value::Object(m) => Err(crate::Error::field(
+                m.keys().next().map_or("input", |k| k.as_str()),
+                "this export takes no input",
+            )),
+            _ => Err(crate::Error::field("input", "this export takes no input")),
+        }
+    }
+    fn fields() -> Vec<FieldInfo> {
+        Vec::new()
+    }
+}
+
+/// Every input the page renders and the engine reads (see `schema`).
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(
+    feature = "ts",
+    derive(tsify::Tsify),
+    tsify(missing_as_null, hashmap_as_object)
+)]
+#[serde(rename_all = "camelCase")]
+pub struct Schema {
+    /// The machine's fields, paths under `machine.`.
+    pub machine: Vec<FieldInfo>,
+    /// The error table: every ISO 230-1 location error a machine can have.
+    pub errors: Vec<ErrorDef>,
+    /// The error motions of every axis (ISO 230-1 `E_XX` … `E_CC`), functions of its position.
+    pub motions: Vec<ErrorDef>,
+    /// Per export, every field of its input object (the machine's included).
+    pub exports: BTreeMap<String, Vec<FieldInfo>>,
+}
+
+/// The schema of every input: the machine's fields, the error table and each export's fields
+/// (the declared ones and `extra`, the binding's hand-written ones), with labels, plain-language
+/// help, units (mm, deg), limits and defaults.
+pub fn schema(extra: Vec<(&str, Vec<FieldInfo>)>) -> Schema {
+    Schema {
+        machine: describe(Machine::FIELDS, "machine"),
+        errors: TABLE.to_vec(),
+        motions: MOTIONS.to_vec(),
+        exports: export_fields()
+            .into_iter()
+            .chain(extra)
+            .map(|(n, f)| (n.to_string(), f))
+            .collect(),
     }
 }
 
@@ -153,6 +210,24 @@ pub fn degrees_series<S: Serializer>(
 macro_rules! for_each_export {
     ($then:ident) => {
         $then! {
+            // machine
+            #[doc = "The twelve rotary-axis types with their group and axes."]
+            rotaryTypes(() as "undefined | void") -> "RotaryTypeInfo[]" = $crate::machine::api::rotary_types;
+            #[doc = "The machine drawn from its chain at the commands `k`, `m` (degrees), and its axes in"]
+            #[doc = "words: so that the user can see that the machine entered is theirs."]
+            machineSchematic($crate::machine::SchematicInput as "SchematicInput")
+                -> "MachineDrawing" = $crate::machine::api::drawing;
+            #[doc = "The tool direction `(i, j, k)` in workpiece coordinates at the commands `k`, `m`"]
+            #[doc = "(degrees), from the machine's nominal chain."]
+            toolVector($crate::machine::ToolVectorInput as "ToolVectorInput")
+                -> "[number, number, number]" = $crate::machine::api::tool_vector;
+            #[doc = "The rotary commands that give a tool direction on this machine: every solution"]
+            #[doc = "(degrees), whether it is within the travel, and `chosen`, the index of the one the"]
+            #[doc = "rule picks (nearest `previous` by default; null when none is within the travel,"]
+            #[doc = "with `unreachable` saying why)."]
+            machineInverse($crate::machine::InverseInput as "InverseInput")
+                -> "Orientations" = $crate::machine::api::inverse;
+            // volumetric
             #[doc = "The tool tip's deviation over a plane of the working volume for all the machine's"]
             #[doc = "errors and error motions, its worst point and the error budget."]
             volumetricMap($crate::volumetric::VolumetricInput as "VolumetricInput")

@@ -91,17 +91,18 @@ test('the machine in words, its inverse kinematics and tool vector', () => {
   // Zone II-3 of the cubic test (Li et al.'s Table 2): B = 30°, C = 180°; continuity keeps C
   // near 170° (the other solution, C = 0°, B = −30°, is farther).
   const ik = fa.machineInverse({ machine: { type: 'CBZ' }, vector: [-0.5, 0, Math.sqrt(3) / 2], previous: { k: 170, m: 30 } });
-  assert.ok(Math.abs(ik.chosen.m - 30) < 1e-9 && Math.abs(ik.chosen.k - 180) < 1e-9, JSON.stringify(ik));
+  const chosen = ik.solutions[ik.chosen];
+  assert.ok(Math.abs(chosen.m - 30) < 1e-9 && Math.abs(chosen.k - 180) < 1e-9, JSON.stringify(ik));
   assert.equal(ik.solutions.length, 2);
   assert.ok(Math.abs(ik.poleAngle - 30) < 1e-9);
   assert.equal(ik.singular, false);
   // The tool along C: singular, C kept at the previous value.
   const pole = fa.machineInverse({ machine: { type: 'CBZ' }, vector: [0, 0, 1], previous: { k: 40, m: 0 } });
-  assert.ok(pole.singular && Math.abs(pole.chosen.k - 40) < 1e-9 && Math.abs(pole.chosen.m) < 1e-9, JSON.stringify(pole));
+  assert.ok(pole.singular && Math.abs(pole.solutions[pole.chosen].k - 40) < 1e-9 && Math.abs(pole.solutions[pole.chosen].m) < 1e-9, JSON.stringify(pole));
   // Beyond the travel of B (±120° on Li et al.'s machine, ±20° here): none chosen, a message.
   const out = fa.machineInverse({ machine: { type: 'CBZ', rotary: { mFrom: -20, mTo: 20 } }, vector: [-0.5, 0, Math.sqrt(3) / 2] });
   assert.equal(out.chosen, null);
-  assert.ok(out.message && out.solutions.every((x) => !x.inTravel), JSON.stringify(out));
+  assert.ok(out.unreachable && out.solutions.every((x) => !x.inTravel), JSON.stringify(out));
   // The forward direction: the table turned C = 180°, tilted B = 30° puts the tool at
   // (−sin 30°, 0, cos 30°) in workpiece coordinates.
   const v = fa.toolVector({ machine: { type: 'CBZ' }, k: 180, m: 30 });

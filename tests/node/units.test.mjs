@@ -255,8 +255,8 @@ test('toolVector and machineInverse: angles in degrees', () => {
   cazVector(30, 50).forEach((x, i) => close(v[i], x, 1e-12, 'toolVector'));
   const inv = fa.machineInverse({ machine: { type: 'CAZ', rotary: { mFrom: -120, mTo: 120 } }, vector: cazVector(30, 50), rule: 'smallest-tilt' });
   // Two solutions of equal tilt (k, m) and (k + 180°, −m); M ≥ 0 first.
-  close(inv.chosen.k, 30, 1e-9, 'k');
-  close(inv.chosen.m, 50, 1e-9, 'm');
+  close(inv.solutions[inv.chosen].k, 30, 1e-9, 'k');
+  close(inv.solutions[inv.chosen].m, 50, 1e-9, 'm');
 });
 
 // ---------------------------------------------------------------------------------------------
@@ -321,6 +321,7 @@ const BASE = {
   reversalFit: [{ csv: REVERSAL }],
   reversalSimulate: [{}],
   reversalTrace: [{ csv: REVERSAL }],
+  rotaryTypes: [{}],
   sshapeDefects: [{ machine: CHANAL }],
   sshapeIdentify: [{ machine: CHANAL, csv: SAMPLE }],
   sshapeOvercut: [{ nu: 14, nv: 2 }],

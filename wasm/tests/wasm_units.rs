@@ -259,7 +259,7 @@ fn identified_angles_come_out_in_degrees() {
 #[wasm_bindgen_test]
 fn axis_angles_in_and_out_are_degrees() {
     // toolVector: C = 90°, A = 30° on the trunnion is R_Z(90°)·R_X(30°)·e_z = (sin 30°, 0, cos 30°).
-    let v: Vec<f64> = read(fa::tool_vector(jv(
+    let v: Vec<f64> = read(fa::toolVector(jv(
         &json!({ "machine": preset(TRUNNION), "k": 90, "m": 30 }),
     )));
     let want = [0.5, 0.0, 3f64.sqrt() / 2.0];
@@ -274,12 +274,13 @@ fn axis_angles_in_and_out_are_degrees() {
     }
     #[derive(Deserialize)]
     struct Inv {
-        chosen: Option<Pair>,
+        solutions: Vec<Pair>,
+        chosen: Option<usize>,
     }
-    let r: Inv = read(fa::machine_inverse(jv(&json!({
+    let r: Inv = read(fa::machineInverse(jv(&json!({
         "machine": preset(TRUNNION), "vector": want, "rule": "smallest-tilt",
     }))));
-    let c = r.chosen.expect("within the travel");
+    let c = &r.solutions[r.chosen.expect("within the travel")];
     // A travels −120°..30°: of (C 90°, A 30°) and (C 270°, A −30°), equal tilts, A ≥ 0 first.
     assert!(
         (c.k - 90.0).abs() < 1e-9 && (c.m - 30.0).abs() < 1e-9,

@@ -48,6 +48,7 @@
 //! Table 2, Chanal et al.'s `B ≥ 0`); or the one nearest the previous pose. The linear axes
 //! then follow exactly ([`Chain::solve_linear`]).
 
+pub mod api;
 pub mod errors;
 pub mod follow;
 pub mod motions;
@@ -730,19 +731,25 @@ pub struct Model {
     pub layout: RotaryLayout,
 }
 
-/// One orientation solution of [`Model::orientations`], commands in rad.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One orientation solution of [`Model::orientations`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct Candidate {
-    /// K, written in its travel when a turn fits.
+    /// K, degrees (radians in Rust), written in its travel when a turn fits.
+    #[serde(serialize_with = "crate::api::degrees")]
     pub k: f64,
-    /// M, likewise.
+    /// M, degrees (radians in Rust), likewise.
+    #[serde(serialize_with = "crate::api::degrees")]
     pub m: f64,
     /// Both axes are within their travel.
     pub in_travel: bool,
 }
 
 /// What [`Model::orientations`] finds.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct Orientations {
     /// Every solution of the type (two, or one at a singular orientation).
     pub solutions: Vec<Candidate>,
@@ -753,7 +760,8 @@ pub struct Orientations {
     pub unreachable: Option<String>,
     /// The tool lies along K: K is arbitrary and was kept.
     pub singular: bool,
-    /// Angle between the direction and the nearer of ±K, rad.
+    /// Angle between the direction and the nearer of ±K, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub pole_angle: f64,
 }
 

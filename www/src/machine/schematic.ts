@@ -2,7 +2,7 @@
 // it sits and which way it points, the table, the spindle and the tool, at the pose asked for.
 // Drawn with Plotly (3D lines, cones and a plate) so that it can be turned and zoomed.
 import type { Data, Layout } from 'plotly.js';
-import type { SchematicResult } from '@engine';
+import type { MachineDrawing } from '@engine';
 import { draw } from '../ui/plot';
 
 const K_COLOUR = '#c2410c';
@@ -38,7 +38,7 @@ function label(at: V, text: string, color: string): Data {
 }
 
 /** Draws the machine into `target`. */
-export async function drawSchematic(target: HTMLElement, r: SchematicResult, title: string) {
+export async function drawSchematic(target: HTMLElement, r: MachineDrawing, title: string) {
   const d = r.drawing;
   const s = d.scale;
   const data: Data[] = [];

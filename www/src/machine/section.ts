@@ -2,7 +2,7 @@
 // geometry, travel and its ISO 230-1 errors, entered once, with a drawing of the machine from its
 // chain. Its fields come from the engine's schema (machine fields and the error table); the
 // panels read the machine from here and recompute when it changes.
-import type { ErrorDef, ErrorFunction, Machine, SchematicResult } from '@engine';
+import type { ErrorDef, ErrorFunction, Machine, MachineDrawing } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced, track } from '../engine/idle';
 import { el, fields, numberField, type NumberField } from '../ui/fields';
@@ -261,7 +261,7 @@ export async function mountMachine(root: HTMLElement): Promise<MachineSection> {
   };
 
   /** The letters of the type as the schematic gave them, and which error groups to show. */
-  const applyContext = (r: SchematicResult) => {
+  const applyContext = (r: MachineDrawing) => {
     ctx = { ...ctx, k: r.k, m: r.m, u: r.face[0], v: r.face[1] };
     swing = r.swingLength;
     // Each axis's errors under what the axis is on this machine ("C (K): head axis on the ram").

@@ -1,7 +1,7 @@
 // The "Nonlinear error" panel: Geng, Wu & Qiu (2018), on the machine of the Machine section (its
 // rotary-axis type and pivot).
 import type { Data } from 'plotly.js';
-import type { InverseResult, Machine, NonlinearMoveResult } from '@engine';
+import type { Orientations, Machine, NonlinearMoveResult } from '@engine';
 import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
@@ -182,16 +182,16 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const ctx = machine.context();
     runIk({ machine: m, vector, previous: start }).then((r) => {
       if (r === SUPERSEDED) return;
-      const res = r as InverseResult;
+      const res = r as Orientations;
       ikOut.replaceChildren();
       stale(ikOut, false);
       const list = el('ul');
-      for (const s of res.solutions) {
+      for (const [i, s] of res.solutions.entries()) {
         const travel = s.inTravel ? '' : ' (outside the travel)';
-        list.append(el('li', {}, `${ctx.k} = ${fmt.degrees(s.k)}, ${ctx.m} = ${fmt.degrees(s.m)}${travel}${s.chosen ? '  ← nearest the start pose' : ''}`));
+        list.append(el('li', {}, `${ctx.k} = ${fmt.degrees(s.k)}, ${ctx.m} = ${fmt.degrees(s.m)}${travel}${i === res.chosen ? '  ← nearest the start pose' : ''}`));
       }
       ikOut.append(list);
-      if (res.message) ikOut.append(el('p', { class: 'warn' }, res.message));
+      if (res.unreachable) ikOut.append(el('p', { class: 'warn' }, res.unreachable));
       if (res.singular) {
         ikOut.append(el('p', { class: 'warn' }, `Singular: the tool lies along the ${ctx.k} axis, so ${ctx.k} is arbitrary (kept at the start value).`));
       } else if (res.poleAngle < 1) {
