@@ -7,90 +7,18 @@
 //! * [`call`] runs the same export natively on JSON (benches, tests, scripts);
 //! * tsify writes the TypeScript declarations of the input and result types (feature `ts`).
 //!
-//! Result types are the engine's own structs, `Serialize` (and `Tsify` behind `ts`). The edge's
-//! conventions are applied by serde attributes on their fields:
-//! * **angles** are radians in Rust and **degrees** at the edge: `#[serde(serialize_with =
-//!   "crate::api::degrees")]` (also [`degrees_series`], [`degrees_opt`], [`degrees_vec`]); their
-//!   doc comments say "degrees" (a test reads the `.d.ts`: no result field is documented in
-//!   radians);
-//! * **long series** of numbers cross as a `Float64Array` in JavaScript ([`series`],
-//!   [`series3`]; `#[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]`), and as arrays
-//!   in JSON;
-//! * field names are camelCase (`#[serde(rename_all = "camelCase")]`), `None` is `null`.
+//! The edge's conventions for inputs and results are in [`crate::edge`]; this module sits on top
+//! of every study (it names them all), and no study names it.
 
+pub use crate::edge::{ApiInput, Checked};
 use crate::machine::errors::{ErrorDef, TABLE};
 use crate::machine::motions::MOTIONS;
 use crate::machine::Machine;
 use crate::schema::{describe, FieldInfo, Inputs};
 use crate::Result;
-use serde::ser::{SerializeSeq, SerializeTuple};
-use serde::{Serialize, Serializer};
+use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
-
-/// The input of an export: read from one JSON object, with the path of any fault in the message.
-pub trait ApiInput: Sized {
-    /// Reads the input (`schema::read`: unknown keys refused, ranges checked, degrees to
-    /// radians), then [`Checked::check`]s it.
-    fn read(value: &Value) -> Result<Self>;
-    /// Its fields, for `schema()`.
-    fn fields() -> Vec<FieldInfo>;
-}
-
-/// An input struct an export takes, with what is checked once its fields are read (the machine
-/// as a whole, ranges that depend on each other). Most check nothing more: `impl Checked for
-/// X {}`.
-pub trait Checked: Inputs {
-    /// Checks the input as a whole; the message names the field at fault.
-    fn check(&self) -> Result<()> {
-        Ok(())
-    }
-}
-
-impl<T: Checked> ApiInput for T {
-    fn read(value: &Value) -> Result<Self> {
-        let t = T::from_value(value, "")?;
-        t.check()?;
-        Ok(t)
-    }
-    fn fields() -> Vec<FieldInfo> {
-        describe(T::FIELDS, "")
-    }
-}
-
-/// Two input structs read from one object (a shared case plus the export's own fields):
-/// `schema::read_split`, then both checked.
-impl<A: Checked, B: Checked> ApiInput for (A, B) {
-    fn read(value: &Value) -> Result<Self> {
-        let (a, b): (A, B) = crate::schema::read_split(value, "")?;
-        a.check()?;
-        b.check()?;
-        Ok((a, b))
-    }
-    fn fields() -> Vec<FieldInfo> {
-        let mut v = describe(A::FIELDS, "");
-        v.extend(describe(B::FIELDS, ""));
-        v
-    }
-}
-
-/// An export that takes no input (`undefined` in JavaScript).
-impl ApiInput for () {
-    fn read(value: &Value) -> Result<Self> {
-        match value {
-            Value::Null => Ok(()),
-            Value::Object(m) if m.is_empty() => Ok(()),
-            Value::Object(m) => Err(crate::Error::field(
-                m.keys().next().map_or("input", |k| k.as_str()),
-                "this export takes no input",
-            )),
-            _ => Err(crate::Error::field("input", "this export takes no input")),
-        }
-    }
-    fn fields() -> Vec<FieldInfo> {
-        Vec::new()
-    }
-}
 
 /// Every input the page renders and the engine reads (see `schema`).
 #[derive(Debug, Clone, Serialize)]
@@ -125,80 +53,6 @@ pub fn schema(extra: Vec<(&str, Vec<FieldInfo>)>) -> Schema {
             .map(|(n, f)| (n.to_string(), f))
             .collect(),
     }
-}
-
-/// Calls `f` on `S`'s serializer with `values` as a `Float64Array` when the serializer is
-/// serde-wasm-bindgen's (feature `wasm` on wasm32), else as a sequence of numbers.
-fn float64<S: Serializer>(values: &[f64], s: S) -> std::result::Result<S::Ok, S::Error> {
-    #[cfg(all(feature = "wasm", target_arch = "wasm32"))]
-    {
-        serde_wasm_bindgen::preserve::serialize(&js_sys::Float64Array::from(values), s)
-    }
-    #[cfg(not(all(feature = "wasm", target_arch = "wasm32")))]
-    {
-        let mut seq = s.serialize_seq(Some(values.len()))?;
-        for v in values {
-            seq.serialize_element(v)?;
-        }
-        seq.end()
-    }
-}
-
-/// A long series of numbers (mm, or as documented): a `Float64Array` in JavaScript.
-pub fn series<S: Serializer>(values: &[f64], s: S) -> std::result::Result<S::Ok, S::Error> {
-    float64(values, s)
-}
-
-/// Three series (X, Y, Z): three `Float64Array`s.
-pub fn series3<S: Serializer>(
-    values: &[Vec<f64>; 3],
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    struct One<'a>(&'a [f64]);
-    impl serde::Serialize for One<'_> {
-        fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-            float64(self.0, s)
-        }
-    }
-    let mut t = s.serialize_tuple(3)?;
-    for v in values {
-        t.serialize_element(&One(v))?;
-    }
-    t.end()
-}
-
-/// An angle held in radians, written in degrees.
-pub fn degrees<S: Serializer>(radians: &f64, s: S) -> std::result::Result<S::Ok, S::Error> {
-    s.serialize_f64(radians.to_degrees())
-}
-
-/// An optional angle held in radians, written in degrees (`null` when absent).
-pub fn degrees_opt<S: Serializer>(
-    radians: &Option<f64>,
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    match radians {
-        Some(r) => s.serialize_f64(r.to_degrees()),
-        None => s.serialize_none(),
-    }
-}
-
-/// A short list of angles held in radians, written in degrees as a plain array.
-pub fn degrees_vec<S: Serializer>(radians: &[f64], s: S) -> std::result::Result<S::Ok, S::Error> {
-    let mut seq = s.serialize_seq(Some(radians.len()))?;
-    for r in radians {
-        seq.serialize_element(&r.to_degrees())?;
-    }
-    seq.end()
-}
-
-/// A long series of angles held in radians, written in degrees (`Float64Array`).
-pub fn degrees_series<S: Serializer>(
-    radians: &[f64],
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    let d: Vec<f64> = radians.iter().map(|r| r.to_degrees()).collect();
-    float64(&d, s)
 }
 
 /// Every export, declared once, handed to the macro `$then` as rows of
@@ -242,6 +96,14 @@ macro_rules! for_each_export {
             #[doc = "`value` go into `machine.motions[name]` as they are."]
             volumetricReadTable($crate::volumetric::MotionTableInput as "MotionTableInput")
                 -> "CsvTable" = $crate::volumetric::read_table;
+            // positioning (ISO 230-2)
+            #[doc = "A positioning test of one axis (laser runs, ISO 230-2:2014): per target the mean"]
+            #[doc = "deviations each way, s, R_i and B_i; for the axis B, R, E, M and A each way and"]
+            #[doc = "bidirectional, judged against the tolerances given; and the mean bidirectional"]
+            #[doc = "deviation as the axis's positioning error motion (`motion` goes into"]
+            #[doc = "`machine.motions[motion.name]`). Values in mm, or degrees for a rotary axis."]
+            positioningEvaluate($crate::positioning::PositioningInput as "PositioningInput")
+                -> "Positioning" = $crate::positioning::evaluate;
         }
     };
 }

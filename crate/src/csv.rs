@@ -47,6 +47,43 @@ pub fn number(cell: &str, sep: char) -> Option<f64> {
     parsed.ok().filter(|v| v.is_finite())
 }
 
+/// A unit a measuring program may write in a CSV header, and its factor to the API unit (mm or
+/// degrees) of its kind.
+pub fn unit_factor(unit: &str, angle: bool) -> Option<f64> {
+    let u = unit.trim().to_lowercase().replace('μ', "µ");
+    let (len, ang) = match u.as_str() {
+        "mm" => (Some(1.0), None),
+        "µm" | "um" | "micron" | "microns" => (Some(1e-3), None),
+        "nm" => (Some(1e-6), None),
+        "m" => (Some(1e3), None),
+        "in" | "inch" => (Some(25.4), None),
+        "deg" | "°" | "degree" | "degrees" => (None, Some(1.0)),
+        "rad" => (None, Some(180.0 / std::f64::consts::PI)),
+        "mrad" => (None, Some(0.180 / std::f64::consts::PI)),
+        "µrad" | "urad" => (None, Some(1.8e-4 / std::f64::consts::PI)),
+        "arcsec" | "″" | "\"" | "sec" | "as" => (None, Some(1.0 / 3600.0)),
+        "µm/m" | "um/m" => (None, Some(1.8e-4 / std::f64::consts::PI)),
+        _ => (None, None),
+    };
+    if angle {
+        ang
+    } else {
+        len
+    }
+}
+
+/// The unit in a header cell: the text in `( )` or `[ ]`, or the cell itself.
+pub fn header_unit(cell: &str) -> &str {
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if let (Some(a), Some(b)) = (cell.rfind(open), cell.rfind(close)) {
+            if a < b {
+                return &cell[a + 1..b];
+            }
+        }
+    }
+    cell
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -18,12 +18,14 @@
 //! * [`reversal`]: a rotary table's reversal with friction, as a ball bar sees it (Nishiguchi et al. 2017).
 //! * [`toolpath`]: the customer's toolpath on the twelve rotary-axis types, ranked by nonlinear
 //!   error, and refined to a tolerance.
+//! * [`positioning`]: a positioning test of one axis (laser runs) evaluated as ISO 230-2 defines it.
 //! * [`volumetric`]: the tool tip's deviation over the working volume from every location
 //!   error and error motion, its budget, and Tan & Lim's RRTTT model beside it.
 
 pub mod schema;
 
 pub mod api;
+pub mod edge;
 
 pub mod cache;
 pub mod chain;
@@ -34,7 +36,9 @@ pub mod geometry;
 pub mod identify;
 pub mod machine;
 pub mod nonlinear;
+
 mod numeric;
+pub mod positioning;
 pub mod reversal;
 pub mod rotary;
 pub mod sshape;

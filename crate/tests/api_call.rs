@@ -1,6 +1,8 @@
 //! The declared exports run natively through `api::call` on JSON, as the binding runs them: the
 //! same reader (degrees in) and the same writer (degrees out).
 
+#![allow(clippy::unwrap_used)] // a failure should stop the test
+
 use fiveaxis::api::{call, EXPORTS};
 use serde_json::json;
 

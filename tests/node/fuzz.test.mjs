@@ -206,6 +206,29 @@ function reversalCsv(r) {
   }
   return lines.join('\n');
 }
+/** A positioning test (ISO 230-2) in one of the three layouts, sometimes with a damaged cell,
+ *  a missing run or a unit left out. */
+function positioningCsv(r) {
+  const m = small(0, 6)(r);
+  const n = small(1, 5)(r);
+  const unit = pick(['(mm)', '(deg)', '', '(µm)'])(r);
+  const vunit = pick(['(µm)', '(arcsec)', '(mm)', ''])(r);
+  const dev = () => ((r() - 0.5) * 10).toFixed(2);
+  const lines = [];
+  if (r() < 0.5) {
+    lines.push(`target ${unit};direction;run;deviation ${vunit}`);
+    for (let i = 0; i < m; i++) for (const d of ['up', 'down']) for (let j = 1; j <= n; j++) lines.push(`${i * 100};${d};${j};${dev()}`);
+  } else {
+    const cols = ['up', 'down'].flatMap((d) => Array.from({ length: n }, (_, j) => `${d} ${j + 1} ${vunit}`));
+    lines.push([`target ${unit}`, ...cols].join(','));
+    for (let i = 0; i < m; i++) lines.push([i * 100, ...cols.map(dev)].join(','));
+  }
+  if (lines.length > 1 && r() < 0.3) {
+    const i = 1 + Math.floor(r() * (lines.length - 1));
+    lines[i] = r() < 0.5 ? lines[i].replace(/\d/, pick(['x', '', 'e'])(r)) : lines[i].split(/[;,]/).slice(0, -1).join(';');
+  }
+  return lines.join(pick(['\n', '\r\n'])(r));
+}
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -252,6 +275,7 @@ export const SPECS = {
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
+  positioningEvaluate: { args: [{ csv: positioningCsv, axis: maybe(pick(['X', 'C', 'Q'])), tolerance: maybe((r) => build({ a: maybe((q) => q() * 0.01), e: maybe((q) => q() * 0.01), r: maybe((q) => q() * 0.01) }, r)) }] },
   reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
   reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] , weight: 0.1 },

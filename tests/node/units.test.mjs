@@ -335,6 +335,7 @@ const BASE = {
   volumetricMap: [{}],
   volumetricPaper: [{ machine: preset('C/A double turntable on an X table'), x: 0, y: 0, z: 0 }],
   volumetricReadTable: [{ name: 'E_XX', text: 'X (mm), E_XX (um)\n0, 0\n100, 1' }],
+  positioningEvaluate: [{ csv: 'target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 2\n0; down; 1\n0; down; 3\n100; up; 2\n100; up; 2\n100; down; 1\n100; down; 1' }],
 };
 /** `toolLength` → `toollength`, `nu` → `Nu`: what a user mistypes. */
 const misspell = (key) => (/[A-Z]/.test(key.slice(1)) ? key[0] + key.slice(1).toLowerCase() : key[0].toUpperCase() + key.slice(1));

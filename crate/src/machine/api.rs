@@ -3,8 +3,8 @@
 
 use super::schematic::{schematic, Schematic};
 use super::{face_axes, AxisInfo, InverseInput, Orientations, SchematicInput, ToolVectorInput};
-use crate::api::Checked;
 use crate::chain::Setup;
+use crate::edge::Checked;
 use crate::rotary::{Group, RotaryType};
 use crate::{Error, Result};
 use nalgebra::Vector3;

@@ -737,10 +737,10 @@ pub struct Model {
 #[serde(rename_all = "camelCase")]
 pub struct Candidate {
     /// K, degrees (radians in Rust), written in its travel when a turn fits.
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub k: f64,
     /// M, degrees (radians in Rust), likewise.
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub m: f64,
     /// Both axes are within their travel.
     pub in_travel: bool,
@@ -761,7 +761,7 @@ pub struct Orientations {
     /// The tool lies along K: K is arbitrary and was kept.
     pub singular: bool,
     /// Angle between the direction and the nearer of ±K, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub pole_angle: f64,
 }
 

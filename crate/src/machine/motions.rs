@@ -699,43 +699,6 @@ fn read_function(v: &Value, path: &str, def: &ErrorDef) -> Result<ErrorFunction>
     })
 }
 
-/// A unit a measuring program may write in a CSV header, and its factor to the API unit (mm or
-/// degrees) of its kind.
-fn unit_factor(unit: &str, angle: bool) -> Option<f64> {
-    let u = unit.trim().to_lowercase().replace('μ', "µ");
-    let (len, ang) = match u.as_str() {
-        "mm" => (Some(1.0), None),
-        "µm" | "um" | "micron" | "microns" => (Some(1e-3), None),
-        "nm" => (Some(1e-6), None),
-        "m" => (Some(1e3), None),
-        "in" | "inch" => (Some(25.4), None),
-        "deg" | "°" | "degree" | "degrees" => (None, Some(1.0)),
-        "rad" => (None, Some(180.0 / std::f64::consts::PI)),
-        "mrad" => (None, Some(0.180 / std::f64::consts::PI)),
-        "µrad" | "urad" => (None, Some(1.8e-4 / std::f64::consts::PI)),
-        "arcsec" | "″" | "\"" | "sec" | "as" => (None, Some(1.0 / 3600.0)),
-        "µm/m" | "um/m" => (None, Some(1.8e-4 / std::f64::consts::PI)),
-        _ => (None, None),
-    };
-    if angle {
-        ang
-    } else {
-        len
-    }
-}
-
-/// The unit in a header cell: the text in `( )` or `[ ]`, or the cell itself.
-fn header_unit(cell: &str) -> &str {
-    for (open, close) in [('(', ')'), ('[', ']')] {
-        if let (Some(a), Some(b)) = (cell.rfind(open), cell.rfind(close)) {
-            if a < b {
-                return &cell[a + 1..b];
-            }
-        }
-    }
-    cell
-}
-
 /// A table read from CSV, API units (mm or degrees).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
@@ -772,7 +735,10 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
             )));
         }
         let Some((fp, fv, _)) = &header else {
-            let (up, uv) = (header_unit(cells[0]), header_unit(cells[1]));
+            let (up, uv) = (
+                crate::csv::header_unit(cells[0]),
+                crate::csv::header_unit(cells[1]),
+            );
             // A header that names another error motion or axis is a file for another error.
             for (cell, expected) in [
                 (cells[1], name.to_string()),
@@ -788,7 +754,7 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
                     )));
                 }
             }
-            let fp = unit_factor(up, angle_pos).ok_or_else(|| {
+            let fp = crate::csv::unit_factor(up, angle_pos).ok_or_else(|| {
                 at(format!(
                     "the first line names the columns with their units, e.g. \"{} ({})\"; {} is not a unit of {}",
                     def.axis,
@@ -797,7 +763,7 @@ pub fn read_table_csv(text: &str, name: &str) -> Result<CsvTable> {
                     if angle_pos { "angle" } else { "length" }
                 ))
             })?;
-            let fv = unit_factor(uv, angle_val).ok_or_else(|| {
+            let fv = crate::csv::unit_factor(uv, angle_val).ok_or_else(|| {
                 at(format!(
                     "the second column's unit: {} is not a unit of {} (e.g. \"{} ({})\")",
                     crate::error::quote(cells[1]),

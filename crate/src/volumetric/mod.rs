@@ -174,11 +174,11 @@ crate::inputs! {
 impl VolumetricInput {
     /// Reads and checks the inputs.
     pub fn read(value: &Value) -> Result<Self> {
-        <Self as crate::api::ApiInput>::read(value)
+        <Self as crate::edge::ApiInput>::read(value)
     }
 }
 
-impl crate::api::Checked for VolumetricInput {
+impl crate::edge::Checked for VolumetricInput {
     fn check(&self) -> Result<()> {
         self.machine.validate("machine")?;
         let r = &self.region;
@@ -225,7 +225,7 @@ pub struct WorstPoint {
     /// Its length, mm.
     pub norm: f64,
     /// Tilt error of the tool axis there, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub tilt: f64,
 }
 
@@ -238,26 +238,26 @@ pub struct VolumetricMap {
     /// Names of the plane's first and second axis and the fixed one: `["X", "Y", "Z"]`.
     pub axes: [char; 3],
     /// Positions along the first axis, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub u: Vec<f64>,
     /// Positions along the second axis, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub v: Vec<f64>,
     /// Deviation components X, Y, Z in workpiece coordinates, mm, row-major.
-    #[serde(serialize_with = "crate::api::series3")]
+    #[serde(serialize_with = "crate::edge::series3")]
     #[cfg_attr(
         feature = "ts",
         tsify(type = "[Float64Array, Float64Array, Float64Array]")
     )]
     pub deviation: [Vec<f64>; 3],
     /// `|Δ|`, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub norm: Vec<f64>,
     /// Tilt error of the tool axis, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub tilt: Vec<f64>,
     /// The worst point.
@@ -693,13 +693,13 @@ pub fn compare_input(input: &VolumetricPaperInput) -> Result<PaperComparison> {
     )
 }
 
-impl crate::api::Checked for VolumetricPaperInput {
+impl crate::edge::Checked for VolumetricPaperInput {
     fn check(&self) -> Result<()> {
         self.machine.validate("machine")
     }
 }
 
-impl crate::api::Checked for MotionTableInput {}
+impl crate::edge::Checked for MotionTableInput {}
 
 /// Whether `machine` is Tan & Lim's RRTTT: X under the table carrying A, A carrying C, Y and Z
 /// on the spindle side, A and C intersecting.
@@ -865,7 +865,7 @@ crate::inputs! {
 impl MotionTableInput {
     /// Reads the input and the table (messages: `name`, or `csv` with the line).
     pub fn read_table(value: &Value) -> Result<motions::CsvTable> {
-        read_table(&<Self as crate::api::ApiInput>::read(value)?)
+        read_table(&<Self as crate::edge::ApiInput>::read(value)?)
     }
 }
 
