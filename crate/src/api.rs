@@ -96,6 +96,13 @@ macro_rules! for_each_export {
             #[doc = "`value` go into `machine.motions[name]` as they are."]
             volumetricReadTable($crate::volumetric::MotionTableInput as "MotionTableInput")
                 -> "CsvTable" = $crate::volumetric::read_table;
+            // ballbar (ISO 230-4)
+            #[doc = "A ball-bar circular test (ISO 230-4) from its trace: the circular deviation G"]
+            #[doc = "(each way and both), the hysteresis H, and the faults fitted by least squares"]
+            #[doc = "with 95 % intervals: centre offset, scale mismatch (ppm), squareness (µm/m),"]
+            #[doc = "servo mismatch (ms), backlash per axis, harmonics and reversal spikes."]
+            ballbarEvaluate($crate::ballbar::BallbarInput as "BallbarInput")
+                -> "Ballbar" = $crate::ballbar::evaluate;
             // positioning (ISO 230-2)
             #[doc = "A positioning test of one axis (laser runs, ISO 230-2:2014): per target the mean"]
             #[doc = "deviations each way, s, R_i and B_i; for the axis B, R, E, M and A each way and"]

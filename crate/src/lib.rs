@@ -18,6 +18,7 @@
 //! * [`reversal`]: a rotary table's reversal with friction, as a ball bar sees it (Nishiguchi et al. 2017).
 //! * [`toolpath`]: the customer's toolpath on the twelve rotary-axis types, ranked by nonlinear
 //!   error, and refined to a tolerance.
+//! * [`ballbar`]: a ball-bar circular test (ISO 230-4): G, H and the faults fitted from the trace.
 //! * [`positioning`]: a positioning test of one axis (laser runs) evaluated as ISO 230-2 defines it.
 //! * [`volumetric`]: the tool tip's deviation over the working volume from every location
 //!   error and error motion, its budget, and Tan & Lim's RRTTT model beside it.
@@ -27,6 +28,7 @@ pub mod schema;
 pub mod api;
 pub mod edge;
 
+pub mod ballbar;
 pub mod cache;
 pub mod chain;
 pub mod csv;

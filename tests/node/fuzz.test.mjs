@@ -229,6 +229,22 @@ function positioningCsv(r) {
   }
   return lines.join(pick(['\n', '\r\n'])(r));
 }
+/** A ball-bar trace: points round the circle one or both ways, sometimes with a radius line,
+ *  sometimes a damaged cell. */
+function ballbarCsv(r) {
+  const lines = [];
+  if (r() < 0.8) lines.push(`# radius: ${(50 + r() * 250).toFixed(1)} ${pick(['mm', 'in', 'furlongs'])(r)}`);
+  if (r() < 0.5) lines.push(`# feed: ${(100 + r() * 5000).toFixed(0)} mm/min`);
+  lines.push(pick(['angle (deg); deviation (µm); direction', 'angle (deg); ccw (µm); cw (µm)', 'angle; deviation'])(r));
+  const n = small(0, 200)(r);
+  for (let k = 0; k < n; k++) {
+    const a = ((360 * k) / Math.max(1, n)).toFixed(2);
+    const v = () => ((r() - 0.5) * 10).toFixed(3);
+    lines.push(lines[lines.length - 1 - k]?.includes('ccw (') || lines.some((l) => l.includes('ccw ('))) ? `${a}; ${v()}; ${v()}` : `${a}; ${v()}; ${pick(['ccw', 'cw', 'x'])(r)}`);
+  }
+  if (lines.length > 3 && r() < 0.3) lines[3] = lines[3].replace(/\d/, 'x');
+  return lines.join('\n');
+}
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -275,6 +291,7 @@ export const SPECS = {
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
+  ballbarEvaluate: { args: [{ csv: ballbarCsv, radius: maybe((r) => r() * 300), feed: maybe((r) => r() * 5000), tolerance: maybe((r) => r() * 0.05) }] },
   positioningEvaluate: { args: [{ csv: positioningCsv, axis: maybe(pick(['X', 'C', 'Q'])), tolerance: maybe((r) => build({ a: maybe((q) => q() * 0.01), e: maybe((q) => q() * 0.01), r: maybe((q) => q() * 0.01) }, r)) }] },
   reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
