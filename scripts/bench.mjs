@@ -256,11 +256,11 @@ try {
       return out;
     };
     const input = { machine: {}, length: 100, tolerance: 0.01 };
-    await tp.rankTypes(input, path(1000), tp.TYPES, tp.WORKERS); // start the workers and their engines
+    await tp.rankTypes(input, path(1000), undefined, tp.WORKERS); // start the workers and their engines
     const points = path(1_000_000);
     const timed = async (workers) => {
       const t = performance.now();
-      const rows = await tp.rankTypes(input, points, tp.TYPES, workers);
+      const rows = await tp.rankTypes(input, points, undefined, workers);
       return { ms: performance.now() - t, check: rows.reduce((s, r) => s + r.max + r.mean, 0) };
     };
     return { one: await timed(1), all: await timed(tp.WORKERS), workers: tp.WORKERS, cores: navigator.hardwareConcurrency };

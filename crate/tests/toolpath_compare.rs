@@ -404,3 +404,114 @@ fn the_impeller_sample_turns_c_round_and_tilts_a_and_b_less() {
         .windows(2)
         .all(|w| w[0].unreachable.is_some() <= w[1].unreachable.is_some()));
 }
+
+#[test]
+fn rows_computed_apart_and_sorted_by_their_rank_key_are_the_ranking_of_all_twelve() {
+    // The page ranks the twelve types in several workers, each on a share, and merges the rows
+    // by their `rank` key alone. On a path some types cannot follow (B from −10° to 40°), the
+    // merge must give the ranking of all twelve at once, row for row.
+    let m = machine(json!({"rotary": {"mFrom": -10, "mTo": 40}}));
+    let path: Vec<Vector3<f64>> = (0..=9).map(|i| tilted(5.0 * i as f64, 20.0)).collect();
+    let all = compare(&m, &path, 100.0, 0.01).unwrap();
+    assert!(all.iter().any(|r| r.unreachable.is_some()));
+    assert!(all.iter().any(|r| r.unreachable.is_none()));
+    let mut merged = Vec::new();
+    for share in 0..3 {
+        let types: Vec<RotaryType> = RotaryType::ALL
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| j % 3 == share)
+            .map(|(_, t)| *t)
+            .collect();
+        merged.extend(fiveaxis::toolpath::compare_types(&m, &path, 100.0, 0.01, &types).unwrap());
+    }
+    merged.sort_by(|a, b| {
+        a.rank
+            .iter()
+            .zip(&b.rank)
+            .map(|(x, y)| x.partial_cmp(y).unwrap())
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    assert_eq!(merged, all);
+    // The rule the key stands for: the types that follow the whole path first, by largest δ
+    // then mean δ; then the others, the farthest along first.
+    for w in all.windows(2) {
+        match (&w[0].unreachable, &w[1].unreachable) {
+            (None, None) => assert!((w[0].max, w[0].mean) <= (w[1].max, w[1].mean)),
+            (Some(_), None) => panic!(
+                "{} cannot follow the path, ranked before {}",
+                w[0].rtype.name(),
+                w[1].rtype.name()
+            ),
+            (Some(a), Some(b)) => assert!(a.point >= b.point),
+            (None, Some(_)) => {}
+        }
+    }
+}
+
+#[test]
+fn a_path_from_javascript_is_checked_number_by_number() {
+    use fiveaxis::toolpath::export::{Part, PathInput, PathValue, MAX_COORDINATE};
+    let msg = |v: PathValue| PathInput::read(v).unwrap_err().to_string();
+    let two = vec![0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 10.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+    assert!(msg(PathValue::Other).starts_with("points: expected a Float64Array"));
+    assert!(
+        msg(PathValue::Points(vec![0.0; 5])).starts_with("points: length must be a multiple of 6")
+    );
+    let mut far = two.clone();
+    far[7] = MAX_COORDINATE * 1.5;
+    assert!(
+        msg(PathValue::Points(far)).starts_with("points[1][1]: "),
+        "{}",
+        msg(PathValue::Points(two.clone()))
+    );
+    let mut nan = two.clone();
+    nan[2] = f64::NAN;
+    assert!(msg(PathValue::Points(nan)).starts_with("points[0][2]: "));
+    let mut zero = two.clone();
+    zero[9..].fill(0.0);
+    assert!(msg(PathValue::Points(zero)).starts_with("points[1]: the tool axis"));
+    // An object: keys first, then each part.
+    let obj = |parts: Vec<(&'static str, Part)>| {
+        let keys = parts.iter().map(|(k, _)| k.to_string()).collect();
+        let get = move |k: &str| {
+            Ok(parts
+                .iter()
+                .find(|(key, _)| *key == k)
+                .map_or(Part::Json(serde_json::Value::Null), |(_, p)| p.clone()))
+        };
+        PathInput::read(PathValue::Object { keys, get: &get })
+    };
+    let points = || ("points", Part::Float64(two.clone()));
+    let e = obj(vec![points(), ("motion", Part::Json(json!([0, 1])))])
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("path.motion: unknown key"), "{}", e);
+    let e = obj(vec![("points", Part::Json(json!([0, 0, 0, 0, 0, 1])))])
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("points: expected a Float64Array"), "{}", e);
+    let e = obj(vec![points(), ("motions", Part::Uint8(vec![0, 7]))])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("motions[1]: expected 0 (rapid), 1 (feed) or 2 (arc), got 7"),
+        "{}",
+        e
+    );
+    let e = obj(vec![points(), ("readFor", Part::Json(json!("CAZ")))])
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("readFor: readFor names the machine"), "{}", e);
+    let ok = obj(vec![
+        points(),
+        ("motions", Part::Json(json!([0, 1]))),
+        ("angles", Part::Float64(vec![0.0, 0.0, 10.0, 5.0])),
+        ("readFor", Part::Json(json!("CAZ"))),
+    ])
+    .unwrap();
+    assert_eq!(ok.tips[1], Vector3::new(10.0, 0.0, 0.0));
+    assert_eq!(ok.commands.as_ref().unwrap().0[1], [10.0, 5.0]);
+    assert_eq!(ok.commands.unwrap().1, rtype("CAZ"));
+}

@@ -67,6 +67,7 @@ use read::Motion;
 use serde::Serialize;
 use serde_json::Value;
 
+pub mod export;
 pub mod read;
 pub mod write;
 
@@ -162,12 +163,22 @@ crate::inputs! {
     }
 }
 
+impl crate::api::Checked for ToolpathReadInput {
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")
+    }
+}
+
+impl crate::api::Checked for ToolpathCase {
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")
+    }
+}
+
 impl ToolpathReadInput {
     /// Reads the options (unknown keys refused) and checks the machine.
     pub fn read(value: &Value) -> Result<Self> {
-        let c = <Self as schema::Inputs>::from_value(value, "")?;
-        c.machine.validate("machine")?;
-        Ok(c)
+        <Self as crate::api::ApiInput>::read(value)
     }
 
     /// The reader's options.
@@ -208,9 +219,7 @@ crate::inputs! {
 impl ToolpathCase {
     /// Reads a case (unknown keys refused, ranges checked) and checks the machine.
     pub fn read(value: &Value) -> Result<Self> {
-        let c = <Self as schema::Inputs>::from_value(value, "")?;
-        c.machine.validate("machine")?;
-        Ok(c)
+        <Self as crate::api::ApiInput>::read(value)
     }
 
     /// `L`: given, or the machine's.
@@ -225,7 +234,7 @@ impl ToolpathCase {
     }
 
     /// The path on `types` ([`compare_path`]), ranked.
-    pub fn compare(&self, path: &Path, types: &[RotaryType]) -> Result<Vec<Summary>> {
+    pub fn compare(&self, path: &Path, types: &[RotaryType]) -> Result<Vec<ToolpathSummary>> {
         compare_path(&self.machine, path, self.length()?, self.tolerance, types)
     }
 
@@ -268,17 +277,21 @@ pub struct Analysis {
     /// One per segment between points reached.
     pub segments: Vec<Segment>,
     /// Totals.
-    pub summary: Summary,
+    pub summary: ToolpathSummary,
 }
 
 /// One rapid move of a path on one machine: a positioning and collision note.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct RapidMove {
     /// The segment (from point `segment` to `segment + 1`).
     pub segment: usize,
-    /// The turn of K, rad (signed).
+    /// The turn of K (signed), degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub k_turn: f64,
-    /// The turn of M, rad (signed).
+    /// The turn of M (signed), degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub m_turn: f64,
     /// The tool tip's largest excursion from the straight line (the segment's δ), mm.
     pub excursion: f64,
@@ -302,16 +315,19 @@ impl Analysis {
     }
 }
 
-/// Totals of one machine on the path (a row of the ranking).
+/// Totals of one machine on the path (a row of the ranking), on its cutting segments; the
+/// rapids apart.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[cfg_attr(feature = "ts", tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
-pub struct Summary {
+pub struct ToolpathSummary {
     /// The rotary-axis type.
     #[serde(rename = "type")]
     pub rtype: RotaryType,
     /// Its group.
     pub group: Group,
-    /// Segments analysed (between points reached).
+    /// Cutting segments analysed (between points reached).
     pub segments: usize,
     /// Largest δ, mm.
     pub max: f64,
@@ -327,9 +343,12 @@ pub struct Summary {
     pub flips: usize,
     /// Segments passing by the pole.
     pub poles: usize,
-    /// Total travel of K along the cutting segments, rad (sum of |ΔK|; rapids not counted).
+    /// Total travel of K along the cutting segments (sum of |ΔK|; rapids not counted),
+    /// degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub k_travel: f64,
-    /// Total travel of M along the cutting segments, rad.
+    /// Total travel of M along the cutting segments, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub m_travel: f64,
     /// The first point that cannot be reached and why, when one cannot.
     pub unreachable: Option<Unreachable>,
@@ -337,11 +356,32 @@ pub struct Summary {
     pub rapids: Rapids,
     /// The row follows the program's own commands (the machine it was written for).
     pub commanded: bool,
+    /// The row's place by the ranking rule ([`rank`]), numbers compared in turn, smaller first:
+    /// 0 when the machine follows the whole path, else 1; minus the first point out of reach
+    /// (0 when none is); the largest δ and the mean δ of a machine that follows the whole path
+    /// (0 for one that does not); the type's place in [`RotaryType::ALL`]. Rows computed apart
+    /// (the page's workers) are ranked by sorting on it.
+    pub rank: [f64; 5],
+}
+
+impl ToolpathSummary {
+    /// The ranking rule's key of this row ([`ToolpathSummary::rank`]).
+    fn rank_key(&self) -> [f64; 5] {
+        let place = RotaryType::ALL
+            .iter()
+            .position(|t| *t == self.rtype)
+            .unwrap_or(RotaryType::ALL.len()) as f64;
+        match &self.unreachable {
+            None => [0.0, 0.0, self.max, self.mean, place],
+            Some(u) => [1.0, -(u.point as f64), 0.0, 0.0, place],
+        }
+    }
 }
 
 /// The rapid positioning moves of a path on one machine (module docs): not cutting, so not in
 /// the statistics; a positioning and collision note.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
 pub struct Rapids {
     /// Rapid segments.
@@ -352,18 +392,21 @@ pub struct Rapids {
     pub max: f64,
     /// Index of that segment (0 when there is no rapid).
     pub max_segment: usize,
-    /// Largest turn of K in one rapid, rad.
+    /// Largest turn of K in one rapid, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub k_swing: f64,
-    /// Largest turn of M in one rapid, rad.
+    /// Largest turn of M in one rapid, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub m_swing: f64,
 }
 
 /// A point outside the travel.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub struct Unreachable {
     /// Index of the point.
     pub point: usize,
-    /// What it would need.
+    /// What it would need (angles in degrees) and the travel.
     pub message: String,
 }
 
@@ -618,7 +661,7 @@ fn summarise(
     following: &Following,
     segments: &[Segment],
     tolerance: f64,
-) -> Summary {
+) -> ToolpathSummary {
     let cutting = || segments.iter().enumerate().filter(|(_, s)| !s.rapid);
     let n = cutting().count();
     // The first of equals: strictly larger replaces.
@@ -661,7 +704,7 @@ fn summarise(
         rapids.k_swing = rapids.k_swing.max(dk);
         rapids.m_swing = rapids.m_swing.max(dm);
     }
-    Summary {
+    let mut summary = ToolpathSummary {
         rtype,
         group: rtype.group(),
         segments: n,
@@ -683,7 +726,10 @@ fn summarise(
             }),
         rapids,
         commanded: false,
-    }
+        rank: [0.0; 5],
+    };
+    summary.rank = summary.rank_key();
+    summary
 }
 
 /// The path on each of the twelve types (the machine's kind, geometry, senses and travel),
@@ -693,7 +739,7 @@ pub fn compare(
     axes: &[Vector3<f64>],
     length: f64,
     tolerance: f64,
-) -> Result<Vec<Summary>> {
+) -> Result<Vec<ToolpathSummary>> {
     compare_types(machine, axes, length, tolerance, &RotaryType::ALL)
 }
 
@@ -704,7 +750,7 @@ pub fn compare_types(
     length: f64,
     tolerance: f64,
     types: &[RotaryType],
-) -> Result<Vec<Summary>> {
+) -> Result<Vec<ToolpathSummary>> {
     compare_path(machine, &Path::axes(axes), length, tolerance, types)
 }
 
@@ -715,29 +761,29 @@ pub fn compare_path(
     length: f64,
     tolerance: f64,
     types: &[RotaryType],
-) -> Result<Vec<Summary>> {
+) -> Result<Vec<ToolpathSummary>> {
     let mut rows = types
         .iter()
         .map(|&t| {
             let model = machine_of_type(machine, t).build()?;
             Ok(analyse_path(&model, path, length, tolerance)?.summary)
         })
-        .collect::<Result<Vec<Summary>>>()?;
+        .collect::<Result<Vec<ToolpathSummary>>>()?;
     rank(&mut rows);
     Ok(rows)
 }
 
 /// Sorts rows: those that follow the whole path first, by largest δ, then by mean δ; then those
-/// that cannot, the farthest along the path first.
-pub fn rank(rows: &mut [Summary]) {
+/// that cannot, the farthest along the path first; ties in the order of [`RotaryType::ALL`].
+/// The rule is each row's [`ToolpathSummary::rank`], compared number by number.
+pub fn rank(rows: &mut [ToolpathSummary]) {
     rows.sort_by(|a, b| {
-        let stop = |s: &Summary| s.unreachable.as_ref().map(|u| u.point);
-        match (stop(a), stop(b)) {
-            (None, None) => a.max.total_cmp(&b.max).then(a.mean.total_cmp(&b.mean)),
-            (None, Some(_)) => std::cmp::Ordering::Less,
-            (Some(_), None) => std::cmp::Ordering::Greater,
-            (Some(x), Some(y)) => y.cmp(&x),
-        }
+        a.rank
+            .iter()
+            .zip(&b.rank)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
     });
 }
 

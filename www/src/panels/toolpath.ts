@@ -4,11 +4,11 @@
 // nonlinear error on the cutting moves (Geng, Wu & Qiu 2018, Section 5), the rapids listed
 // apart, and the path refined to a tolerance.
 import type { Data } from 'plotly.js';
-import type { Machine, ParsedToolpath, Report, ToolpathAnalysis, ToolpathPath, ToolpathRefined, ToolpathSummary } from '@engine';
+import type { Machine, ParsedToolpath, Report, RotaryType, ToolpathAnalysis, ToolpathPath, ToolpathRefined, ToolpathSummary } from '@engine';
 import { call, channel, EngineError, SUPERSEDED } from '../engine/client';
 import { debounced } from '../engine/idle';
 import { deltaSeries, MOST_IN_3D, pathPoints } from '../toolpath/decimate';
-import { rankTypes, readToolpath, TYPES, type ReadFile } from '../toolpath/pool';
+import { engineTypes, rankTypes, readToolpath, type ReadFile } from '../toolpath/pool';
 import type { MachineSection } from '../machine/section';
 import { download } from '../ui/export';
 import { el, selectField } from '../ui/fields';
@@ -102,7 +102,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   form.append(fileSet);
   const fieldsOf = toolpathPanel.exports.flatMap((name) => schema.exports[name]);
   const inputs = renderFields(fieldsOf, 'tp', form, machine.context());
-  const typeSel = selectField('tp-type', 'Configuration shown in detail', [{ value: 'machine', label: 'this machine' }, ...TYPES.map((t) => ({ value: t, label: t }))], 'machine',
+  const typeSel = selectField('tp-type', 'Configuration shown in detail', [{ value: 'machine', label: 'this machine' }, ...(await engineTypes()).map((t) => ({ value: t, label: t }))], 'machine',
     'The plots and the refined path are for this configuration; click a row of the ranking to choose it.');
   inputs.groups.get('Toolpath')?.append(typeSel.root);
 
@@ -607,7 +607,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     }
     const angles = new Float64Array(2 * r.k.length);
     for (let i = 0; i < r.k.length; i++) (angles[2 * i] = r.k[i]), (angles[2 * i + 1] = r.m[i]);
-    const path: ToolpathPath = { points: r.points, motions: r.motions, angles: nc ? angles : null, readFor: nc ? type : null };
+    const path: ToolpathPath = { points: r.points, motions: r.motions, angles: nc ? angles : null, readFor: nc ? (type as RotaryType) : null };
     try {
       const text = await call('toolpathWrite', { machine: { ...(m as Machine), type: type as Machine['type'] }, format }, path);
       const stem = from.name.replace(/\.[^.]*$/, '');

@@ -1,13 +1,19 @@
 // The toolpath workers: one fewer than the processor has cores (at least 1, at most 6; each holds
 // a copy of the path), the twelve types shared among them. Also on `window.fiveaxisToolpath` for the console
 // and the benchmark (scripts/bench.mjs).
-import type { ParsedToolpath, ToolpathCase, ToolpathPath, ToolpathReadInput, ToolpathSummary } from '@engine';
+import type { ParsedToolpath, RotaryType, ToolpathCase, ToolpathPath, ToolpathReadInput, ToolpathSummary } from '@engine';
 import { EngineError } from '../engine/client';
 import { callStarted } from '../engine/idle';
 import { copied } from '../engine/transfer';
+import { loadSchema } from '../ui/form';
 
-/** The twelve types, Group I then Group II (the engine's order). */
-export const TYPES = ['ABX', 'ACX', 'BCY', 'BAY', 'CAZ', 'CBZ', 'ABZ', 'ACY', 'BCX', 'BAZ', 'CAY', 'CBX'];
+/** The twelve rotary-axis types in the engine's order (Group I then Group II): the choices of
+ *  the machine's `type` in the engine's schema. */
+export async function engineTypes(): Promise<RotaryType[]> {
+  const field = (await loadSchema()).machine.find((f) => f.path === 'machine.type');
+  if (!field?.choices.length) throw new EngineError('the engine declares no rotary-axis types');
+  return field.choices.map((c) => c.value as RotaryType);
+}
 
 /** Workers the pool uses by default: one core fewer than the processor has (at most 6), so
  *  that the page itself (and the engine's worker, which follows the path on the configuration
@@ -76,19 +82,24 @@ export function readToolpath(file: Blob | string, options: ToolpathReadInput, pr
   return run<ReadFile>(0, { op: 'read', file: blob, options }, progress);
 }
 
+/** Compares two rows by the engine's ranking key (`rank`, numbers compared in turn). */
+const byRank = (a: ToolpathSummary, b: ToolpathSummary) => {
+  for (let i = 0; i < a.rank.length; i++) if (a.rank[i] !== b.rank[i]) return a.rank[i] - b.rank[i];
+  return 0;
+};
+
 /**
- * The ranking rows of the path on each of `types` (the machine's kind and travel), computed by
- * `workers` workers, in the engine's order (`fiveaxis::toolpath::rank`: the types that follow the
- * whole path first, by largest δ, then mean δ; then the others, the farthest along first).
+ * The ranking rows of the path on each of `types` (the engine's twelve when left out; the
+ * machine's kind and travel), computed by `workers` workers, in the engine's order: each row
+ * carries its place by the engine's rule (`rank`, `fiveaxis::toolpath::rank`), so the rows
+ * computed apart are merged by sorting on it.
  */
-export async function rankTypes(input: ToolpathCase, path: ToolpathPath | Float64Array, types = TYPES, count = WORKERS): Promise<ToolpathSummary[]> {
-  const n = Math.max(1, Math.min(count, types.length));
-  const shares = Array.from({ length: n }, (_, i) => types.filter((_, j) => j % n === i));
+export async function rankTypes(input: ToolpathCase, path: ToolpathPath | Float64Array, types?: readonly RotaryType[], count = WORKERS): Promise<ToolpathSummary[]> {
+  const all = types ?? (await engineTypes());
+  const n = Math.max(1, Math.min(count, all.length));
+  const shares = Array.from({ length: n }, (_, i) => all.filter((_, j) => j % n === i));
   const parts = await Promise.all(shares.map((share, i) => run<ToolpathSummary[]>(i, { op: 'summaries', input, path, types: share })));
-  // In the types' order first, so that ties keep it, as the engine's stable sort does.
-  const rows = parts.flat().sort((a, b) => TYPES.indexOf(a.type) - TYPES.indexOf(b.type));
-  const stop = (r: ToolpathSummary) => r.unreachable?.point ?? Infinity;
-  return rows.sort((a, b) => stop(b) - stop(a) || a.max - b.max || a.mean - b.mean);
+  return parts.flat().sort(byRank);
 }
 
-(window as unknown as { fiveaxisToolpath: unknown }).fiveaxisToolpath = { readToolpath, rankTypes, TYPES, WORKERS };
+(window as unknown as { fiveaxisToolpath: unknown }).fiveaxisToolpath = { readToolpath, rankTypes, engineTypes, WORKERS };
