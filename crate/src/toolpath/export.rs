@@ -268,7 +268,7 @@ fn series_opt<S: Serializer>(
     s: S,
 ) -> std::result::Result<S::Ok, S::Error> {
     match values {
-        Some(v) => crate::api::series(v, s),
+        Some(v) => crate::edge::series(v, s),
         None => s.serialize_none(),
     }
 }
@@ -286,19 +286,19 @@ pub struct ToolpathAnalysis {
     /// Totals of the cutting segments, and the rapids apart.
     pub summary: ToolpathSummary,
     /// K command at each point reached, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub k: Vec<f64>,
     /// M command, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub m: Vec<f64>,
     /// δ of each segment (rapids included), mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub delta: Vec<f64>,
     /// Where along each segment δ is largest, u ∈ [0, 1].
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub u: Vec<f64>,
     /// Indices of the cutting segments that flip.
@@ -353,23 +353,23 @@ pub fn compare(
 #[serde(rename_all = "camelCase")]
 pub struct ToolpathRefined {
     /// `[x, y, z, i, j, k]` per point (unit axes), the inserted points among the original ones.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub points: Vec<f64>,
     /// The motion code of each point (0 rapid, 1 feed, 2 arc).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub motions: Vec<f64>,
     /// K command at each point, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub k: Vec<f64>,
     /// M command, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub m: Vec<f64>,
     /// For each point, the index of the original point it is, or -1 for an inserted one.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub source: Vec<f64>,
     /// Points inserted.
@@ -439,11 +439,11 @@ pub fn write_path(options: &ToolpathReadInput, path: &PathInput) -> Result<Strin
 #[serde(rename_all = "camelCase")]
 pub struct ToolpathPath {
     /// `[x, y, z, i, j, k]` per point: tip mm, unit tool axis, workpiece coordinates.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub points: Vec<f64>,
     /// The motion code of each point: 0 rapid, 1 feed, 2 arc (a chord of an arc).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub motions: Vec<f64>,
     /// NC blocks: the commands `[K, M]` of each point, degrees; null for CL data, or where a
@@ -469,7 +469,7 @@ pub struct ParsedToolpath {
     /// The path, for the analyses.
     pub path: ToolpathPath,
     /// The file's line of each point (1-based).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub lines: Vec<f64>,
     /// Lines read.

@@ -163,13 +163,13 @@ crate::inputs! {
     }
 }
 
-impl crate::api::Checked for ToolpathReadInput {
+impl crate::edge::Checked for ToolpathReadInput {
     fn check(&self) -> Result<()> {
         self.machine.validate("machine")
     }
 }
 
-impl crate::api::Checked for ToolpathCase {
+impl crate::edge::Checked for ToolpathCase {
     fn check(&self) -> Result<()> {
         self.machine.validate("machine")
     }
@@ -178,7 +178,7 @@ impl crate::api::Checked for ToolpathCase {
 impl ToolpathReadInput {
     /// Reads the options (unknown keys refused) and checks the machine.
     pub fn read(value: &Value) -> Result<Self> {
-        <Self as crate::api::ApiInput>::read(value)
+        <Self as crate::edge::ApiInput>::read(value)
     }
 
     /// The reader's options.
@@ -219,7 +219,7 @@ crate::inputs! {
 impl ToolpathCase {
     /// Reads a case (unknown keys refused, ranges checked) and checks the machine.
     pub fn read(value: &Value) -> Result<Self> {
-        <Self as crate::api::ApiInput>::read(value)
+        <Self as crate::edge::ApiInput>::read(value)
     }
 
     /// `L`: given, or the machine's.
@@ -288,10 +288,10 @@ pub struct RapidMove {
     /// The segment (from point `segment` to `segment + 1`).
     pub segment: usize,
     /// The turn of K (signed), degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub k_turn: f64,
     /// The turn of M (signed), degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub m_turn: f64,
     /// The tool tip's largest excursion from the straight line (the segment's δ), mm.
     pub excursion: f64,
@@ -345,10 +345,10 @@ pub struct ToolpathSummary {
     pub poles: usize,
     /// Total travel of K along the cutting segments (sum of |ΔK|; rapids not counted),
     /// degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub k_travel: f64,
     /// Total travel of M along the cutting segments, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub m_travel: f64,
     /// The first point that cannot be reached and why, when one cannot.
     pub unreachable: Option<Unreachable>,
@@ -393,10 +393,10 @@ pub struct Rapids {
     /// Index of that segment (0 when there is no rapid).
     pub max_segment: usize,
     /// Largest turn of K in one rapid, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub k_swing: f64,
     /// Largest turn of M in one rapid, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub m_swing: f64,
 }
 
