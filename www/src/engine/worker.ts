@@ -1,24 +1,66 @@
 /// <reference lib="webworker" />
-// The engine's Web Worker: every computation of the page runs here, off the main thread.
-// Messages in: { id, fn, args } naming an export of the engine; out: { id, ok, result | error }.
+// The engine's Web Worker, the one protocol every worker of the page speaks (./port.ts drives
+// it): the engine's worker (./client.ts) and the toolpath pool's (../toolpath/pool.ts) are
+// instances of this module.
+// In:  { id, fn, args } naming an export of the engine, or `readToolpath` (a file read piece by
+//      piece through the engine's ToolpathReader, so that a large file never becomes one string).
+// Out: { id, progress } while a file is read, then { id, ok: true, result } or
+//      { id, ok: false, error }. Typed arrays of a result are transferred, not copied.
 import init, * as engine from '@engine';
+import { utf8Check } from '../ui/decode';
 import { transferables } from './transfer';
 
 const ready = init();
 const callable = engine as unknown as Record<string, unknown>;
+const post = (msg: unknown, transfer: Transferable[] = []) => (self as DedicatedWorkerGlobalScope).postMessage(msg, transfer);
+
+/** A file read: the engine's reading, and whether its bytes were not all UTF-8 (`windows1252`:
+ *  the page notes it beside the file). */
+export type ReadFile = engine.ParsedToolpath & { windows1252: boolean };
+
+/** Reads `file` through the engine's ToolpathReader, its bytes as they come (the engine decodes
+ *  them: UTF-8, else Windows-1252, and refuses an image or an archive by its first bytes),
+ *  posting the fraction of bytes read. */
+async function readToolpath(id: number, file: Blob, options: engine.ToolpathReadInput): Promise<ReadFile> {
+  const reader = new engine.ToolpathReader(options);
+  const utf8 = utf8Check();
+  try {
+    const source = file.stream().getReader();
+    let bytes = 0;
+    let shown = 0;
+    for (;;) {
+      const { value, done } = await source.read();
+      if (done) break;
+      bytes += value.byteLength;
+      utf8.feed(value);
+      reader.feed(value);
+      if (bytes - shown > file.size / 50) {
+        shown = bytes;
+        post({ id, progress: bytes / Math.max(1, file.size) });
+      }
+    }
+    return { ...(reader.finish() as engine.ParsedToolpath), windows1252: !utf8.finish() };
+  } finally {
+    reader.free();
+  }
+}
 
 self.onmessage = async (event: MessageEvent<{ id: number; fn: string; args: unknown[] }>) => {
   const { id, fn, args } = event.data;
   try {
     await ready;
-    const f = callable[fn];
-    if (typeof f !== 'function' || fn === 'default' || fn === 'initSync') {
-      throw new Error(`unknown engine function ${fn}`);
+    let result: unknown;
+    if (fn === 'readToolpath') {
+      result = await readToolpath(id, args[0] as Blob, args[1] as engine.ToolpathReadInput);
+    } else {
+      const f = callable[fn];
+      if (typeof f !== 'function' || fn === 'default' || fn === 'initSync') {
+        throw new Error(`unknown engine function ${fn}`);
+      }
+      result = (f as (...a: unknown[]) => unknown)(...args);
     }
-    const result = (f as (...a: unknown[]) => unknown)(...args);
-    (self as DedicatedWorkerGlobalScope).postMessage({ id, ok: true, result }, transferables(result));
+    post({ id, ok: true, result }, transferables(result));
   } catch (err) {
-    const message = err instanceof Error ? err.message : String(err);
-    (self as DedicatedWorkerGlobalScope).postMessage({ id, ok: false, error: message });
+    post({ id, ok: false, error: err instanceof Error ? err.message : String(err) });
   }
 };
