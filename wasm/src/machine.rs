@@ -9,11 +9,6 @@ use fiveaxis::machine::errors::{ErrorDef, TABLE};
 use fiveaxis::machine::motions::MOTIONS;
 use fiveaxis::machine::schematic::{schematic, Schematic};
 use fiveaxis::machine::{AxisInfo, InverseInput, Machine, SchematicInput, ToolVectorInput};
-use fiveaxis::nonlinear::{
-    NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
-    TypeCompareInput,
-};
-use fiveaxis::reversal::{ReversalCase, ReversalFitInput, ReversalRunInput};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
@@ -63,19 +58,11 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("machineSchematic", fields::<SchematicInput>());
     put("machineInverse", fields::<InverseInput>());
     put("toolVector", fields::<ToolVectorInput>());
-    put("nonlinearMove", both::<NonlinearCase, NonlinearMoveInput>());
     put("toolpathAnalyse", fields::<ToolpathCase>());
     put("toolpathCompare", fields::<ToolpathCase>());
     put("toolpathRefine", fields::<ToolpathCase>());
     put("toolpathParse", fields::<ToolpathReadInput>());
     put("toolpathWrite", fields::<ToolpathReadInput>());
-    put("nonlinearSweepK", both::<NonlinearCase, SweepKInput>());
-    put("nonlinearSweepM", both::<NonlinearCase, SweepMInput>());
-    put("nonlinearGrid", both::<NonlinearCase, NonlinearGridInput>());
-    put(
-        "nonlinearCompareTypes",
-        both::<NonlinearCase, TypeCompareInput>(),
-    );
     put("cubicTest", fields::<CubicInput>());
     put("cubicHeightMap", both::<CubicInput, CubicGrid>());
     put("cubicIdentify", both::<CubicInput, CubicIdentifyInput>());
@@ -84,10 +71,6 @@ pub fn schema() -> Result<JsValue, JsError> {
     put("sshapeOvercut", fields::<SShapeOvercutInput>());
     put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());
     put("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>());
-    put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
-    put("reversalDents", fields::<ReversalCase>());
-    put("reversalFit", both::<ReversalCase, ReversalFitInput>());
-    put("reversalTrace", both::<ReversalCase, ReversalFitInput>());
     for (name, f) in fiveaxis::api::export_fields() {
         put(name, f);
     }
