@@ -111,6 +111,42 @@ macro_rules! for_each_export {
             #[doc = "`machine.motions[motion.name]`). Values in mm, or degrees for a rotary axis."]
             positioningEvaluate($crate::positioning::PositioningInput as "PositioningInput")
                 -> "Positioning" = $crate::positioning::evaluate;
+            // nonlinear and reversal
+            #[doc = "One move of the machine's rotary axes from `start` to `end` (commands, degrees): the"]
+            #[doc = "δ(u) curve, its exact maximum, the paper's approximations and, with a `tolerance`,"]
+            #[doc = "the fewest equal steps that keep δ within it."]
+            nonlinearMove(($crate::nonlinear::NonlinearCase, $crate::nonlinear::NonlinearMoveInput)
+                as "NonlinearCase & NonlinearMoveInput") -> "MoveAnalysis" = $crate::nonlinear::analyze_move;
+            #[doc = "Fig 4: the maximum error against the start angle of K (the paper: constant)."]
+            nonlinearSweepK(($crate::nonlinear::NonlinearCase, $crate::nonlinear::SweepKInput)
+                as "NonlinearCase & SweepKInput") -> "SweepK" = $crate::nonlinear::sweep_k;
+            #[doc = "Fig 7: the maximum error against the start angle of M, one curve per ratio Δθk/Δθm."]
+            nonlinearSweepM(($crate::nonlinear::NonlinearCase, $crate::nonlinear::SweepMInput)
+                as "NonlinearCase & SweepMInput") -> "SweepM" = $crate::nonlinear::sweep_m;
+            #[doc = "Figs 3, 5, 8: maximum error and its u over a grid of increments Δθk × Δθm."]
+            nonlinearGrid(($crate::nonlinear::NonlinearCase, $crate::nonlinear::NonlinearGridInput)
+                as "NonlinearCase & NonlinearGridInput") -> "IncrementGrid" = $crate::nonlinear::grid;
+            #[doc = "The machine's move from `start` to `end` as a tool path (its start and end tool vectors),"]
+            #[doc = "made by each of the twelve types on the machine's kind and travel."]
+            nonlinearCompareTypes(($crate::nonlinear::NonlinearCase, $crate::nonlinear::TypeCompareInput)
+                as "NonlinearCase & TypeCompareInput") -> "TypeComparison[]" = $crate::nonlinear::compare_types;
+            #[doc = "Simulates the reversal test on the machine: the ball-bar trace with and without C's"]
+            #[doc = "friction, the axes against time, the dent, and whether X and Y change direction with C."]
+            reversalSimulate(($crate::reversal::ReversalCase, $crate::reversal::ReversalRunInput)
+                as "ReversalCase & ReversalRunInput") -> "ReversalSimulation" = $crate::reversal::simulation;
+            #[doc = "The dent for Table 1's feeds (1000, 2000, 3000 mm/min) and radii r (25, 50 mm), the other"]
+            #[doc = "inputs as given."]
+            reversalDents($crate::reversal::ReversalCase as "ReversalCase")
+                -> "DentRow[]" = $crate::reversal::table1_dents;
+            #[doc = "Fits C's friction (f_c, a) and position-loop gain to a measured trace (`csv`), the other"]
+            #[doc = "inputs as given (the fit starts from the entered values)."]
+            reversalFit(($crate::reversal::ReversalCase, $crate::reversal::ReversalFitInput)
+                as "ReversalCase & ReversalFitInput") -> "FrictionFit" = $crate::reversal::fit::fit_trace;
+            #[doc = "Reads a measured trace (`csv`) and measures its dent: depth and width from the trace itself,"]
+            #[doc = "and the machine its file names. Fast (no simulation); the test's R and F give the width in"]
+            #[doc = "time."]
+            reversalTrace(($crate::reversal::ReversalCase, $crate::reversal::ReversalFitInput)
+                as "ReversalCase & ReversalFitInput") -> "MeasuredTrace" = $crate::reversal::fit::measure_trace;
         }
     };
 }

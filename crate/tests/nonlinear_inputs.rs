@@ -222,10 +222,11 @@ fn every_type_makes_the_same_tool_vectors_and_the_own_type_the_commands_given() 
         ];
         let mut reached = 0;
         for r in &rows {
-            let Some([c0, c1]) = r.commands else {
+            let (Some(c0), Some(c1)) = (r.start, r.end) else {
                 assert!(r.max.is_none() && r.unreachable.is_some());
                 continue;
             };
+            let (c0, c1) = (Pose::new(c0[0], c0[1]), Pose::new(c1[0], c1[1]));
             reached += 1;
             let deg = |p: Pose| (p.k.to_degrees(), p.m.to_degrees());
             for (c, v) in [(c0, ends[0]), (c1, ends[1])] {

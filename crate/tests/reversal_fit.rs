@@ -120,7 +120,7 @@ fn the_intervals_cover_the_truth_at_their_rate() {
                             let seed = 1000 + 2 * i + half;
                             let csv = measured_csv(truth, 0.05, 0.0003, seed);
                             let f = fit(start, &parse_trace(&csv).unwrap()).unwrap();
-                            let inside = |e: fiveaxis::reversal::fit::Estimate, v: f64| {
+                            let inside = |e: fiveaxis::reversal::fit::FitEstimate, v: f64| {
                                 e.low <= v && v <= e.high
                             };
                             assert!(

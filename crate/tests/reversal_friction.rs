@@ -110,7 +110,12 @@ fn the_dent_against_the_feed() {
     let rows = table1_dents(&case(json!({}))).unwrap();
     assert_eq!(rows.len(), 6);
     for r in [25.0, 50.0] {
-        let of = |f: f64| rows.iter().find(|x| x.0 == f && x.1 == r).unwrap().2;
+        let of = |f: f64| {
+            rows.iter()
+                .find(|x| x.feed == f && x.offset == r)
+                .unwrap()
+                .dent
+        };
         let (d1, d3) = (of(1000.0), of(3000.0));
         let w = d3.width / d1.width;
         assert!((2.4..3.6).contains(&w), "r = {r}: width ratio {w}");

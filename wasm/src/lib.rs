@@ -20,7 +20,6 @@ mod cubic;
 mod identify;
 mod machine;
 mod nonlinear;
-mod reversal;
 mod sshape;
 mod toolpath;
 
@@ -31,7 +30,6 @@ pub use cubic::*;
 pub use identify::*;
 pub use machine::*;
 pub use nonlinear::*;
-pub use reversal::*;
 pub use sshape::*;
 pub use toolpath::*;
 

@@ -5,11 +5,6 @@ use crate::output;
 use fiveaxis::cubic::design::CubicDesignInput;
 use fiveaxis::cubic::identify::CubicIdentifyInput;
 use fiveaxis::cubic::{CubicGrid, CubicInput};
-use fiveaxis::nonlinear::{
-    NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
-    TypeCompareInput,
-};
-use fiveaxis::reversal::{ReversalCase, ReversalFitInput, ReversalRunInput};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
 use fiveaxis::sshape::study::{
     SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
@@ -34,19 +29,13 @@ fn both<A: Inputs, B: Inputs>() -> Vec<FieldInfo> {
 #[wasm_bindgen(js_name = schema, unchecked_return_type = "Schema")]
 pub fn schema() -> Result<JsValue, JsError> {
     output(&fiveaxis::api::schema(vec![
-        ("nonlinearMove", both::<NonlinearCase, NonlinearMoveInput>()),
+        // Positional arguments (type, length, a Float64Array of moves), no input object.
+        ("nonlinearMaxErrors", Vec::new()),
         ("toolpathAnalyse", fields::<ToolpathCase>()),
         ("toolpathCompare", fields::<ToolpathCase>()),
         ("toolpathRefine", fields::<ToolpathCase>()),
         ("toolpathParse", fields::<ToolpathReadInput>()),
         ("toolpathWrite", fields::<ToolpathReadInput>()),
-        ("nonlinearSweepK", both::<NonlinearCase, SweepKInput>()),
-        ("nonlinearSweepM", both::<NonlinearCase, SweepMInput>()),
-        ("nonlinearGrid", both::<NonlinearCase, NonlinearGridInput>()),
-        (
-            "nonlinearCompareTypes",
-            both::<NonlinearCase, TypeCompareInput>(),
-        ),
         ("cubicTest", fields::<CubicInput>()),
         ("cubicHeightMap", both::<CubicInput, CubicGrid>()),
         ("cubicIdentify", both::<CubicInput, CubicIdentifyInput>()),
@@ -55,9 +44,5 @@ pub fn schema() -> Result<JsValue, JsError> {
         ("sshapeOvercut", fields::<SShapeOvercutInput>()),
         ("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>()),
         ("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>()),
-        ("reversalSimulate", both::<ReversalCase, ReversalRunInput>()),
-        ("reversalDents", fields::<ReversalCase>()),
-        ("reversalFit", both::<ReversalCase, ReversalFitInput>()),
-        ("reversalTrace", both::<ReversalCase, ReversalFitInput>()),
     ]))
 }

@@ -134,7 +134,7 @@ fn the_nonlinear_move_gives_its_sweep_angle_in_degrees_and_the_shortfall_by_its_
         approx: Option<f64>,
         approx_shortfall: Option<f64>,
     }
-    let mv: Move = read(fa::nonlinear_move(jv(&json!({
+    let mv: Move = read(fa::nonlinearMove(jv(&json!({
         "machine": { "type": "CAZ" }, "length": 100,
         "start": { "k": 10, "m": 20 }, "end": { "k": 50, "m": 60 },
     }))));

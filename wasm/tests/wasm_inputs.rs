@@ -116,27 +116,27 @@ fn cubic_height_map_refuses_unknown_inputs() {
 #[wasm_bindgen_test]
 fn nonlinear_move_refuses_unknown_inputs() {
     refuses(
-        fa::nonlinear_move,
+        fa::nonlinearMove,
         json!({ "machine": trunnion(), "start": { "k": 0, "m": 10 } }),
     );
-    let m = error_message(fa::nonlinear_move(js(r#"{"start":{"k":0,"n":1}}"#)));
+    let m = error_message(fa::nonlinearMove(js(r#"{"start":{"k":0,"n":1}}"#)));
     assert!(m.starts_with("start.n: unknown input"), "{m}");
-    assert!(error_message(fa::nonlinear_move(js(r#"{"lenght":5}"#)))
+    assert!(error_message(fa::nonlinearMove(js(r#"{"lenght":5}"#)))
         .contains("Did you mean \"length\"?"));
-    assert!(error_message(fa::nonlinear_move(js(r#"{"length":-5}"#)))
+    assert!(error_message(fa::nonlinearMove(js(r#"{"length":-5}"#)))
         .starts_with("length: must be greater than 0 mm"));
     assert!(
-        error_message(fa::nonlinear_move(js(r#"{"start":{"k":"ten"}}"#)))
+        error_message(fa::nonlinearMove(js(r#"{"start":{"k":"ten"}}"#)))
             .starts_with("start.k: expected a number of degrees")
     );
-    assert!(error_message(fa::nonlinear_move(JsValue::from_f64(3.0)))
+    assert!(error_message(fa::nonlinearMove(JsValue::from_f64(3.0)))
         .starts_with("input: expected an object"));
 }
 
 #[wasm_bindgen_test]
 fn nonlinear_sweep_k_refuses_unknown_inputs() {
     refuses(
-        fa::nonlinear_sweep_k,
+        fa::nonlinearSweepK,
         json!({ "machine": trunnion(), "thetaM": 10, "dK": 30, "dM": 15, "from": -180, "to": 180, "n": 5 }),
     );
 }
@@ -144,25 +144,25 @@ fn nonlinear_sweep_k_refuses_unknown_inputs() {
 #[wasm_bindgen_test]
 fn nonlinear_sweep_m_refuses_unknown_inputs() {
     let base = json!({ "machine": trunnion(), "dM": 30, "ratios": [0.5, 2], "from": -90, "to": 90, "n": 5 });
-    refuses(fa::nonlinear_sweep_m, base.clone());
-    let m = error_message(fa::nonlinear_sweep_m(with(&base, "ratios", json!([]))));
+    refuses(fa::nonlinearSweepM, base.clone());
+    let m = error_message(fa::nonlinearSweepM(with(&base, "ratios", json!([]))));
     assert!(m.starts_with("ratios: expected 1 to 8 values"), "{m}");
-    let m = error_message(fa::nonlinear_sweep_m(with(&base, "ratios", json!([1, 0]))));
+    let m = error_message(fa::nonlinearSweepM(with(&base, "ratios", json!([1, 0]))));
     assert!(m.starts_with("ratios[1]: must not be zero"), "{m}");
 }
 
 #[wasm_bindgen_test]
 fn nonlinear_grid_refuses_unknown_inputs() {
     let base = json!({ "machine": trunnion(), "thetaM": 0, "dK": { "from": 0, "to": 90 }, "dM": { "from": 0, "to": 60 }, "nx": 4, "ny": 3 });
-    refuses(fa::nonlinear_grid, base.clone());
-    let m = error_message(fa::nonlinear_grid(with(&base, "dK.form", json!(0))));
+    refuses(fa::nonlinearGrid, base.clone());
+    let m = error_message(fa::nonlinearGrid(with(&base, "dK.form", json!(0))));
     assert!(m.starts_with("dK.form: unknown input"), "{m}");
 }
 
 #[wasm_bindgen_test]
 fn nonlinear_compare_types_refuses_unknown_inputs() {
     refuses(
-        fa::nonlinear_compare_types,
+        fa::nonlinearCompareTypes,
         json!({ "machine": trunnion(), "length": 1 }),
     );
 }

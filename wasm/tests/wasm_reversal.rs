@@ -60,25 +60,25 @@ fn reversal_inputs_are_refused_with_their_paths() {
             "machine.type: the reversal test needs a rotary table C",
         ),
     ] {
-        let m = error_message(fa::reversal_simulate(jv(&input)));
+        let m = error_message(fa::reversalSimulate(jv(&input)));
         assert!(m.starts_with(want), "{input}: {m}");
     }
-    let m = error_message(fa::reversal_fit(jv(&json!({}))));
+    let m = error_message(fa::reversalFit(jv(&json!({}))));
     assert!(m.starts_with("csv: is required"), "{m}");
-    let m = error_message(fa::reversal_fit(jv(
+    let m = error_message(fa::reversalFit(jv(
         &json!({"csv": "angle_deg,deviation_mm\n1,x\n"}),
     )));
     assert!(
         m.starts_with("csv: line 2: deviation \"x\" is not a number"),
         "{m}"
     );
-    let m = error_message(fa::reversal_dents(jv(&json!({"checkStep": true}))));
+    let m = error_message(fa::reversalDents(jv(&json!({"checkStep": true}))));
     assert!(m.starts_with("checkStep: unknown input"), "{m}");
 }
 
 #[wasm_bindgen_test]
 fn angles_cross_in_degrees_and_the_ideal_drive_traces_the_circle() {
-    let r: Sim = read(fa::reversal_simulate(jv(&json!({
+    let r: Sim = read(fa::reversalSimulate(jv(&json!({
         "feedForward": "full", "c": {"friction": 0},
         "test": {"feed": 3000, "reversalAngle": 45}, "checkStep": true,
     }))));
@@ -104,7 +104,7 @@ fn angles_cross_in_degrees_and_the_ideal_drive_traces_the_circle() {
 #[wasm_bindgen_test]
 fn the_dent_doubles_with_r() {
     let depth = |r: f64| -> Dent {
-        let s: Sim = read(fa::reversal_simulate(jv(
+        let s: Sim = read(fa::reversalSimulate(jv(
             &json!({"test": {"offset": r, "feed": 3000}, "step": 0.5}),
         )));
         s.dent
@@ -147,7 +147,7 @@ fn a_simulated_trace_fits_back_to_its_friction() {
     // land on the values simulated. (crate/tests/reversal_fit.rs fits the noisy sample file.)
     let case = json!({"test": {"feed": 3000}, "step": 1.0,
                       "c": {"friction": 12, "frictionSlope": 800, "positionGain": 28}});
-    let s: Sim = read(fa::reversal_simulate(jv(&case)));
+    let s: Sim = read(fa::reversalSimulate(jv(&case)));
     let (angle, dev) = (s.angle.to_vec(), s.deviation.to_vec());
     let mut csv = String::from("angle_deg,deviation_um\n");
     let mut last = f64::MIN;
@@ -159,7 +159,7 @@ fn a_simulated_trace_fits_back_to_its_friction() {
     }
     let start = json!({"test": {"feed": 3000}, "step": 1.0, "csv": csv,
                        "c": {"friction": 8, "frictionSlope": 500, "positionGain": 30}});
-    let f: Fit = read(fa::reversal_fit(jv(&start)));
+    let f: Fit = read(fa::reversalFit(jv(&start)));
     // The drive's terms: the default rated torque 250 N·m, the step 2·f_c with its interval.
     assert_eq!(f.rated_torque, 250.0);
     assert!((f.friction_share - f.friction.value / 250.0).abs() < 1e-15);
@@ -188,7 +188,6 @@ struct MeasuredDent {
     angle: f64,
     width: f64,
     open: bool,
-    duration: f64,
 }
 
 #[derive(Deserialize)]
@@ -196,6 +195,7 @@ struct Trace {
     machine: Option<String>,
     points: usize,
     dent: MeasuredDent,
+    duration: f64,
 }
 
 #[wasm_bindgen_test]
@@ -209,7 +209,7 @@ fn a_trace_s_dent_crosses_in_degrees_and_its_machine_is_named() {
         let d = 2.0 - 6.0 * (1.0 - (a - 182.0).abs() / 1.5).max(0.0);
         csv.push_str(&format!("{a:.1};{d}\n").replace('.', ","));
     }
-    let t: Trace = read(fa::reversal_trace(jv(
+    let t: Trace = read(fa::reversalTrace(jv(
         &json!({"csv": csv, "test": {"radius": 40, "feed": 2000}}),
     )));
     assert_eq!(
@@ -224,12 +224,8 @@ fn a_trace_s_dent_crosses_in_degrees_and_its_machine_is_named() {
     assert!(!t.dent.open);
     // W·R/F in s: 1.5° on a 40 mm circle at 2000 mm/min.
     let want = 1.5f64.to_radians() * 40.0 / (2000.0 / 60.0);
-    assert!(
-        (t.dent.duration - want).abs() < 1e-12,
-        "{}",
-        t.dent.duration
-    );
-    let m = error_message(fa::reversal_trace(jv(
+    assert!((t.duration - want).abs() < 1e-12, "{}", t.duration);
+    let m = error_message(fa::reversalTrace(jv(
         &json!({"csv": "angle_deg,deviation_mm\n"}),
     )));
     assert!(m.starts_with("csv: 0 points"), "{m}");

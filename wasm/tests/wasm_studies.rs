@@ -128,7 +128,7 @@ fn a_nonlinear_move_from_the_pole_is_eq_26() {
     }
     // Group I (Li's CBZ) from θm = 0 with Δθk = Δθm = 40°: the maximum is at u = 0.5 and equals
     // eq 26, L·sin²(20°).
-    let r: MoveOut = read(fa::nonlinear_move(jv(&json!({
+    let r: MoveOut = read(fa::nonlinearMove(jv(&json!({
         "machine": preset(LI), "length": 200, "start": { "k": 10, "m": 0 },
         "end": { "k": 50, "m": 40 }, "samples": 5,
     }))));
@@ -144,18 +144,18 @@ fn a_nonlinear_move_from_the_pole_is_eq_26() {
     // A reversed K gives the same error (a mirror image of the motion).
     let mut rev = preset(LI);
     rev["rotary"]["kReversed"] = json!(true);
-    let r2: MoveOut = read(fa::nonlinear_move(jv(&json!({
+    let r2: MoveOut = read(fa::nonlinearMove(jv(&json!({
         "machine": rev, "length": 200, "start": { "k": 10, "m": 0 }, "end": { "k": 50, "m": 40 },
     }))));
     assert!((r2.max - expected).abs() < 1e-9);
     // Li's machine has its table at the rotary centre: no L of its own.
-    let msg = error_message(fa::nonlinear_move(jv(&json!({ "machine": preset(LI) }))));
+    let msg = error_message(fa::nonlinearMove(jv(&json!({ "machine": preset(LI) }))));
     assert!(
         msg.starts_with("length: this machine's table surface is at its rotary centre"),
         "{msg}"
     );
     // Fig 4: the maximum error does not depend on the start angle of K.
-    let k = fa::nonlinear_sweep_k(jv(&json!({
+    let k = fa::nonlinearSweepK(jv(&json!({
         "machine": preset(LI), "length": 10, "thetaM": 10, "dK": 30, "dM": 15,
         "from": -180, "to": 180, "n": 7,
     })))

@@ -295,7 +295,7 @@ fn axis_angles_in_and_out_are_degrees() {
         sweep_angle: f64,
         length: f64,
     }
-    let mv: Move = read(fa::nonlinear_move(jv(&json!({
+    let mv: Move = read(fa::nonlinearMove(jv(&json!({
         "machine": preset(TRUNNION), "start": { "k": 0, "m": 0 }, "end": { "k": 0, "m": 20 },
     }))));
     assert!((mv.sweep_angle - 20.0).abs() < 1e-9, "{}", mv.sweep_angle);
@@ -308,7 +308,7 @@ fn axis_angles_in_and_out_are_degrees() {
         #[serde(with = "serde_wasm_bindgen::preserve")]
         d_k: js_sys::Float64Array,
     }
-    let g: Grid = read(fa::nonlinear_grid(jv(&json!({
+    let g: Grid = read(fa::nonlinearGrid(jv(&json!({
         "machine": preset(CHANAL), "length": 1, "thetaM": 0,
         "dK": { "from": -30, "to": 60 }, "dM": { "from": 0, "to": 10 }, "nx": 4, "ny": 2,
     }))));

@@ -3,14 +3,16 @@
 //! at the edge); with ISO 841 senses they are the study's θk, θm (a reversed axis flips the sign,
 //! [`NonlinearCase::angles`]).
 
+use super::{linspace, MoveAnalysis, SweepK, SweepM};
 use super::{
     sweep_increments, sweep_start_k, sweep_start_m, Deviation, IncrementGrid, Move, RatioCurve,
     TypeComparison, MAX_ANGLE_DEG, MAX_LENGTH_MM,
 };
+use crate::api::{ApiInput, Checked};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use crate::rotary::{Pose, RotaryType};
-use crate::schema::{self, DefaultValue, Inputs, Kind, Quantity};
+use crate::schema::{self, DefaultValue, Kind, Quantity};
 use serde_json::Value;
 
 /// Largest accepted axis angle, degrees (ten turns).
@@ -212,10 +214,8 @@ crate::inputs! {
 
 impl NonlinearCase {
     /// Reads a case and the export's own inputs from one object (the keys of `B` go to `B`).
-    pub fn read_with<B: Inputs>(value: &Value) -> Result<(NonlinearCase, B)> {
-        let (case, own): (NonlinearCase, B) = schema::read_split(value, "")?;
-        case.machine.validate("machine")?;
-        Ok((case, own))
+    pub fn read_with<B: Checked>(value: &Value) -> Result<(NonlinearCase, B)> {
+        <(NonlinearCase, B) as ApiInput>::read(value)
     }
 
     /// The machine's rotary-axis type.
@@ -320,8 +320,8 @@ impl NonlinearCase {
                 Ok(TypeComparison {
                     rtype: t,
                     group: t.group(),
-                    commands: reached
-                        .then(|| [Pose::new(f.k[0], f.m[0]), Pose::new(f.k[1], f.m[1])]),
+                    start: reached.then(|| [f.k[0], f.m[0]]),
+                    end: reached.then(|| [f.k[1], f.m[1]]),
                     max: peak.map(|p| p.value * length),
                     u_at_max: peak.map(|p| p.u),
                     unreachable: f.unreachable.map(|(_, why)| why),
@@ -355,6 +355,60 @@ impl NonlinearCase {
             ..g
         })
     }
+}
+
+impl Checked for NonlinearCase {
+    fn check(&self) -> Result<()> {
+        self.machine.validate("machine")
+    }
+}
+impl Checked for NonlinearMoveInput {}
+impl Checked for SweepKInput {}
+impl Checked for SweepMInput {}
+impl Checked for NonlinearGridInput {}
+impl Checked for TypeCompareInput {}
+
+/// The export `nonlinearMove`: one move of the machine's rotary axes from `start` to `end`
+/// (commands), the δ(u) curve and its exact maximum at the case's `L`, and with a `tolerance`
+/// the fewest equal steps that keep δ within it ([`super::split_within`]).
+pub fn analyze_move((case, i): &(NonlinearCase, NonlinearMoveInput)) -> Result<MoveAnalysis> {
+    let length = case.length()?;
+    let mv = case.move_between(&i.start, &i.end);
+    let mut a = super::analyze(mv, length, i.samples)?;
+    a.split = match i.tolerance {
+        Some(t) => Some(super::split_within(mv, length, t)?),
+        None => None,
+    };
+    Ok(a)
+}
+
+/// The export `nonlinearSweepK`: Fig 4 on the machine ([`NonlinearCase::sweep_k`]) with its
+/// start commands of K.
+pub fn sweep_k((case, i): &(NonlinearCase, SweepKInput)) -> Result<SweepK> {
+    Ok(SweepK {
+        max: case.sweep_k(i)?,
+        k: linspace(i.from, i.to, i.n),
+    })
+}
+
+/// The export `nonlinearSweepM`: Fig 7 on the machine ([`NonlinearCase::sweep_m`]) with its
+/// start commands of M.
+pub fn sweep_m((case, i): &(NonlinearCase, SweepMInput)) -> Result<SweepM> {
+    Ok(SweepM {
+        curves: case.sweep_m(i)?,
+        m: linspace(i.from, i.to, i.n),
+    })
+}
+
+/// The export `nonlinearGrid`: Figs 3, 5, 8 on the machine ([`NonlinearCase::grid`]).
+pub fn grid((case, i): &(NonlinearCase, NonlinearGridInput)) -> Result<IncrementGrid> {
+    case.grid(i)
+}
+
+/// The export `nonlinearCompareTypes`: the move as a tool path on each of the twelve types
+/// ([`NonlinearCase::compare_types`]).
+pub fn compare_types((case, i): &(NonlinearCase, TypeCompareInput)) -> Result<Vec<TypeComparison>> {
+    case.compare_types(&i.start, &i.end)
 }
 
 /// `L` (mm): `given`, or the machine's ([`Machine::swing_length`]); an error on `length` when the

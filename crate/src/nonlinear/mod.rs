@@ -78,8 +78,9 @@
 
 mod inputs;
 pub use inputs::{
-    swing_length, AngleSpan, MoveEnd, MoveStart, NonlinearCase, NonlinearGridInput,
-    NonlinearMoveInput, SweepKInput, SweepMInput, TypeCompareInput,
+    analyze_move, compare_types, grid, sweep_k, sweep_m, swing_length, AngleSpan, MoveEnd,
+    MoveStart, NonlinearCase, NonlinearGridInput, NonlinearMoveInput, SweepKInput, SweepMInput,
+    TypeCompareInput,
 };
 
 use crate::error::{check_count, check_positive, check_range, Result};
@@ -610,27 +611,37 @@ pub fn starts_at_pole(group: Group, theta_m: f64) -> bool {
     r < 1e-12 || PI - r < 1e-12
 }
 
-/// Everything the page shows about one move. Lengths in mm, `u` dimensionless, angles radians.
+/// Everything the page shows about one move (the export `nonlinearMove`). Lengths in mm, `u`
+/// dimensionless, angles in degrees at the edge (radians in Rust).
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct MoveAnalysis {
+    /// The machine's rotary-axis type.
+    #[serde(rename = "type")]
+    pub rtype: RotaryType,
+    /// Its group (eq 25 or eq 30 gives the approximation).
+    pub group: Group,
+    /// `L` used, mm (given, or the machine's).
+    pub length: f64,
     /// Exact maximum error δ, mm.
     pub max: f64,
     /// Where it occurs, `u ∈ [0, 1]`.
     pub u_at_max: f64,
     /// The error at u = 0.5 from the vectors, mm.
     pub at_half: f64,
-    /// The paper's approximation (eq 25 or 30), mm; `None` for coincident or opposite ends.
+    /// The paper's approximation (eq 25 or 30), mm; null for coincident or opposite ends.
     pub approx: Option<f64>,
     /// `(max - approx) / max`, the fraction by which the approximation falls short.
     pub approx_shortfall: Option<f64>,
-    /// Eq 26, mm, when the move starts at the pole; else `None`.
+    /// Eq 26, mm, when the move starts at the pole; else null.
     pub closed_form: Option<f64>,
     /// How the reference plane was defined.
     pub reference: Reference,
     /// `|V0 × V1|`.
     pub plane_sine: f64,
-    /// Angle between V0 and V1, radians.
+    /// Angle between V0 and V1, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub sweep_angle: f64,
     /// Start tool orientation V0 (unit vector, workpiece coordinates).
     pub start_vector: [f64; 3],
@@ -639,9 +650,16 @@ pub struct MoveAnalysis {
     /// Unit normal of the reference plane (for coincident ends: -V0).
     pub normal: [f64; 3],
     /// Sample parameters of the curve, equally spaced in [0, 1].
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub u: Vec<f64>,
     /// δ(u) at those samples, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub delta: Vec<f64>,
+    /// With a `tolerance`: the fewest equal steps of the move that keep δ within it
+    /// ([`split_within`]); null without a tolerance (and from [`analyze`]).
+    pub split: Option<Split>,
 }
 
 /// Analyses one move: the δ(u) curve at `samples` points (≥ 2), the exact maximum, the
@@ -670,6 +688,9 @@ pub fn analyze(mv: Move, length: f64, samples: usize) -> Result<MoveAnalysis> {
     let delta = u.iter().map(|&x| dev.at(x) * length).collect();
     let (v0, v1) = dev.ends();
     Ok(MoveAnalysis {
+        rtype: mv.rtype,
+        group,
+        length,
         max,
         u_at_max: peak.u,
         at_half: dev.at(0.5) * length,
@@ -684,6 +705,7 @@ pub fn analyze(mv: Move, length: f64, samples: usize) -> Result<MoveAnalysis> {
         normal: dev.w.into(),
         u,
         delta,
+        split: None,
     })
 }
 
@@ -692,17 +714,22 @@ pub const MAX_SPLIT: usize = 10_000;
 
 /// How finely a move must be programmed for its nonlinear error to stay within a tolerance.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct Split {
     /// The tolerance asked for, mm.
     pub tolerance: f64,
-    /// The number of equal steps `n` (1: the move as it is is within); `None` when even
-    /// [`MAX_SPLIT`] steps are not.
+    /// The number of equal steps `n` (1: the move as it is is within); null when even
+    /// `maxSteps` steps are not.
     pub steps: Option<usize>,
-    /// `|Δθk|/n`, the step of K, radians (of `MAX_SPLIT` steps when `steps` is `None`).
+    /// The most steps considered ([`MAX_SPLIT`]).
+    pub max_steps: usize,
+    /// `|Δθk|/n`, the step of K per block, degrees (radians in Rust; of `maxSteps` steps when
+    /// `steps` is null).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub step_k: f64,
-    /// `|Δθm|/n`, the step of M, radians.
+    /// `|Δθm|/n`, the step of M per block, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub step_m: f64,
     /// The largest δ of the `n` pieces, mm (`≤ tolerance` when `steps` is given).
     pub max: f64,
@@ -742,6 +769,7 @@ pub fn split_within(mv: Move, length: f64, tolerance: f64) -> Result<Split> {
     let split = |n: usize, max: f64, found: bool| Split {
         tolerance,
         steps: found.then_some(n),
+        max_steps: MAX_SPLIT,
         step_k: dk.abs() / n as f64,
         step_m: dm.abs() / n as f64,
         max,
@@ -787,6 +815,38 @@ pub fn max_errors(rtype: RotaryType, moves: &[[f64; 4]]) -> Vec<f64> {
         .collect()
 }
 
+/// The bulk export `nonlinearMaxErrors`: the exact maximum error, mm, of many moves of the type
+/// named `rtype` at the tool point `length` (mm) from the pivot. `moves` holds
+/// `[θk0, θm0, θk1, θm1]` per move in degrees (a length that is a multiple of 4, each within
+/// ±[`MAX_ANGLE_DEG`]); the result one value per move ([`max_errors`] times `length`).
+pub fn max_errors_mm(rtype: &str, length: f64, moves: &[f64]) -> Result<Vec<f64>> {
+    let t = RotaryType::parse(rtype)?;
+    check_positive("length", length, MAX_LENGTH_MM, "mm")?;
+    if moves.len() % 4 != 0 {
+        return Err(crate::Error::field(
+            "moves",
+            format!("length must be a multiple of 4, got {}", moves.len()),
+        ));
+    }
+    let lim = MAX_ANGLE_DEG;
+    let mut quads = Vec::with_capacity(moves.len() / 4);
+    for (n, c) in moves.chunks_exact(4).enumerate() {
+        let mut q = [0.0; 4];
+        for (j, v) in c.iter().enumerate() {
+            q[j] = v.to_radians();
+            if v.is_finite() && v.abs() <= lim {
+                continue; // the message (and its formatted path) only for a bad value
+            }
+            check_range(&format!("moves[{}]", 4 * n + j), *v, -lim, lim, "degrees")?;
+        }
+        quads.push(q);
+    }
+    Ok(max_errors(t, &quads)
+        .into_iter()
+        .map(|v| v * length)
+        .collect())
+}
+
 /// Fig 4: the maximum error (mm) against the start angle of K, `k_from..=k_to` (radians) at `n`
 /// points, for fixed `theta_m`, increments `d_k`, `d_m`. The paper's finding: a constant.
 pub fn sweep_start_k(
@@ -816,14 +876,44 @@ pub fn sweep_start_k(
 
 /// One curve of [`sweep_start_m`]: the increment ratio and the errors along θm0.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct RatioCurve {
     /// `K = Δθk / Δθm`.
     pub ratio: f64,
     /// Exact maximum error, mm, one per θm0.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub exact: Vec<f64>,
-    /// The u = 0.5 approximation (eq 25/30), mm; `None` where the ends coincide or are opposite.
+    /// The u = 0.5 approximation (eq 25/30), mm; null where the ends coincide or are opposite.
     pub approx: Vec<Option<f64>>,
+}
+
+/// Fig 4 (the export `nonlinearSweepK`): the maximum error against the start command of K.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+pub struct SweepK {
+    /// Start commands of K, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub k: Vec<f64>,
+    /// Exact maximum error, mm, one per start command.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub max: Vec<f64>,
+}
+
+/// Fig 7 (the export `nonlinearSweepM`): the maximum error against the start command of M, one
+/// curve per ratio of the increments.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+pub struct SweepM {
+    /// Start commands of M, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub m: Vec<f64>,
+    /// One curve per ratio, in the order given.
+    pub curves: Vec<RatioCurve>,
 }
 
 /// Fig 7: the maximum error (mm) against the start angle of M over `m_range` (radians, `n`
@@ -873,19 +963,28 @@ pub fn sweep_start_m(
 /// Grids are row-major with `ny` rows (Δθm, `m_range`) and `nx` columns (Δθk, `k_range`):
 /// entry `[iy * nx + ix]`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct IncrementGrid {
     /// Columns.
     pub nx: usize,
     /// Rows.
     pub ny: usize,
-    /// Δθk of each column, radians.
+    /// Δθk of each column, degrees (radians in Rust; the commands' for
+    /// [`NonlinearCase::grid`]).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub d_k: Vec<f64>,
-    /// Δθm of each row, radians.
+    /// Δθm of each row, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub d_m: Vec<f64>,
-    /// Exact maximum error, mm.
+    /// Exact maximum error, mm, row-major `ny × nx`.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub max: Vec<f64>,
-    /// u of the maximum; `None` where the error is zero (no unique maximum).
+    /// u of the maximum, row-major like `max`; null where the error is zero (no unique
+    /// maximum).
     pub u_at_max: Vec<Option<f64>>,
 }
 
@@ -927,6 +1026,7 @@ pub fn sweep_increments(
 
 /// One row of [`NonlinearCase::compare_types`]: the same tool path on one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct TypeComparison {
     /// The type.
@@ -934,15 +1034,28 @@ pub struct TypeComparison {
     pub rtype: RotaryType,
     /// Its group.
     pub group: Group,
-    /// The commands (rad) that give the start and end tool vectors on this type: the smallest
-    /// tilt at the start, the nearest solution at the end; `None` when out of travel.
-    pub commands: Option<[Pose; 2]>,
-    /// Exact maximum error, mm; `None` when out of travel.
+    /// Its commands `[K, M]` that give the start tool vector (the smallest tilt), degrees
+    /// (radians in Rust); null when out of travel.
+    #[serde(serialize_with = "degrees_pair")]
+    pub start: Option<[f64; 2]>,
+    /// Its commands `[K, M]` that give the end tool vector (the solution nearest the start),
+    /// degrees (radians in Rust); null when out of travel.
+    #[serde(serialize_with = "degrees_pair")]
+    pub end: Option<[f64; 2]>,
+    /// Exact maximum error, mm; null when out of travel.
     pub max: Option<f64>,
     /// u of the maximum.
     pub u_at_max: Option<f64>,
     /// Why the type cannot make the move within the machine's travel.
     pub unreachable: Option<String>,
+}
+
+/// A pair of commands `[K, M]` held in radians, written in degrees (`null` when absent).
+fn degrees_pair<S: serde::Serializer>(
+    pair: &Option<[f64; 2]>,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    pair.map(|p| p.map(f64::to_degrees)).serialize(s)
 }
 
 /// `n ≥ 2` equally spaced values from `a` to `b` inclusive (`[a]` when `n < 2`).

@@ -25,10 +25,12 @@
 //! with the reason: too few points, no points around the reversal, parameters the trace does not
 //! determine, or no convergence.
 
-use super::{simulate_with_step, ReversalCase};
+use super::measure::{compensation, measure_dent, MeasuredDent};
+use super::{simulate_with_step, ReversalCase, ReversalFitInput};
 use crate::csv;
 use crate::error::{quote, Error, Result};
 use crate::numeric::{levenberg_marquardt, LsqFailure};
+use serde::Serialize;
 
 /// A measured trace: angles (rad) and deviations (mm), with the file line of each point.
 #[derive(Debug, Clone, PartialEq)]
@@ -169,8 +171,9 @@ pub fn declared_machine(text: &str) -> Option<&str> {
 }
 
 /// One fitted parameter with its 95 % confidence interval.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+pub struct FitEstimate {
     /// Value.
     pub value: f64,
     /// Lower end of the 95 % interval.
@@ -179,28 +182,57 @@ pub struct Estimate {
     pub high: f64,
 }
 
-/// A fit of a measured trace.
-#[derive(Debug, Clone, PartialEq)]
+/// A fit of a measured trace (the export `reversalFit`), with the friction in a drive's terms
+/// ([`super::measure::compensation`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct FrictionFit {
-    /// `f_c`, N·m.
-    pub fc: Estimate,
-    /// `a`, 1/rad.
-    pub slope: Estimate,
+    /// Coulomb friction `f_c`, N·m.
+    #[serde(rename = "friction")]
+    pub fc: FitEstimate,
+    /// Eq 2's `a`, 1/rad.
+    #[serde(rename = "frictionSlope")]
+    pub slope: FitEstimate,
     /// C's position-loop gain, 1/s.
-    pub kp: Estimate,
+    #[serde(rename = "positionGain")]
+    pub kp: FitEstimate,
     /// Radius offset, mm.
-    pub offset: Estimate,
-    /// Where the fitted friction has turned half way after a reversal, `atanh(1/2)/a`, rad: with
-    /// `2·f_c`, the torque step, what a friction compensator of eq 2's form is set with.
+    pub offset: FitEstimate,
+    /// Where the fitted friction has turned half way after a reversal, `atanh(1/2)/a`, degrees
+    /// (radians in Rust): with `2·f_c`, the torque step, what a friction compensator of eq 2's
+    /// form is set with.
+    #[serde(serialize_with = "crate::api::degrees")]
     pub halfway: f64,
+    /// The measured trace angles, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub angle: Vec<f64>,
+    /// The measured deviation, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub measured: Vec<f64>,
     /// The model at the measured angles (offset included), mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub fitted: Vec<f64>,
     /// Measured − fitted, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub residuals: Vec<f64>,
     /// Residual standard deviation, mm.
     pub sigma: f64,
     /// Iterations.
     pub iterations: usize,
+    /// C's rated torque the shares are of, N·m (the input `c.ratedTorque`).
+    pub rated_torque: f64,
+    /// Fitted `f_c` over the rated torque.
+    pub friction_share: f64,
+    /// The torque step a friction compensator needs at each reversal, `2·f_c`, N·m (with the
+    /// interval of `f_c` doubled).
+    pub torque_step: FitEstimate,
+    /// The torque step over the rated torque.
+    pub torque_step_share: f64,
 }
 
 /// Samples of the model's trace in a fit (at least).
@@ -307,7 +339,7 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
     let sd = |k: usize| lsq.covariance[k * 4 + k].sqrt();
     let logs = |k: usize| {
         let v = lsq.x[k];
-        Estimate {
+        FitEstimate {
             value: v.exp(),
             low: (v - Z95 * sd(k)).exp(),
             high: (v + Z95 * sd(k)).exp(),
@@ -333,11 +365,23 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
         .zip(&lsq.residuals)
         .map(|(d, r)| d - r)
         .collect();
+    let rated = case.c.rated_torque;
+    let k = compensation(fc.value, rated);
     Ok(FrictionFit {
+        rated_torque: k.rated,
+        friction_share: k.friction_share,
+        torque_step: FitEstimate {
+            value: k.step,
+            low: compensation(fc.low, rated).step,
+            high: compensation(fc.high, rated).step,
+        },
+        torque_step_share: k.step_share,
+        angle: measured.angle.clone(),
+        measured: measured.deviation.clone(),
         fc,
         slope,
         kp: logs(2),
-        offset: Estimate {
+        offset: FitEstimate {
             value: lsq.x[3],
             low: lsq.x[3] - Z95 * sd(3),
             high: lsq.x[3] + Z95 * sd(3),
@@ -347,5 +391,41 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
         residuals: lsq.residuals,
         sigma: lsq.sigma,
         iterations: lsq.iterations,
+    })
+}
+
+/// The export `reversalFit`: the trace read from `csv` and fitted ([`fit`]) from the case's
+/// values.
+pub fn fit_trace((case, own): &(ReversalCase, ReversalFitInput)) -> Result<FrictionFit> {
+    fit(case, &parse_trace(&own.csv)?)
+}
+
+/// A measured trace read and its dent measured, without a fit (the export `reversalTrace`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
+pub struct MeasuredTrace {
+    /// The machine the file names (`# machine: <name>`), or null.
+    pub machine: Option<String>,
+    /// Points read.
+    pub points: usize,
+    /// The dent measured from the trace ([`measure_dent`]).
+    pub dent: MeasuredDent,
+    /// The dent's width as a time at the test's feed on its circle, `W·R/F`, s
+    /// ([`MeasuredDent::duration`]).
+    pub duration: f64,
+}
+
+/// Reads a measured trace (`csv`) and measures its dent: depth and width from the trace itself,
+/// and the machine its file names; the test's R and F give the width in time. Fast (no
+/// simulation).
+pub fn measure_trace((case, own): &(ReversalCase, ReversalFitInput)) -> Result<MeasuredTrace> {
+    let m = parse_trace(&own.csv)?;
+    let dent = measure_dent(&m.angle, &m.deviation)?;
+    Ok(MeasuredTrace {
+        machine: declared_machine(&own.csv).map(str::to_string),
+        points: m.angle.len(),
+        duration: dent.duration(case.test.radius, case.test.feed),
+        dent,
     })
 }

@@ -55,20 +55,28 @@ const SETTLED: (f64, f64) = (188.0, 190.0);
 /// Fewest points in each window.
 const MIN_POINTS: usize = 3;
 
-/// The dent of a measured trace (module docs). Lengths in mm, angles in rad.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The dent of a measured trace (module docs). Lengths in mm, angles in degrees at the edge
+/// (radians in Rust).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct MeasuredDent {
     /// Baseline `b`: median deviation over 170°–179°, mm.
     pub baseline: f64,
     /// Depth `D`: the largest fall below the baseline over 180°–190°, mm (0: no dent).
     pub depth: f64,
-    /// Its trace angle `θ*`, rad.
+    /// Its trace angle `θ*`, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub angle: f64,
-    /// Width at half depth `W`, rad (0 without a dent).
+    /// Width at half depth `W`, degrees of trace angle (radians in Rust; 0 without a dent; a
+    /// lower bound when `open`).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub width: f64,
-    /// Where the fall crosses half depth before `θ*`, rad.
+    /// Where the fall crosses half depth before `θ*`, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub low: f64,
-    /// And after it (the last point of the window when `open`), rad.
+    /// And after it (the last point of the window when `open`), degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub high: f64,
     /// The fall is still at half depth or more at the window's end (190°): `width` is a lower
     /// bound and the trace went down by a step.

@@ -30,11 +30,13 @@ pub mod fit;
 pub mod measure;
 pub mod motion;
 
+use crate::api::{ApiInput, Checked};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use crate::schema::{self, DefaultValue, Kind, Quantity};
 use drive::{AxisState, Drive, Reference};
 use motion::{Motion, MotionSpec};
+use serde::Serialize;
 use serde_json::Value;
 use std::f64::consts::{PI, TAU};
 
@@ -326,19 +328,17 @@ crate::inputs! {
 
 impl ReversalCase {
     /// Reads a case and an export's own inputs from one object (the keys of `B` go to `B`).
-    pub fn read_with<B: schema::Inputs>(value: &Value) -> Result<(Self, B)> {
-        let (c, b): (Self, B) = schema::read_split(value, "")?;
-        c.check()?;
-        Ok((c, b))
+    pub fn read_with<B: Checked>(value: &Value) -> Result<(Self, B)> {
+        <(Self, B) as ApiInput>::read(value)
     }
 
     /// Reads a case (and checks the machine).
     pub fn read(value: &Value) -> Result<Self> {
-        let c: ReversalCase = schema::read(<Self as schema::Inputs>::FIELDS, value, "")?;
-        c.check()?;
-        Ok(c)
+        <Self as ApiInput>::read(value)
     }
+}
 
+impl Checked for ReversalCase {
     /// The checks across fields: the machine, and C's rated torque at most its torque limit.
     fn check(&self) -> Result<()> {
         self.machine.validate("machine")?;
@@ -353,7 +353,12 @@ impl ReversalCase {
         }
         Ok(())
     }
+}
 
+impl Checked for ReversalRunInput {}
+impl Checked for ReversalFitInput {}
+
+impl ReversalCase {
     /// The same case with C's friction `f_c` set to `fc`.
     pub fn with_c_friction(&self, fc: f64) -> Self {
         let mut c = self.clone();
@@ -417,20 +422,30 @@ impl ReversalCase {
 }
 
 /// One linear axis along the run (at the trace's samples).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct LinearTrace {
     /// Its name ("X", …).
     pub name: String,
     /// Command, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub command: Vec<f64>,
     /// Actual velocity, mm/s.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub velocity: Vec<f64>,
     /// Following error (command − actual), mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub error: Vec<f64>,
 }
 
 /// Whether a linear axis changes direction near the reversal of C.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct DirectionCheck {
     /// The axis.
     pub name: String,
@@ -448,34 +463,60 @@ pub struct DirectionCheck {
     pub actual_reverses: bool,
 }
 
-/// One simulated run: the ball-bar trace and the axes.
-#[derive(Debug, Clone, PartialEq)]
+/// One simulated run: the ball-bar trace and the axes (series at the same instants).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct Trace {
     /// Time, s.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub time: Vec<f64>,
-    /// Commanded trace angle θ, rad.
+    /// Commanded trace angle θ, degrees (radians in Rust; C reverses at 180°).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub theta: Vec<f64>,
-    /// Actual trace angle, rad.
+    /// Actual trace angle, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub angle: Vec<f64>,
     /// Radial deviation |tip − centre| − R, mm (+ outwards).
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub deviation: Vec<f64>,
     /// Actual tip in table (workpiece) coordinates, mm (eq 1).
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub x: Vec<f64>,
     /// y, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub y: Vec<f64>,
-    /// C command, rad.
+    /// C command, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_command: Vec<f64>,
-    /// C actual, rad.
+    /// C actual, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_actual: Vec<f64>,
-    /// C velocity, rad/s.
+    /// C velocity, degrees/s (rad/s in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_velocity: Vec<f64>,
-    /// C following error (command − actual), rad.
+    /// C following error (command − actual), degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_error: Vec<f64>,
     /// C friction torque, N·m (eq 2; + resists positive motion).
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_friction: Vec<f64>,
     /// C motor torque, N·m.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_torque: Vec<f64>,
-    /// The linear axes.
+    /// The linear axes: X, Y, Z.
     pub linear: Vec<LinearTrace>,
     /// Time of C's reversal, s.
     pub reversal_time: f64,
@@ -484,8 +525,10 @@ pub struct Trace {
     /// Integration steps taken.
     pub steps: usize,
     /// Step, s.
+    #[serde(skip)]
     pub step: f64,
     /// Direction changes the friction model saw (all axes).
+    #[serde(skip)]
     pub direction_changes: usize,
 }
 
@@ -706,13 +749,17 @@ pub fn direction_checks(motion: &Motion, trace: &Trace) -> Vec<DirectionCheck> {
 }
 
 /// The dent the friction makes: the difference of two runs that differ only in friction.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct Dent {
     /// Deepest inward difference (with − without friction), mm (positive: a dent).
     pub depth: f64,
-    /// Its trace angle, rad.
+    /// Its trace angle, degrees (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub angle: f64,
-    /// Width at half depth, rad of trace angle.
+    /// Width at half depth, degrees of trace angle (radians in Rust).
+    #[serde(serialize_with = "crate::api::degrees")]
     pub width: f64,
     /// Largest outward difference, mm.
     pub bump: f64,
@@ -752,14 +799,22 @@ pub fn dent(with: &Trace, without: &Trace) -> Dent {
 
 /// The step check: the largest difference between the trace at `h` and at `h/2` (sample by
 /// sample, the same instants), mm, and as a fraction of the largest |deviation|.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
 pub struct StepCheck {
-    /// Step, s.
+    /// Step, ms (s in Rust; ms like the input `step`).
+    #[serde(serialize_with = "seconds_as_ms")]
     pub step: f64,
     /// Largest difference, mm.
     pub difference: f64,
     /// Over the largest |deviation| of the finer run.
     pub relative: f64,
+}
+
+/// A time held in s, written in ms.
+fn seconds_as_ms<S: serde::Serializer>(s: &f64, ser: S) -> std::result::Result<S::Ok, S::Error> {
+    ser.serialize_f64(s * 1e3)
 }
 
 /// Runs `case` again with half its step and compares (see [`StepCheck`]).
@@ -787,8 +842,22 @@ pub fn step_check(case: &ReversalCase, motion: &Motion, trace: &Trace) -> Result
     })
 }
 
-/// The dent for each of Table 1's feeds and radii: `(F mm/min, r mm, dent)`.
-pub fn table1_dents(case: &ReversalCase) -> Result<Vec<(f64, f64, Dent)>> {
+/// The dent for one of Table 1's conditions.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
+pub struct DentRow {
+    /// Feed F, mm/min.
+    pub feed: f64,
+    /// Socket offset r, mm.
+    pub offset: f64,
+    /// The dent.
+    pub dent: Dent,
+}
+
+/// The dent for each of Table 1's feeds (1000, 2000, 3000 mm/min) and radii r (25, 50 mm), the
+/// other inputs as given (the export `reversalDents`).
+pub fn table1_dents(case: &ReversalCase) -> Result<Vec<DentRow>> {
     let mut out = Vec::new();
     for r in [25.0, 50.0] {
         for f in [1000.0, 2000.0, 3000.0] {
@@ -797,10 +866,60 @@ pub fn table1_dents(case: &ReversalCase) -> Result<Vec<(f64, f64, Dent)>> {
             c.test.offset = r;
             let (m, with) = simulate(&c)?;
             let without = simulate_with_step(&c.with_c_friction(0.0), &m, c.step * 1e-3)?;
-            out.push((f, r, dent(&with, &without)));
+            out.push(DentRow {
+                feed: f,
+                offset: r,
+                dent: dent(&with, &without),
+            });
         }
     }
     Ok(out)
+}
+
+/// One simulated test (the export `reversalSimulate`): the trace with C's friction, the same
+/// run without it, the dent, and whether X and Y change direction with C.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(rename_all = "camelCase")]
+pub struct ReversalSimulation {
+    /// The run with friction.
+    #[serde(flatten)]
+    pub trace: Trace,
+    /// The radial deviation of the same run with C's friction 0, mm.
+    #[serde(serialize_with = "crate::api::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
+    pub without_friction: Vec<f64>,
+    /// The friction's dent.
+    pub dent: Dent,
+    /// X, Y and Z at C's reversal.
+    pub directions: Vec<DirectionCheck>,
+    /// Halving the step (with `checkStep`); null without.
+    pub step_check: Option<StepCheck>,
+    /// Circle centre in table coordinates `[x, y]`, mm.
+    pub centre: [f64; 2],
+    /// C's axis in table coordinates `[x, y]`, mm.
+    pub axis: [f64; 2],
+}
+
+/// Simulates the reversal test on the machine with and without C's friction (module docs), and
+/// with `checkStep` again at half the step.
+pub fn simulation((case, run): &(ReversalCase, ReversalRunInput)) -> Result<ReversalSimulation> {
+    let (m, trace) = simulate(case)?;
+    let without = simulate_with_step(&case.with_c_friction(0.0), &m, trace.step)?;
+    let step_check = if run.check_step {
+        Some(step_check(case, &m, &trace)?)
+    } else {
+        None
+    };
+    Ok(ReversalSimulation {
+        dent: dent(&trace, &without),
+        directions: direction_checks(&m, &trace),
+        step_check,
+        centre: [m.centre.x, m.centre.y],
+        axis: [m.axis.x, m.axis.y],
+        without_friction: without.deviation,
+        trace,
+    })
 }
 
 /// π, for the tests: the trace angle of the reversal.

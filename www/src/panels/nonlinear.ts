@@ -1,7 +1,7 @@
 // The "Nonlinear error" panel: Geng, Wu & Qiu (2018), on the machine of the Machine section (its
 // rotary-axis type and pivot).
 import type { Data } from 'plotly.js';
-import type { Orientations, Machine, NonlinearMoveResult } from '@engine';
+import type { Orientations, Machine, MoveAnalysis } from '@engine';
 import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
@@ -204,7 +204,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     });
   };
 
-  const showMove = (r: NonlinearMoveResult, t: string, start: { k: number; m: number }, end: { k: number; m: number }) => {
+  const showMove = (r: MoveAnalysis, t: string, start: { k: number; m: number }, end: { k: number; m: number }) => {
     const ctx = machine.context();
     const L = r.length;
     note(curve.p, null);
@@ -250,7 +250,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   /** The verdict: the engine's δ and split against the tolerance. */
-  const judgeMove = (r: NonlinearMoveResult, ctx: { k: string; m: string }) => {
+  const judgeMove = (r: MoveAnalysis, ctx: { k: string; m: string }) => {
     const sp = r.split;
     if (!sp) return verdict.none('No verdict: no tolerance was given.');
     const head = `Nonlinear error ${show('errLength', r.max)} at L = ${fmt.num(r.length)} mm`;
@@ -300,7 +300,7 @@ function stepWords(stepK: number, stepM: number, ctx: { k: string; m: string }, 
   return parts.length ? `of ${parts.join(' and ')}${n > 1 ? ' each' : ''}` : '';
 }
 
-function splitText(r: NonlinearMoveResult, ctx: { k: string; m: string }): string {
+function splitText(r: MoveAnalysis, ctx: { k: string; m: string }): string {
   const sp = r.split;
   if (!sp) return '—';
   if (sp.steps === null) return `more than ${sp.maxSteps}`;
@@ -308,7 +308,7 @@ function splitText(r: NonlinearMoveResult, ctx: { k: string; m: string }): strin
   return `${sp.steps} ${stepWords(sp.stepK, sp.stepM, ctx, sp.steps)} (largest error of a step ${show('errLength', sp.max)})`;
 }
 
-function referenceText(r: NonlinearMoveResult): string {
+function referenceText(r: MoveAnalysis): string {
   switch (r.reference) {
     case 'coincident':
       return 'start and end orientations coincide: δ is the chord |P(u) − V0| (eq 19)';

@@ -7,7 +7,7 @@
 // terms; a trace file that names its machine (`# machine: <preset>`) is checked against the
 // machine above, with an offer to switch to it.
 import type { Data, Layout } from 'plotly.js';
-import type { Machine, ReversalDentRow, ReversalFitResult, ReversalResult, ReversalTraceResult } from '@engine';
+import type { DentRow, FrictionFit, Machine, MeasuredTrace, ReversalSimulation } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachinePreset, MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
@@ -123,7 +123,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const runFit = channel('reversalFit');
   const runTrace = channel('reversalTrace');
   const engineError = engineErrors(inputs.byPath, machine);
-  let last: ReversalResult | null = null;
+  let last: ReversalSimulation | null = null;
   let lastCase = '';
 
   const read = () => {
@@ -147,11 +147,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** Whether `last` answers the inputs as they are (a verdict may be drawn from it). */
   let fresh = false;
   /** The last fit of a measured trace, while it answers the inputs. */
-  let lastFit: ReversalFitResult | null = null;
+  let lastFit: FrictionFit | null = null;
   /** The fit: none (no trace), on its way, done, or refused (its message). */
   let fitState: { s: 'none' } | { s: 'pending' } | { s: 'ok' } | { s: 'error'; message: string } = { s: 'none' };
   /** The measured trace: none loaded, being read, read (its dent), or refused (its message). */
-  let traceState: { s: 'none' } | { s: 'pending' } | { s: 'ok'; r: ReversalTraceResult } | { s: 'error'; message: string } = { s: 'none' };
+  let traceState: { s: 'none' } | { s: 'pending' } | { s: 'ok'; r: MeasuredTrace } | { s: 'error'; message: string } = { s: 'none' };
   /** Where the trace came from, for the verdict ("reversal-measured.csv", "the pasted trace"). */
   let traceName = 'the trace in the field';
   /** The machine preset a trace names and how the machine above differs from it. */
@@ -193,7 +193,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const status = judge(d.depth, tol);
     const width = d.open
       ? `and stays down to 190° and beyond: a step of ${show('errLength', d.step)} (its level after the reversal) rather than a dent, at least ${fmt.num(d.width, 3)}° wide at half depth`
-      : `${fmt.num(d.width, 3)}° wide at half depth (${fmt.num(d.duration * 1e3, 3)} ms at the feed entered)`;
+      : `${fmt.num(d.width, 3)}° wide at half depth (${fmt.num(ts.r.duration * 1e3, 3)} ms at the feed entered)`;
     const advice = status === 'pass' ? '.'
       : d.open
         ? `: ${k}’s following error changes side when it reverses; velocity feed-forward on ${k}, or a smaller offset r, would reduce the step.`
@@ -227,7 +227,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
 
   /** Which machine the loaded trace names, against the machine above; offers to switch. */
-  const showTraceMachine = async (r: ReversalTraceResult | null) => {
+  const showTraceMachine = async (r: MeasuredTrace | null) => {
     traceOn = null;
     traceMachine.replaceChildren();
     traceMachine.hidden = true;
@@ -346,7 +346,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const D = (mm: number) => toDisplay('errLength', mm);
   const lu = () => unitDef('errLength').label;
 
-  const showSim = (r: ReversalResult, came: string) => {
+  const showSim = (r: ReversalSimulation, came: string) => {
     note(polar.p, null);
     const theta = Array.from(r.theta);
     const dev = Array.from(r.deviation);
@@ -435,7 +435,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (r.stepCheck) setSummary('rv-sum-step', 'Integration step', `${fmt.num(r.stepCheck.step, 3)} ms: halving it changes the trace by ${show('errLength', r.stepCheck.difference, 2)} (${fmt.percent(r.stepCheck.relative, 2)} of the largest deviation)`);
   };
 
-  const showDents = (rows: ReversalDentRow[], came: string) => {
+  const showDents = (rows: DentRow[], came: string) => {
     const table = el('table', { class: 'ident-table', id: 'rv-dents-table' });
     const head = el('tr');
     for (const h of ['F (mm/min)', 'r (mm)', `depth (${lu()})`, 'at (°)', 'width (°)']) head.append(el('th', { scope: 'col' }, h));
@@ -453,7 +453,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     stale(dentsBox, false);
   };
 
-  const showFit = (f: ReversalFitResult, came: string) => {
+  const showFit = (f: FrictionFit, came: string) => {
     note(fitPlot.p, null);
     const table = el('table', { class: 'ident-table', id: 'rv-fit-table' });
     const head = el('tr');
