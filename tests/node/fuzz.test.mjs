@@ -240,7 +240,8 @@ function ballbarCsv(r) {
   for (let k = 0; k < n; k++) {
     const a = ((360 * k) / Math.max(1, n)).toFixed(2);
     const v = () => ((r() - 0.5) * 10).toFixed(3);
-    lines.push(lines[lines.length - 1 - k]?.includes('ccw (') || lines.some((l) => l.includes('ccw ('))) ? `${a}; ${v()}; ${v()}` : `${a}; ${v()}; ${pick(['ccw', 'cw', 'x'])(r)}`);
+    const wide = lines.some((l) => l.includes('ccw ('));
+    lines.push(wide ? `${a}; ${v()}; ${v()}` : `${a}; ${v()}; ${pick(['ccw', 'cw', 'x'])(r)}`);
   }
   if (lines.length > 3 && r() < 0.3) lines[3] = lines[3].replace(/\d/, 'x');
   return lines.join('\n');

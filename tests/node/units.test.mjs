@@ -315,6 +315,7 @@ const BASE = {
   nonlinearCompareTypes: [{ start: { k: 0, m: 10 }, end: { k: 20, m: 30 }, length: 100 }],
   nonlinearGrid: [{ length: 100, thetaM: 0, dK: { from: 0, to: 10 }, dM: { from: 0, to: 10 }, nx: 2, ny: 2 }],
   nonlinearMove: [{ length: 100 }],
+  nonlinearMaxErrors: ['CAZ', 100, new Float64Array([0, 0, 10, 20])],
   nonlinearSweepK: [{ length: 100, thetaM: 0, dK: 10, dM: 10, from: 0, to: 10, n: 2 }],
   nonlinearSweepM: [{ length: 100, dM: 10, ratios: [1], from: 0, to: 10, n: 2 }],
   reversalDents: [{}],

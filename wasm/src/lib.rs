@@ -156,16 +156,6 @@ pub(crate) fn f64_array(values: &[f64]) -> Series {
     Series(Float64Array::from(values))
 }
 
-/// A `Float64Array` of `radians` in degrees (angles at the API edge).
-pub(crate) fn degrees(radians: &[f64]) -> Series {
-    f64_array(&degrees_of(radians))
-}
-
-/// `radians` in degrees (the pure part of [`degrees`], testable natively).
-pub(crate) fn degrees_of(radians: &[f64]) -> Vec<f64> {
-    radians.iter().map(|x| x.to_degrees()).collect()
-}
-
 /// The quantity of an error by ISO name; names not in the table (`"dR"`) are small lengths.
 pub(crate) fn error_quantity(name: &str) -> Quantity {
     fiveaxis::machine::errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity)

@@ -3,7 +3,7 @@
 //! test these functions natively; each checks a unit conversion worked out by hand, with π/180
 //! written here, not taken from the engine.
 
-use crate::{api_combination, degrees_of, error_quantity};
+use crate::{api_combination, error_quantity};
 use fiveaxis::schema::Quantity;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -24,20 +24,6 @@ fn error_names_have_the_quantity_of_their_iso_letter() {
     assert_eq!(error_quantity("dR"), Quantity::SmallLength);
 }
 
-/// 180/π degrees is one radian, π/2 is 90°, and the order and length are kept.
-#[test]
-fn degrees_of_converts_every_value_in_order() {
-    let out = degrees_of(&[0.0, 1.0, std::f64::consts::FRAC_PI_2, -std::f64::consts::PI]);
-    let want = [0.0, 180.0 / std::f64::consts::PI, 90.0, -180.0];
-    assert_eq!(out.len(), want.len());
-    for (a, b) in out.iter().zip(want) {
-        assert!(close(*a, b), "{a} vs {b}");
-    }
-}
-
-/// A combination `Σ c_j·x_j` (engine units, x in mm or rad) equals, in the first member's API
-/// unit, `Σ c'_j·y_j` with `y` the same errors in API units (mm or degrees): with a length first
-/// the angle's coefficient is multiplied by π/180; with an angle first the length's is multiplied
 /// by 180/π and the value is turned into degrees (× 180/π).
 #[test]
 fn api_combination_keeps_the_value_of_the_combination_in_api_units() {

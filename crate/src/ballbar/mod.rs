@@ -91,7 +91,29 @@ crate::inputs! {
     }
 }
 
-impl Checked for BallbarInput {}
+impl Checked for BallbarInput {
+    fn check(&self) -> Result<()> {
+        if self.radius > 0.0 && self.radius < 1.0 {
+            return Err(Error::field(
+                "radius",
+                format!(
+                    "must be 0 (from the file) or at least 1 mm, got {}",
+                    self.radius
+                ),
+            ));
+        }
+        if self.feed > 0.0 && self.feed < 1.0 {
+            return Err(Error::field(
+                "feed",
+                format!(
+                    "must be 0 (from the file) or at least 1 mm/min, got {}",
+                    self.feed
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
 
 /// A fitted value with its 95 % interval.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -266,10 +288,19 @@ pub fn evaluate(input: &BallbarInput) -> Result<Ballbar> {
     } else {
         t.radius.unwrap_or(0.0)
     };
-    if radius <= 0.0 {
+    if !(1.0..=2000.0).contains(&radius) {
         return Err(Error::field(
             "radius",
-            "give the ball-bar's length (radius), or a `# radius: 100 mm` line in the file",
+            format!("give the ball-bar's length (radius, 1 to 2000 mm), or a `# radius: 100 mm` line in the file; got {radius}"),
+        ));
+    }
+    if let Some(f) = t
+        .feed
+        .filter(|f| input.feed == 0.0 && !(1.0..=1e6).contains(f))
+    {
+        return Err(Error::field(
+            "csv",
+            format!("the file's feed must be 1 to 1000000 mm/min, got {f}"),
         ));
     }
     let feed = if input.feed > 0.0 {

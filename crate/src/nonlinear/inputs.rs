@@ -8,7 +8,7 @@ use super::{
     sweep_increments, sweep_start_k, sweep_start_m, Deviation, IncrementGrid, Move, RatioCurve,
     TypeComparison, MAX_ANGLE_DEG, MAX_LENGTH_MM,
 };
-use crate::api::{ApiInput, Checked};
+use crate::edge::{ApiInput, Checked};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use crate::rotary::{Pose, RotaryType};

@@ -641,7 +641,7 @@ pub struct MoveAnalysis {
     /// `|V0 × V1|`.
     pub plane_sine: f64,
     /// Angle between V0 and V1, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub sweep_angle: f64,
     /// Start tool orientation V0 (unit vector, workpiece coordinates).
     pub start_vector: [f64; 3],
@@ -650,11 +650,11 @@ pub struct MoveAnalysis {
     /// Unit normal of the reference plane (for coincident ends: -V0).
     pub normal: [f64; 3],
     /// Sample parameters of the curve, equally spaced in [0, 1].
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub u: Vec<f64>,
     /// δ(u) at those samples, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub delta: Vec<f64>,
     /// With a `tolerance`: the fewest equal steps of the move that keep δ within it
@@ -726,10 +726,10 @@ pub struct Split {
     pub max_steps: usize,
     /// `|Δθk|/n`, the step of K per block, degrees (radians in Rust; of `maxSteps` steps when
     /// `steps` is null).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub step_k: f64,
     /// `|Δθm|/n`, the step of M per block, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub step_m: f64,
     /// The largest δ of the `n` pieces, mm (`≤ tolerance` when `steps` is given).
     pub max: f64,
@@ -882,7 +882,7 @@ pub struct RatioCurve {
     /// `K = Δθk / Δθm`.
     pub ratio: f64,
     /// Exact maximum error, mm, one per θm0.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub exact: Vec<f64>,
     /// The u = 0.5 approximation (eq 25/30), mm; null where the ends coincide or are opposite.
@@ -894,11 +894,11 @@ pub struct RatioCurve {
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub struct SweepK {
     /// Start commands of K, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub k: Vec<f64>,
     /// Exact maximum error, mm, one per start command.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub max: Vec<f64>,
 }
@@ -909,7 +909,7 @@ pub struct SweepK {
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 pub struct SweepM {
     /// Start commands of M, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub m: Vec<f64>,
     /// One curve per ratio, in the order given.
@@ -972,15 +972,15 @@ pub struct IncrementGrid {
     pub ny: usize,
     /// Δθk of each column, degrees (radians in Rust; the commands' for
     /// [`NonlinearCase::grid`]).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub d_k: Vec<f64>,
     /// Δθm of each row, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub d_m: Vec<f64>,
     /// Exact maximum error, mm, row-major `ny × nx`.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub max: Vec<f64>,
     /// u of the maximum, row-major like `max`; null where the error is zero (no unique

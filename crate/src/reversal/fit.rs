@@ -202,22 +202,22 @@ pub struct FrictionFit {
     /// Where the fitted friction has turned half way after a reversal, `atanh(1/2)/a`, degrees
     /// (radians in Rust): with `2·f_c`, the torque step, what a friction compensator of eq 2's
     /// form is set with.
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub halfway: f64,
     /// The measured trace angles, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub angle: Vec<f64>,
     /// The measured deviation, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub measured: Vec<f64>,
     /// The model at the measured angles (offset included), mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub fitted: Vec<f64>,
     /// Measured − fitted, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub residuals: Vec<f64>,
     /// Residual standard deviation, mm.

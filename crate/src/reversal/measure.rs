@@ -66,17 +66,17 @@ pub struct MeasuredDent {
     /// Depth `D`: the largest fall below the baseline over 180°–190°, mm (0: no dent).
     pub depth: f64,
     /// Its trace angle `θ*`, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub angle: f64,
     /// Width at half depth `W`, degrees of trace angle (radians in Rust; 0 without a dent; a
     /// lower bound when `open`).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub width: f64,
     /// Where the fall crosses half depth before `θ*`, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub low: f64,
     /// And after it (the last point of the window when `open`), degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub high: f64,
     /// The fall is still at half depth or more at the window's end (190°): `width` is a lower
     /// bound and the trace went down by a step.

@@ -30,7 +30,7 @@ pub mod fit;
 pub mod measure;
 pub mod motion;
 
-use crate::api::{ApiInput, Checked};
+use crate::edge::{ApiInput, Checked};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use crate::schema::{self, DefaultValue, Kind, Quantity};
@@ -429,15 +429,15 @@ pub struct LinearTrace {
     /// Its name ("X", …).
     pub name: String,
     /// Command, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub command: Vec<f64>,
     /// Actual velocity, mm/s.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub velocity: Vec<f64>,
     /// Following error (command − actual), mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub error: Vec<f64>,
 }
@@ -469,51 +469,51 @@ pub struct DirectionCheck {
 #[serde(rename_all = "camelCase")]
 pub struct Trace {
     /// Time, s.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub time: Vec<f64>,
     /// Commanded trace angle θ, degrees (radians in Rust; C reverses at 180°).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub theta: Vec<f64>,
     /// Actual trace angle, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub angle: Vec<f64>,
     /// Radial deviation |tip − centre| − R, mm (+ outwards).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub deviation: Vec<f64>,
     /// Actual tip in table (workpiece) coordinates, mm (eq 1).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub x: Vec<f64>,
     /// y, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub y: Vec<f64>,
     /// C command, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_command: Vec<f64>,
     /// C actual, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_actual: Vec<f64>,
     /// C velocity, degrees/s (rad/s in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_velocity: Vec<f64>,
     /// C following error (command − actual), degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees_series")]
+    #[serde(serialize_with = "crate::edge::degrees_series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_error: Vec<f64>,
     /// C friction torque, N·m (eq 2; + resists positive motion).
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_friction: Vec<f64>,
     /// C motor torque, N·m.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub c_torque: Vec<f64>,
     /// The linear axes: X, Y, Z.
@@ -756,10 +756,10 @@ pub struct Dent {
     /// Deepest inward difference (with − without friction), mm (positive: a dent).
     pub depth: f64,
     /// Its trace angle, degrees (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub angle: f64,
     /// Width at half depth, degrees of trace angle (radians in Rust).
-    #[serde(serialize_with = "crate::api::degrees")]
+    #[serde(serialize_with = "crate::edge::degrees")]
     pub width: f64,
     /// Largest outward difference, mm.
     pub bump: f64,
@@ -886,7 +886,7 @@ pub struct ReversalSimulation {
     #[serde(flatten)]
     pub trace: Trace,
     /// The radial deviation of the same run with C's friction 0, mm.
-    #[serde(serialize_with = "crate::api::series")]
+    #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub without_friction: Vec<f64>,
     /// The friction's dent.
