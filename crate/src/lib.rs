@@ -20,6 +20,8 @@
 //!   error, and refined to a tolerance.
 //! * [`volumetric`]: the tool tip's deviation over the working volume from every location
 //!   error and error motion, its budget, and Tan & Lim's RRTTT model beside it.
+//! * [`probe`]: the rotary axes checked with a touch probe and a sphere (issue 31): poses,
+//!   sensitivities, what a sphere cannot see, and the errors identified from measured centres.
 
 pub mod schema;
 
@@ -35,6 +37,7 @@ pub mod identify;
 pub mod machine;
 pub mod nonlinear;
 mod numeric;
+pub mod probe;
 pub mod reversal;
 pub mod rotary;
 pub mod sshape;
