@@ -9,7 +9,7 @@
 //! * the 95 % intervals cover the truth in 95 % of runs (± 3.3 standard errors);
 //! * σ here is the standard error `σ·√((AᵀA)⁻¹)_jj` with `A` from central differences of the
 //!   exact chain, computed in this test.
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, clippy::needless_range_loop)]
 mod probe_common;
 
 use fiveaxis::identify::{Options, Verdict};
@@ -22,7 +22,6 @@ use probe_common::{centre, machines, study, with_errors};
 use serde_json::{json, Value};
 
 #[path = "common/mod.rs"]
-#[allow(dead_code)]
 mod common;
 use common::Rng;
 
