@@ -147,6 +147,26 @@ macro_rules! for_each_export {
             #[doc = "time."]
             reversalTrace(($crate::reversal::ReversalCase, $crate::reversal::ReversalFitInput)
                 as "ReversalCase & ReversalFitInput") -> "MeasuredTrace" = $crate::reversal::fit::measure_trace;
+            // probe
+            #[doc = "The sphere test of the rotary axes: the simple layout and the designed poses (the"]
+            #[doc = "smallest scaled singular value maximised), their expected centres, CSV and NC blocks,"]
+            #[doc = "what a single sphere cannot see and what a second sphere position would add."]
+            probeDesign(($crate::probe::ProbeInput, $crate::probe::design::ProbeDesignInput)
+                as "ProbeInput & ProbeDesignInput") -> "ProbeDesign" = $crate::probe::api::design;
+            #[doc = "The sphere's centre at given poses (degrees) as the control expects it and as the"]
+            #[doc = "probe measures it on the machine with its errors (linear-axis positions, mm), and"]
+            #[doc = "the sensitivities of the centres to each error (per mm, per degree)."]
+            probeSimulate(($crate::probe::ProbeInput, $crate::probe::api::ProbeSimulateInput)
+                as "ProbeInput & ProbeSimulateInput") -> "ProbeSimulation" = $crate::probe::api::simulate;
+            #[doc = "Reads measured sphere centres from CSV (one line per pose: K, M, X, Y, Z, units in"]
+            #[doc = "the header); errors name the line: `csv: line 7: …`."]
+            probeReadCsv($crate::probe::api::ProbeCsvInput as "ProbeCsvInput")
+                -> "Measurements" = $crate::probe::api::read_csv;
+            #[doc = "Identifies the rotary axes' location errors from measured sphere centres: values,"]
+            #[doc = "intervals, Holm decisions, the spread before and after, the correction in words and"]
+            #[doc = "`errors` to put into `machine.errors`."]
+            probeIdentify(($crate::probe::ProbeInput, $crate::probe::fit::ProbeIdentifyInput)
+                as "ProbeInput & ProbeIdentifyInput") -> "ProbeIdentification" = $crate::probe::api::identify;
         }
     };
 }

@@ -22,6 +22,8 @@
 //! * [`positioning`]: a positioning test of one axis (laser runs) evaluated as ISO 230-2 defines it.
 //! * [`volumetric`]: the tool tip's deviation over the working volume from every location
 //!   error and error motion, its budget, and Tan & Lim's RRTTT model beside it.
+//! * [`probe`]: the rotary axes checked with a touch probe and a sphere (issue 31): poses,
+//!   sensitivities, what a sphere cannot see, and the errors identified from measured centres.
 
 pub mod schema;
 
@@ -41,6 +43,7 @@ pub mod nonlinear;
 
 mod numeric;
 pub mod positioning;
+pub mod probe;
 pub mod reversal;
 pub mod rotary;
 pub mod sshape;

@@ -1,0 +1,217 @@
+//! The sphere test's poses and what a sphere cannot see (issue 31): the simple layout as the
+//! issue defines it, the designed layout reachable, of full rank on what the sphere can see and
+//! no worse than the simple one, NC blocks one per pose; every error declared invisible moves
+//! no centre of the exact chain, and C's zero is exactly a turn of the sphere on the table.
+#![allow(clippy::unwrap_used)]
+mod probe_common;
+
+use fiveaxis::probe::design::{self, ProbeDesign, ProbeDesignInput};
+use fiveaxis::schema::Inputs;
+use probe_common::{bc_table, centre, machines, rot, study, with_errors};
+use serde_json::{json, Value};
+
+fn designed(machine: &Value, sphere: [f64; 3]) -> ProbeDesign {
+    let s = study(json!({ "machine": machine,
+        "sphere": { "x": sphere[0], "y": sphere[1], "height": sphere[2] } }));
+    design::design(&s, &ProbeDesignInput::from_value(&json!({}), "").unwrap()).unwrap()
+}
+
+fn deg(v: f64) -> f64 {
+    (v.to_degrees() * 1e6).round() / 1e6
+}
+
+#[test]
+fn the_simple_layout_is_k_every_30_degrees_at_m_0_then_m_every_30_degrees_at_k_0() {
+    // Tilt limit 90° (the default): M from −90° to +90° within the travel.
+    for (machine, ms) in [
+        (
+            probe_common::bc_table(),
+            vec![-90.0, -60.0, -30.0, 30.0, 60.0, 90.0],
+        ),
+        (probe_common::ac_trunnion(), vec![-90.0, -60.0, -30.0, 30.0]),
+        (
+            probe_common::head_table(),
+            vec![-90.0, -60.0, -30.0, 30.0, 60.0, 90.0],
+        ),
+    ] {
+        let s = study(json!({ "machine": machine }));
+        let got: Vec<(f64, f64)> = design::simple_poses(&s)
+            .unwrap()
+            .iter()
+            .map(|&(k, m)| (deg(k), deg(m)))
+            .collect();
+        let mut want: Vec<(f64, f64)> = (0..12).map(|j| (30.0 * j as f64, 0.0)).collect();
+        want.extend(ms.iter().map(|&m| (0.0, m)));
+        let mut g = got.clone();
+        g.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(g, want);
+        assert_eq!(got[0], (0.0, 0.0), "the reference pose first");
+    }
+}
+
+#[test]
+fn the_designed_poses_are_reachable_of_full_rank_and_no_worse_than_the_simple_layout() {
+    for (name, machine) in machines() {
+        let d = designed(&machine, [150.0, 0.0, 100.0]);
+        let (lo, hi) = (
+            machine["rotary"]["mFrom"].as_f64().unwrap(),
+            machine["rotary"]["mTo"].as_f64().unwrap(),
+        );
+        for p in &d.designed.poses {
+            let m = p.m.to_degrees();
+            // Within the travel and the 90° tilt limit (for these machines the tilt is |M|).
+            assert!(
+                m >= lo - 1e-9 && m <= hi + 1e-9 && m.abs() <= 90.0 + 1e-9,
+                "{name}: M {m}"
+            );
+            assert!((p.tilt - p.m.abs()).abs() < 1e-9, "{name}: tilt {}", p.tilt);
+        }
+        let r = d.visibility.reachable_rank;
+        assert_eq!(
+            d.designed.rank, r,
+            "{name}: full rank on what the sphere sees"
+        );
+        assert_eq!(d.designed.poses.len(), d.simple.poses.len());
+        assert!(
+            d.designed.smallest >= d.simple.smallest,
+            "{name}: designed σ_r {} below the simple layout's {}",
+            d.designed.smallest,
+            d.simple.smallest
+        );
+        assert!((d.designed.smallest - d.designed.singular_values[r - 1]).abs() < 1e-12);
+        println!(
+            "{name}: σ_r designed {:.2}, simple {:.2} ({} poses, rank {r})",
+            d.designed.smallest,
+            d.simple.smallest,
+            d.designed.poses.len()
+        );
+        // Poses with both axes turned are used where they help.
+        assert!(
+            d.designed.poses.iter().any(|p| p.k != 0.0 && p.m != 0.0),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn the_nc_blocks_position_the_rotary_axes_one_pose_per_block_and_say_to_probe_there() {
+    let d = designed(&bc_table(), [150.0, 0.0, 100.0]);
+    let blocks: Vec<&str> = d
+        .designed
+        .nc
+        .lines()
+        .filter(|l| l.starts_with('N'))
+        .collect();
+    assert_eq!(blocks.len(), d.designed.poses.len());
+    for (b, p) in blocks.iter().zip(&d.designed.poses) {
+        let word = |letter: char| -> f64 {
+            let w = b
+                .split_whitespace()
+                .find(|w| w.starts_with(letter) && w[1..].parse::<f64>().is_ok())
+                .unwrap();
+            w[1..].parse().unwrap()
+        };
+        assert!(b.contains(" G0 "), "{b}");
+        assert!((word('C') - p.k.to_degrees()).abs() < 6e-4, "{b}");
+        assert!((word('B') - p.m.to_degrees()).abs() < 6e-4, "{b}");
+        assert!(
+            b.contains("RUN THE CONTROL'S SPHERE-PROBING CYCLE HERE"),
+            "{b}"
+        );
+    }
+    // The pose table has as many rows, with empty measured columns.
+    let rows = d
+        .designed
+        .csv
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .count();
+    assert_eq!(rows, d.designed.poses.len() + 1);
+}
+
+#[test]
+fn every_error_declared_invisible_moves_no_centre_of_the_exact_chain() {
+    let mut seen = 0;
+    for (name, machine) in machines() {
+        // The sphere on the table axis: C's zero cannot be seen.
+        let sphere = [0.0, 0.0, 100.0];
+        let d = designed(&machine, sphere);
+        assert!(
+            d.visibility.invisible.iter().any(|u| u.name == "E_C0C"),
+            "{name}: {:?}",
+            d.visibility.invisible
+        );
+        let s = study(json!({ "machine": machine }));
+        let poses = design::candidate_poses(&s, 30f64.to_radians()).unwrap();
+        for u in &d.visibility.invisible {
+            let def = fiveaxis::machine::errors::find(&u.name).unwrap();
+            let size = 0.01; // mm or degrees
+            let moved = with_errors(&machine, json!({ u.name.clone(): size }));
+            for &(k, m) in &poses {
+                let c = centre(&moved, sphere, k, m);
+                let c0 = centre(&machine, sphere, k, m);
+                assert!(
+                    (c - c0).norm() < 1e-9,
+                    "{name}: {} ({:?}) moves the centre at K {k} M {m} by {}",
+                    u.name,
+                    def.quantity,
+                    (c - c0).norm()
+                );
+            }
+            seen += 1;
+        }
+        // And each error it says it identifies moves some centre by more than 1 µm.
+        for n in &d.visibility.identifiable {
+            let moved = with_errors(&machine, json!({ n.clone(): 0.01 }));
+            let most = poses
+                .iter()
+                .map(|&(k, m)| {
+                    (centre(&moved, sphere, k, m) - centre(&machine, sphere, k, m)).norm()
+                })
+                .fold(0.0, f64::max);
+            assert!(
+                most > 1e-3,
+                "{name}: {n} moves no centre by more than {most}"
+            );
+        }
+    }
+    assert!(seen >= 3);
+}
+
+#[test]
+fn c_zero_is_exactly_the_sphere_turned_on_the_table_so_it_is_inseparable_from_its_position() {
+    // E_C0C = ε turns everything C carries by ε about C's line (through the table centre):
+    // exactly the sphere set at R_Z(ε)·s.
+    let eps = 0.05f64;
+    let s = nalgebra::Vector3::new(150.0, 20.0, 100.0);
+    let turned = rot(2, eps.to_radians()) * s;
+    let machine = bc_table();
+    let moved = with_errors(&machine, json!({ "E_C0C": eps }));
+    for (k, m) in [(0.0, 0.0), (1.0, 0.5), (2.5, -1.2)] {
+        let a = centre(&moved, [s[0], s[1], s[2]], k, m);
+        let b = centre(&machine, [turned[0], turned[1], turned[2]], k, m);
+        assert!((a - b).norm() < 1e-9, "{a} vs {b}");
+    }
+    let d = designed(&machine, [150.0, 20.0, 100.0]);
+    let g = d
+        .visibility
+        .inseparable
+        .iter()
+        .find(|g| g.members.iter().any(|m| m == "E_C0C"))
+        .unwrap();
+    assert!(g.members.iter().any(|m| m.starts_with("sphere_")), "{g:?}");
+}
+
+#[test]
+fn a_c_tilt_and_an_offset_of_c_alike_on_the_axis_are_told_apart_by_a_second_sphere() {
+    // On C's axis at height h a tilt ε of C moves the sphere as an offset of h·ε would: one
+    // sphere there cannot identify E_A0C; a second one higher and off the axis can.
+    let d = designed(&bc_table(), [0.0, 0.0, 100.0]);
+    assert!(!d.visibility.identifiable.iter().any(|n| n == "E_A0C"));
+    assert!(
+        d.second_sphere.gained.iter().any(|n| n == "E_A0C"),
+        "{:?}",
+        d.second_sphere
+    );
+}
