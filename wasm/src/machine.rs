@@ -2,9 +2,6 @@
 //! the machine, its tool direction and its inverse kinematics within the travel.
 
 use crate::{js_error, json, output};
-use fiveaxis::cubic::design::CubicDesignInput;
-use fiveaxis::cubic::identify::CubicIdentifyInput;
-use fiveaxis::cubic::{CubicGrid, CubicInput};
 use fiveaxis::machine::errors::{ErrorDef, TABLE};
 use fiveaxis::machine::motions::MOTIONS;
 use fiveaxis::machine::schematic::{schematic, Schematic};
@@ -16,9 +13,6 @@ use fiveaxis::nonlinear::{
 use fiveaxis::reversal::{ReversalCase, ReversalFitInput, ReversalRunInput};
 use fiveaxis::rotary::{Group, RotaryType};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
-use fiveaxis::sshape::study::{
-    SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
-};
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -76,14 +70,6 @@ pub fn schema() -> Result<JsValue, JsError> {
         "nonlinearCompareTypes",
         both::<NonlinearCase, TypeCompareInput>(),
     );
-    put("cubicTest", fields::<CubicInput>());
-    put("cubicHeightMap", both::<CubicInput, CubicGrid>());
-    put("cubicIdentify", both::<CubicInput, CubicIdentifyInput>());
-    put("cubicDesign", both::<CubicInput, CubicDesignInput>());
-    put("sshapePart", fields::<SShapePartInput>());
-    put("sshapeOvercut", fields::<SShapeOvercutInput>());
-    put("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>());
-    put("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>());
     put("reversalSimulate", both::<ReversalCase, ReversalRunInput>());
     put("reversalDents", fields::<ReversalCase>());
     put("reversalFit", both::<ReversalCase, ReversalFitInput>());
