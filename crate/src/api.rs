@@ -167,6 +167,38 @@ macro_rules! for_each_export {
             #[doc = "`errors` to put into `machine.errors`."]
             probeIdentify(($crate::probe::ProbeInput, $crate::probe::fit::ProbeIdentifyInput)
                 as "ProbeInput & ProbeIdentifyInput") -> "ProbeIdentification" = $crate::probe::api::identify;
+            // cubic and S-shape
+            #[doc = "Zone heights and tilts (exact and first-order), sensitivities of every error of the"]
+            #[doc = "machine on every zone, the exact effect of each error alone, and what the test cannot see."]
+            cubicTest($crate::cubic::CubicInput as "CubicInput")
+                -> "CubicResult" = $crate::cubic::results::test;
+            #[doc = "The simulated machined face (Fig 16(b)): ball-end zig-zag passes, scallops included, on an"]
+            #[doc = "`nx × ny` grid (`ny` automatic when left out), with each zone's average height."]
+            cubicHeightMap(($crate::cubic::CubicInput, $crate::cubic::CubicGrid) as "CubicInput & CubicGrid")
+                -> "HeightMap" = $crate::cubic::results::map;
+            #[doc = "Identification of the machine's errors from measured zone heights (and slopes) of a cubic"]
+            #[doc = "test piece, the paper's layout or a designed one (`csv`, see `fiveaxis::cubic::identify`)."]
+            cubicIdentify(($crate::cubic::CubicInput, $crate::cubic::identify::CubicIdentifyInput) as "CubicInput & CubicIdentifyInput")
+                -> "CubicIdentifyResult" = $crate::cubic::results::identify;
+            #[doc = "The test designer: the zones' tool vectors (and optionally a second set-up) that make every"]
+            #[doc = "error a face of this kind can reveal identifiable, beside the paper's layout."]
+            cubicDesign(($crate::cubic::CubicInput, $crate::cubic::design::CubicDesignInput) as "CubicInput & CubicDesignInput")
+                -> "CubicDesignResult" = $crate::cubic::results::design;
+            #[doc = "The part for a 3D view: both surfaces on an `nu × nv` grid (default 131 × 7) and the 100"]
+            #[doc = "measurement points, in the part's own frame (z up from its base)."]
+            sshapePart($crate::sshape::study::SShapePartInput as "SShapePartInput | undefined")
+                -> "SShapePartResult" = $crate::sshape::results::part;
+            #[doc = "The overcut maps of both surfaces (eq 6 and the exact gouge) on an `nu × nv` grid."]
+            sshapeOvercut($crate::sshape::study::SShapeOvercutInput as "SShapeOvercutInput")
+                -> "SShapeOvercutResult" = $crate::sshape::results::overcut;
+            #[doc = "The machining defect at the 100 points for the machine's errors (eq 14) and a tool-radius"]
+            #[doc = "error, with the sensitivities of Fig 19 and the machine poses."]
+            sshapeDefects(($crate::sshape::study::SShapeCase, $crate::sshape::study::SShapeDefectsInput) as "SShapeCase & SShapeDefectsInput")
+                -> "SShapeDefectsResult" = $crate::sshape::results::defects;
+            #[doc = "Identification of the machine's errors (all, or `parameters`) and the tool-radius error from"]
+            #[doc = "a measurement CSV."]
+            sshapeIdentify(($crate::sshape::study::SShapeCase, $crate::sshape::study::SShapeIdentifyInput) as "SShapeCase & SShapeIdentifyInput")
+                -> "SShapeIdentifyResult" = $crate::sshape::results::identify;
         }
     };
 }

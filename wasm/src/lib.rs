@@ -16,24 +16,16 @@
 //! (the engine's input structs and this crate's result structs) into the `.d.ts` wasm-bindgen
 //! writes. [`schema`] gives the page every input field with its label, help, unit and limits.
 
-mod cubic;
-mod identify;
 mod machine;
 mod nonlinear;
-mod sshape;
 mod toolpath;
 
-#[cfg(test)]
-mod native_tests;
 
-pub use cubic::*;
-pub use identify::*;
 pub use machine::*;
 pub use nonlinear::*;
-pub use sshape::*;
 pub use toolpath::*;
 
-use fiveaxis::schema::{join, Quantity};
+use fiveaxis::schema::join;
 use fiveaxis::Error;
 use js_sys::{Array, ArrayBuffer, Float64Array, Object, Reflect};
 use serde::Serialize;
@@ -156,22 +148,4 @@ pub(crate) fn f64_array(values: &[f64]) -> Series {
     Series(Float64Array::from(values))
 }
 
-/// The quantity of an error by ISO name; names not in the table (`"dR"`) are small lengths.
-pub(crate) fn error_quantity(name: &str) -> Quantity {
-    fiveaxis::machine::errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity)
-}
-
-/// A combination `Σ c_j·x_j` of errors (by name, engine units: mm, rad) in API units (mm,
-/// degrees), its first member's coefficient kept: `c'_j = c_j·p_j/p_1`, where `p` is
-/// [`Quantity::per_api_unit`] of 1 (π/180 for an angle, 1 for a length). Returns the new
-/// coefficients and the factor `1/p_1` that turns the combination's value (in the first
-/// member's engine unit) into API units.
-pub(crate) fn api_combination<'a>(
-    terms: impl IntoIterator<Item = (&'a str, f64)>,
-) -> (Vec<f64>, f64) {
-    let per = |name: &str| error_quantity(name).per_api_unit(1.0);
-    let terms: Vec<(&str, f64)> = terms.into_iter().collect();
-    let first = terms.first().map_or(1.0, |(n, _)| per(n));
-    let coefficients = terms.iter().map(|(n, c)| c * per(n) / first).collect();
-    (coefficients, 1.0 / first)
 }

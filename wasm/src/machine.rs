@@ -2,13 +2,7 @@
 //! hand added to the declared ones.
 
 use crate::output;
-use fiveaxis::cubic::design::CubicDesignInput;
-use fiveaxis::cubic::identify::CubicIdentifyInput;
-use fiveaxis::cubic::{CubicGrid, CubicInput};
 use fiveaxis::schema::{describe, FieldInfo, Inputs};
-use fiveaxis::sshape::study::{
-    SShapeCase, SShapeDefectsInput, SShapeIdentifyInput, SShapeOvercutInput, SShapePartInput,
-};
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
 use wasm_bindgen::prelude::*;
 
@@ -36,13 +30,5 @@ pub fn schema() -> Result<JsValue, JsError> {
         ("toolpathRefine", fields::<ToolpathCase>()),
         ("toolpathParse", fields::<ToolpathReadInput>()),
         ("toolpathWrite", fields::<ToolpathReadInput>()),
-        ("cubicTest", fields::<CubicInput>()),
-        ("cubicHeightMap", both::<CubicInput, CubicGrid>()),
-        ("cubicIdentify", both::<CubicInput, CubicIdentifyInput>()),
-        ("cubicDesign", both::<CubicInput, CubicDesignInput>()),
-        ("sshapePart", fields::<SShapePartInput>()),
-        ("sshapeOvercut", fields::<SShapeOvercutInput>()),
-        ("sshapeDefects", both::<SShapeCase, SShapeDefectsInput>()),
-        ("sshapeIdentify", both::<SShapeCase, SShapeIdentifyInput>()),
     ]))
 }

@@ -55,7 +55,7 @@ fn every_error_alone_in_the_s_shape_export_is_the_exact_chain_in_api_units() {
         let engine = if angle { api * DEG } else { api };
         let mut m = base.clone();
         m["errors"] = json!({ def.name: api });
-        let out: Defects = read(fa::sshape_defects(jv(&json!({ "machine": m }))));
+        let out: Defects = read(fa::sshapeDefects(jv(&json!({ "machine": m }))));
         let j = out.names.iter().position(|n| n == def.name).unwrap();
         assert_eq!(out.units[j], if angle { "deg" } else { "mm" });
         // The exact chain with the value set here in engine units.

@@ -68,20 +68,14 @@ fn trunnion() -> Value {
 
 #[wasm_bindgen_test]
 fn cubic_test_refuses_unknown_inputs() {
-    refuses(fa::cubic_test, json!({ "machine": trunnion() }));
-    let m = error_message(fa::cubic_test(with(
-        &json!({}),
-        "setup.zonesize",
-        json!(16),
-    )));
+    refuses(fa::cubicTest, json!({ "machine": trunnion() }));
+    let m = error_message(fa::cubicTest(with(&json!({}), "setup.zonesize", json!(16))));
     assert!(
         m.starts_with("setup.zonesize: unknown input") && m.contains("\"zoneSize\""),
         "{m}"
     );
     // A paper's symbol is refused with its ISO name and sign.
-    let m = error_message(fa::cubic_test(js(
-        r#"{"machine":{"errors":{"dxBY":0.01}}}"#,
-    )));
+    let m = error_message(fa::cubicTest(js(r#"{"machine":{"errors":{"dxBY":0.01}}}"#)));
     assert!(
         m.starts_with("machine.errors.dxBY: dxBY is the symbol δxBY")
             && m.contains("E_X0B = −δxBY"),
@@ -92,25 +86,25 @@ fn cubic_test_refuses_unknown_inputs() {
     let setup = js_sys::Reflect::get(&obj, &"setup".into()).expect("setup");
     js_sys::Reflect::set(&setup, &"pick".into(), &JsValue::from_f64(f64::NAN)).expect("set");
     assert_eq!(
-        error_message(fa::cubic_test(obj)),
+        error_message(fa::cubicTest(obj)),
         "setup.pick: must be a finite number, got NaN"
     );
-    assert!(error_message(fa::cubic_test(js(r#"{"transform":"yes"}"#)))
+    assert!(error_message(fa::cubicTest(js(r#"{"transform":"yes"}"#)))
         .starts_with("transform: expected true or false"));
 }
 
 #[wasm_bindgen_test]
 fn cubic_height_map_refuses_unknown_inputs() {
     refuses(
-        fa::cubic_height_map,
+        fa::cubicHeightMap,
         json!({ "machine": trunnion(), "nx": 8, "ny": 8 }),
     );
-    let m = error_message(fa::cubic_height_map(js(r#"{"nx":8,"nz":8}"#)));
+    let m = error_message(fa::cubicHeightMap(js(r#"{"nx":8,"nz":8}"#)));
     assert!(
         m.starts_with("nz: unknown input") && m.contains("\"ny\""),
         "{m}"
     );
-    assert!(error_message(fa::cubic_height_map(js(r#"{"ny":8}"#))).starts_with("nx: is required"));
+    assert!(error_message(fa::cubicHeightMap(js(r#"{"ny":8}"#))).starts_with("nx: is required"));
 }
 
 #[wasm_bindgen_test]
@@ -273,25 +267,25 @@ fn nonlinear_max_errors_refuses_wrong_arguments() {
 
 #[wasm_bindgen_test]
 fn sshape_part_refuses_unknown_inputs() {
-    refuses(fa::sshape_part, json!({ "nu": 10 }));
-    fa::sshape_part(JsValue::UNDEFINED).expect("no input: the defaults");
-    assert!(error_message(fa::sshape_part(js(r#"{"nu":1}"#)))
+    refuses(fa::sshapePart, json!({ "nu": 10 }));
+    fa::sshapePart(JsValue::UNDEFINED).expect("no input: the defaults");
+    assert!(error_message(fa::sshapePart(js(r#"{"nu":1}"#)))
         .starts_with("nu: must be a whole number between 2 and 2001"));
 }
 
 #[wasm_bindgen_test]
 fn sshape_overcut_refuses_unknown_inputs() {
     refuses(
-        fa::sshape_overcut,
+        fa::sshapeOvercut,
         json!({ "tool": { "rTool": 10 }, "nu": 14, "nv": 2 }),
     );
-    let m = error_message(fa::sshape_overcut(js(r#"{"tool":{"rtool":10}}"#)));
+    let m = error_message(fa::sshapeOvercut(js(r#"{"tool":{"rtool":10}}"#)));
     assert!(
         m.starts_with("tool.rtool: unknown input") && m.contains("\"rTool\""),
         "{m}"
     );
     assert!(
-        error_message(fa::sshape_overcut(js(r#"{"tool":{"lTool":30}}"#)))
+        error_message(fa::sshapeOvercut(js(r#"{"tool":{"lTool":30}}"#)))
             .starts_with("tool.lTool: must be greater than 30 mm")
     );
 }
@@ -299,29 +293,29 @@ fn sshape_overcut_refuses_unknown_inputs() {
 #[wasm_bindgen_test]
 fn sshape_defects_refuses_unknown_inputs() {
     refuses(
-        fa::sshape_defects,
+        fa::sshapeDefects,
         json!({ "machine": trunnion(), "dR": 0.001 }),
     );
-    let m = error_message(fa::sshape_defects(js(
+    let m = error_message(fa::sshapeDefects(js(
         r#"{"model":{"refrence":"axesZero"}}"#,
     )));
     assert!(
         m.starts_with("model.refrence: unknown input") && m.contains("\"reference\""),
         "{m}"
     );
-    assert!(error_message(fa::sshape_defects(js(
+    assert!(error_message(fa::sshapeDefects(js(
         r#"{"model":{"reference":"axeszero"}}"#
     )))
     .contains("Did you mean \"axesZero\"?"));
-    assert!(error_message(fa::sshape_defects(js(r#"{"dR":2}"#)))
+    assert!(error_message(fa::sshapeDefects(js(r#"{"dR":2}"#)))
         .starts_with("dR: must be between -1 mm and 1 mm"));
 }
 
 #[wasm_bindgen_test]
 fn sshape_identify_refuses_unknown_inputs() {
     let base = json!({ "machine": trunnion(), "csv": SAMPLE });
-    refuses(fa::sshape_identify, base.clone());
-    let m = error_message(fa::sshape_identify(with(
+    refuses(fa::sshapeIdentify, base.clone());
+    let m = error_message(fa::sshapeIdentify(with(
         &base,
         "parameters",
         json!(["E_X0A", "E_X0a"]),
@@ -330,7 +324,7 @@ fn sshape_identify_refuses_unknown_inputs() {
         m.starts_with("parameters[1]: unknown error name") && m.contains("Did you mean E_X0A?"),
         "{m}"
     );
-    let m = error_message(fa::sshape_identify(with(
+    let m = error_message(fa::sshapeIdentify(with(
         &base,
         "parameters",
         json!(["E_X0B"]),
@@ -339,7 +333,7 @@ fn sshape_identify_refuses_unknown_inputs() {
         m.starts_with("parameters[0]: E_X0B is not an error of this machine"),
         "{m}"
     );
-    assert!(error_message(fa::sshape_identify(js(r#"{}"#))).starts_with("csv: is required"));
+    assert!(error_message(fa::sshapeIdentify(js(r#"{}"#))).starts_with("csv: is required"));
 }
 
 #[wasm_bindgen_test]
@@ -484,8 +478,8 @@ fn cubic_identify_and_design_refuse_unknown_inputs() {
     let csv = "zone,height_um\nI,0\nII-1,-5\nII-2,-1\nII-3,-3\nII-4,-2\nIII-1,-5\nIII-2,-1\nIII-3,-2\nIII-4,-1\n";
     let base =
         json!({ "machine": trunnion(), "csv": csv, "parameters": ["E_Y0A", "E_Z0A", "E_B0Z"] });
-    refuses(fa::cubic_identify, base.clone());
-    let m = error_message(fa::cubic_identify(with(
+    refuses(fa::cubicIdentify, base.clone());
+    let m = error_message(fa::cubicIdentify(with(
         &base,
         "decision.nois",
         json!(0.001),
@@ -494,29 +488,25 @@ fn cubic_identify_and_design_refuse_unknown_inputs() {
         m.starts_with("decision.nois: unknown input") && m.contains("Did you mean \"noise\"?"),
         "{m}"
     );
-    let m = error_message(fa::cubic_identify(with(
-        &base,
-        "decision.alpha",
-        json!(0.9),
-    )));
+    let m = error_message(fa::cubicIdentify(with(&base, "decision.alpha", json!(0.9))));
     assert!(m.starts_with("decision.alpha: must be between"), "{m}");
-    let m = error_message(fa::cubic_identify(with(
+    let m = error_message(fa::cubicIdentify(with(
         &base,
         "csv",
         json!("zone,height_um\nII-9,1\n"),
     )));
     assert!(m.starts_with("csv: line 2: zone \"II-9\""), "{m}");
-    let m = error_message(fa::cubic_identify(with(
+    let m = error_message(fa::cubicIdentify(with(
         &base,
         "parameters",
         json!(["E_X0B"]),
     )));
     assert!(m.starts_with("parameters[0]: "), "{m}");
     let design = json!({ "machine": trunnion(), "grid": 2, "maxTilt": 20 });
-    refuses(fa::cubic_design, design.clone());
-    let m = error_message(fa::cubic_design(with(&design, "grid", json!(9))));
+    refuses(fa::cubicDesign, design.clone());
+    let m = error_message(fa::cubicDesign(with(&design, "grid", json!(9))));
     assert!(m.starts_with("grid: "), "{m}");
-    let m = error_message(fa::cubic_design(with(&design, "maxTilt", json!("x"))));
+    let m = error_message(fa::cubicDesign(with(&design, "maxTilt", json!("x"))));
     assert!(m.starts_with("maxTilt: "), "{m}");
 }
 

@@ -45,7 +45,7 @@ struct CubicOut {
 fn the_cubic_test_on_li_et_als_machine_gives_table_2_and_eq_10() {
     let mut m = preset(LI);
     m["errors"] = table5();
-    let r: CubicOut = read(fa::cubic_test(jv(&json!({ "machine": m }))));
+    let r: CubicOut = read(fa::cubicTest(jv(&json!({ "machine": m }))));
     let names: Vec<&str> = r.zones.iter().map(|z| z.name.as_str()).collect();
     assert_eq!(
         names,
@@ -89,7 +89,7 @@ fn the_cubic_height_map_has_the_documented_shape() {
         max: f64,
         scallop: f64,
     }
-    let m: MapOut = read(fa::cubic_height_map(jv(&json!({
+    let m: MapOut = read(fa::cubicHeightMap(jv(&json!({
         "setup": { "zoneSize": 4, "pick": 0.5 }, "nx": 13, "ny": 25,
     }))));
     assert_eq!(
@@ -109,7 +109,7 @@ fn the_cubic_height_map_has_the_documented_shape() {
         m.max
     );
     // Left out, ny is four rows per pass step: 8 intervals per zone → 12·8 + 1 rows.
-    let auto: MapOut = read(fa::cubic_height_map(jv(&json!({
+    let auto: MapOut = read(fa::cubicHeightMap(jv(&json!({
         "setup": { "zoneSize": 4, "pick": 0.5 }, "nx": 13,
     }))));
     assert_eq!(auto.ny, 97);
@@ -193,10 +193,10 @@ fn s_shape_defects_of_single_errors_follow_appendix_a() {
         axes: Vec<String>,
         poses: Vec<Pose>,
     }
-    let pts: PartOut = read(fa::sshape_part(JsValue::UNDEFINED));
+    let pts: PartOut = read(fa::sshapePart(JsValue::UNDEFINED));
     let mut m = preset(CHANAL);
     m["errors"] = json!({ "E_X0B": 0.0294, "E_A0B": 3.2419e-4f64.to_degrees() });
-    let o: Out = read(fa::sshape_defects(jv(&json!({ "machine": m }))));
+    let o: Out = read(fa::sshapeDefects(jv(&json!({ "machine": m }))));
     assert_eq!(o.axes, ["Y", "C", "X", "Z", "B"]);
     let (total, contrib) = (o.total.to_vec(), o.contributions.to_vec());
     let n = o.names.len();
@@ -251,7 +251,7 @@ fn identifying_the_sample_file_recovers_table_4() {
     let paper = [
         "E_C0Y", "E_A0Z", "E_B0Z", "E_A0C", "E_B0C", "E_X0B", "E_A0B", "E_C0B",
     ];
-    let o: Out = read(fa::sshape_identify(jv(&json!({
+    let o: Out = read(fa::sshapeIdentify(jv(&json!({
         "machine": preset(CHANAL), "csv": SAMPLE, "parameters": paper,
     }))));
     assert_eq!(o.rank, 9);
@@ -267,7 +267,7 @@ fn identifying_the_sample_file_recovers_table_4() {
     near("E_A0B", 3.2419e-4f64.to_degrees());
     near("dR", -0.02);
     // Eq 14 as printed: the pairs E_A0Z/E_A0C and E_B0Z/E_B0C cannot be separated.
-    let o: Out = read(fa::sshape_identify(jv(&json!({
+    let o: Out = read(fa::sshapeIdentify(jv(&json!({
         "machine": preset(CHANAL), "csv": SAMPLE, "parameters": paper,
         "model": { "reference": "axesZero" }, "radiusTerm": false,
     }))));
@@ -285,7 +285,7 @@ fn identifying_the_sample_file_recovers_table_4() {
 #[wasm_bindgen_test]
 fn a_malformed_csv_names_its_line() {
     let with_csv =
-        |csv: &str| fa::sshape_identify(jv(&json!({ "machine": preset(CHANAL), "csv": csv })));
+        |csv: &str| fa::sshapeIdentify(jv(&json!({ "machine": preset(CHANAL), "csv": csv })));
     let mut lines: Vec<String> = SAMPLE.lines().map(String::from).collect();
     assert!(lines[11].starts_with("top,3,"));
     lines[11] = "top,3,0.0x2".into();
@@ -316,7 +316,7 @@ fn the_overcut_maxima_match_the_papers_with_its_sign_of_n() {
         surfaces: Vec<S>,
         b_paper_side: Vec<f64>,
     }
-    let o: Out = read(fa::sshape_overcut(jv(&json!({ "nu": 261, "nv": 4 }))));
+    let o: Out = read(fa::sshapeOvercut(jv(&json!({ "nu": 261, "nv": 4 }))));
     assert!((o.surfaces[0].max_eq6_paper / 0.0387 - 1.0).abs() < 0.08);
     assert!((o.b_paper_side[0] / 0.0125 - 1.0).abs() < 0.05);
     for s in &o.surfaces {

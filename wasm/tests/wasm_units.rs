@@ -62,7 +62,7 @@ fn every_error_alone_in_the_cubic_test_is_the_native_engine_with_degrees_convert
         };
         let mut m = machine_for(def.axis);
         m["errors"] = json!({ def.name: api });
-        let out: CubicOut = read(fa::cubic_test(jv(
+        let out: CubicOut = read(fa::cubicTest(jv(
             &json!({ "machine": m, "transform": false }),
         )));
         // Native: the same machine, the value set in engine units by this test.
@@ -162,7 +162,7 @@ fn every_error_alone_in_the_s_shape_is_the_native_engine_with_degrees_converted_
         };
         let mut m = base.clone();
         m["errors"] = json!({ def.name: api });
-        let out: Out = read(fa::sshape_defects(jv(&json!({ "machine": m }))));
+        let out: Out = read(fa::sshapeDefects(jv(&json!({ "machine": m }))));
         let mut native = Machine::from_value(&base, "machine").unwrap();
         native.errors.set(def.name, engine).unwrap();
         let tool = SShapeTool::from_value(&Value::Null, "tool").unwrap();
@@ -224,7 +224,7 @@ fn identified_angles_come_out_in_degrees() {
     let params = [
         "E_C0Y", "E_A0Z", "E_B0Z", "E_A0C", "E_B0C", "E_X0B", "E_A0B", "E_C0B",
     ];
-    let o: Out = read(fa::sshape_identify(jv(&json!({
+    let o: Out = read(fa::sshapeIdentify(jv(&json!({
         "machine": preset(CHANAL), "csv": common::SAMPLE, "parameters": params,
     }))));
     let native = Machine::from_value(&preset(CHANAL), "machine").unwrap();
@@ -335,7 +335,7 @@ fn alike_factors_are_per_unit_at_the_edge() {
     struct Out {
         visibility: Vis,
     }
-    let o: Out = read(fa::cubic_test(jv(&json!({ "machine": preset(LI) }))));
+    let o: Out = read(fa::cubicTest(jv(&json!({ "machine": preset(LI) }))));
     let native = Machine::from_value(&preset(LI), "machine").unwrap();
     let input = CubicInput::read(&json!({})).unwrap();
     let a = cubic::analyze(&native, &input.setup, &input.options()).unwrap();

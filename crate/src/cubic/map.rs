@@ -6,24 +6,42 @@ use super::{CubicGrid, CubicPiece, CubicReference, Options};
 use crate::error::{Error, Result};
 use crate::machine::Machine;
 use nalgebra::Vector3;
+use serde::Serialize;
 
-/// The simulated machined face (like Fig 16(b)): a height field of the ball-end zig-zag.
-#[derive(Debug, Clone, PartialEq)]
+/// The simulated machined face (like Fig 16(b)): a height field of the ball-end zig-zag
+/// (`cubicHeightMap`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[serde(rename_all = "camelCase")]
 pub struct HeightMap {
-    /// CubicGrid points along X.
+    /// Grid points along X (u, columns).
     pub nx: usize,
-    /// CubicGrid points along Y.
+    /// Grid points along Y (v, rows).
     pub ny: usize,
     /// X of the grid columns, mm: `nx` equal steps from `−1.5·zoneSize` to `+1.5·zoneSize`.
+    #[serde(serialize_with = "crate::edge::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub x: Vec<f64>,
     /// Y of the grid rows, mm, likewise.
+    #[serde(serialize_with = "crate::edge::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub y: Vec<f64>,
     /// Heights, mm, row-major `ny × nx`: the point `(x[ix], y[iy])` is `[iy·nx + ix]`.
+    /// Scallops included.
+    #[serde(serialize_with = "crate::edge::series")]
+    #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub height: Vec<f64>,
-    /// Average height over each zone (Table 1 order), mm: the trapezoidal rule on the grid
-    /// (a point on a zone border counts half for each zone). Includes the mean scallop height.
+    /// Average height over each zone (Table 1 order, that of `cubicTest`'s zones), mm: the
+    /// trapezoidal rule on the grid (a point on a zone border counts half for each zone).
+    /// Includes the mean scallop height.
     pub zone_average: Vec<f64>,
-    /// The actual step between passes, mm (see [`CubicPiece::pick`]).
+    /// The zones in the same order, with their nominal centres on the face.
+    pub zones: Vec<ZoneAt>,
+    /// Smallest height, mm.
+    pub min: f64,
+    /// Largest height, mm.
+    pub max: f64,
+    /// The actual step between passes (≤ pick), mm (see [`CubicPiece::pick`]).
     pub step: f64,
     /// Closed-form scallop height for that step, `r − √(r² − (step/2)²)`, mm.
     pub scallop: f64,
@@ -31,6 +49,18 @@ pub struct HeightMap {
     pub passes: usize,
     /// Pass-point evaluations made (a measure of the work).
     pub evaluations: usize,
+}
+
+/// A zone's name and nominal centre on the face.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+pub struct ZoneAt {
+    /// Its name.
+    pub name: &'static str,
+    /// Centre along u, mm.
+    pub x: f64,
+    /// Along v, mm.
+    pub y: f64,
 }
 
 /// Most grid points of a height map.
@@ -307,6 +337,16 @@ pub fn height_map(
         }
     }
     let zone_average = members.iter().map(|idx| mean(&grid.h, idx)).collect();
+    let zones = super::ZONES
+        .iter()
+        .map(|zd| ZoneAt {
+            name: zd.name,
+            x: f64::from(zd.col) * z,
+            y: f64::from(zd.row) * z,
+        })
+        .collect();
+    let min = grid.h.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = grid.h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Ok(HeightMap {
         nx,
         ny,
@@ -314,6 +354,9 @@ pub fn height_map(
         y: grid.y,
         height: grid.h,
         zone_average,
+        zones,
+        min,
+        max,
         step,
         scallop: r - (r * r - 0.25 * step * step).sqrt(),
         passes: passes.len(),

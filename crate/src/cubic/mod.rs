@@ -62,9 +62,10 @@
 pub mod design;
 pub mod identify;
 mod map;
+pub mod results;
 mod zones;
 
-pub use map::{height_map, HeightMap, MAX_GRID_POINTS, MAX_GRID_SIDE};
+pub use map::{height_map, HeightMap, ZoneAt, MAX_GRID_POINTS, MAX_GRID_SIDE};
 pub use zones::{ZoneDef, ZoneSpec, ZONES};
 
 use crate::error::{Error, Result};
@@ -283,10 +284,7 @@ impl CubicPiece {
 impl CubicInput {
     /// Reads and checks the inputs (schema, then the machine and the piece).
     pub fn read(value: &Value) -> Result<Self> {
-        let input = Self::from_value(value, "")?;
-        input.machine.validate("machine")?;
-        input.setup.validate()?;
-        Ok(input)
+        <Self as crate::edge::ApiInput>::read(value)
     }
 
     /// Reads and checks the inputs of the height map: the test's and the grid's keys in one
@@ -298,8 +296,7 @@ impl CubicInput {
     /// Reads and checks the test's inputs and an export's own (`B`) from one object.
     pub fn read_with<B: Inputs>(value: &Value) -> Result<(Self, B)> {
         let (input, own): (Self, B) = schema::read_split(value, "")?;
-        input.machine.validate("machine")?;
-        input.setup.validate()?;
+        crate::edge::Checked::check(&input)?;
         Ok((input, own))
     }
 

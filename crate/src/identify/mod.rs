@@ -44,9 +44,14 @@
 
 pub mod csv;
 mod fit;
+mod result;
 pub mod stats;
 
 pub use fit::{combination_text, fit, Combination, Estimate, Fit, Group, DEFAULT_RTOL};
+pub use result::{
+    api_combination, api_terms, api_text, error_quantity, Identification, IdentifiedCombination,
+    IdentifiedError, IdentifiedGroup,
+};
 
 use crate::error::{check_range, Error, Result};
 use crate::machine::errors::{self, ErrorDef};
@@ -185,19 +190,21 @@ pub struct CombinationDecision {
 
 /// Does the fit explain the measurement?
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
+#[cfg_attr(feature = "ts", tsify(missing_as_null))]
 #[serde(rename_all = "camelCase")]
 pub struct GoodnessOfFit {
-    /// The stated noise, mm.
+    /// The stated noise, mm (null: not given).
     pub noise: Option<f64>,
     /// The residual's standard deviation, mm.
     pub sigma: f64,
     /// Degrees of freedom.
     pub dof: usize,
-    /// `‖r‖²/σ₀²`.
+    /// `‖r‖²/σ₀²` (null without a stated noise).
     pub chi2: Option<f64>,
-    /// Its upper-tail p-value.
+    /// Its upper-tail χ² p-value (null without a stated noise).
     pub p: Option<f64>,
-    /// `Some(false)` when the errors do not explain the measurement (p < 1 %).
+    /// false: they do not explain the measurement (p < 1 %); null: not checked.
     pub explains: Option<bool>,
     /// In words.
     pub words: String,

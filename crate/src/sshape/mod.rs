@@ -7,4 +7,5 @@ pub mod identify;
 pub mod machine;
 pub mod overcut;
 pub mod part;
+pub mod results;
 pub mod study;

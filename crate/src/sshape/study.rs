@@ -204,15 +204,21 @@ impl SShapeCase {
     /// the rest to the case.
     pub fn read_with<B: Inputs>(value: &Value) -> Result<(SShapeCase, B)> {
         let (case, own): (SShapeCase, B) = schema::read_split(value, "")?;
-        case.machine.validate("machine")?;
+        case.check_case()?;
+        Ok((case, own))
+    }
+
+    /// Checks the case once read: the machine, and no error motions.
+    pub fn check_case(&self) -> Result<()> {
+        self.machine.validate("machine")?;
         // Eq 14 is a model of the location errors: error motions would be left out unseen.
-        if let Some(name) = case.machine.motions.0.keys().next() {
+        if let Some(name) = self.machine.motions.0.keys().next() {
             return Err(Error::field(
                 format!("machine.motions.{name}"),
                 "the S-shape model (Chanal et al., eq 14) takes the location errors only; error motions are not in it. Clear the error motions (Volumetric tab) to run this study.",
             ));
         }
-        Ok((case, own))
+        Ok(())
     }
 }
 

@@ -2,7 +2,7 @@
 // Machine section. A ball-end mill cuts a 3 × 3-zone face square to the spindle; which zones come
 // out high or low for the machine's errors, and which errors the test cannot see.
 import type { Annotations, Data, Layout, Shape } from 'plotly.js';
-import type { CubicDesignResult, CubicIdentifyResult, CubicInput, CubicLayoutReport, CubicMapResult, CubicResult, Machine } from '@engine';
+import type { CubicDesignResult, CubicIdentifyResult, CubicInput, CubicLayoutReport, CubicResult, HeightMap, Machine } from '@engine';
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields, numberField } from '../ui/fields';
@@ -114,7 +114,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let lastTest: { r: CubicResult; input: CubicInput } | null = null;
   /** Whether `lastTest` answers the inputs as they are (a verdict may be drawn from it). */
   let fresh = false;
-  let lastMap: CubicMapResult | null = null;
+  let lastMap: HeightMap | null = null;
   let fixedRange: number | null = null; // mm, or null for automatic
 
   /** The shared colour range, mm: the chosen one, or 1.25 × the largest zone height. */
@@ -424,7 +424,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } as Partial<Layout>, 'cubic-sensitivity');
   };
 
-  const showMap = (m: CubicMapResult) => {
+  const showMap = (m: HeightMap) => {
     const ctx = machine.context();
     note(mapPlot.p, null);
     const R = D(colourRange());
@@ -493,7 +493,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
  * rows in blocks of a multiple of `period` (rows per scallop period, so whole periods are
  * averaged).
  */
-function downsample(m: CubicMapResult, max: number, period: number): { x: number[]; y: number[]; z: number[][] } {
+function downsample(m: HeightMap, max: number, period: number): { x: number[]; y: number[]; z: number[][] } {
   const sx = Math.max(1, Math.ceil(m.nx / max));
   const sy = period * Math.max(1, Math.ceil(m.ny / (period * max)));
   const blocks = (n: number, s: number) => Array.from({ length: Math.ceil(n / s) }, (_, b) => [b * s, Math.min(n, (b + 1) * s)]);
