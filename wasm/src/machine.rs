@@ -10,12 +10,6 @@ fn fields<A: Inputs>() -> Vec<FieldInfo> {
     describe(A::FIELDS, "")
 }
 
-fn both<A: Inputs, B: Inputs>() -> Vec<FieldInfo> {
-    let mut v = fields::<A>();
-    v.extend(fields::<B>());
-    v
-}
-
 /// The schema of every input: the machine's fields, the error table and each export's fields,
 /// with labels, plain-language help, units (mm, deg), limits and defaults. The page renders its
 /// forms from it. Labels may hold `{K}`, `{M}` (the machine's rotary axes) and `{U}`, `{V}` (the
