@@ -246,6 +246,20 @@ function ballbarCsv(r) {
   if (lines.length > 3 && r() < 0.3) lines[3] = lines[3].replace(/\d/, 'x');
   return lines.join('\n');
 }
+/** Probed sphere centres: a header naming the machine's axes or not, a few poses, sometimes a
+ *  damaged cell or a decimal comma. */
+function probeCsv(r) {
+  const lines = [pick(['pose;C_deg;B_deg;X_mm;Y_mm;Z_mm', 'C (deg), A (deg), X (mm), Y (mm), Z (mm)', 'k m x y z'])(r)];
+  const sep = lines[0].includes(';') ? ';' : lines[0].includes(',') ? ',' : ' ';
+  const n = small(0, 14)(r);
+  for (let i = 0; i < n; i++) {
+    const cells = [((i * 30) % 360).toFixed(1), ((r() - 0.5) * 120).toFixed(1), ((r() - 0.5) * 400).toFixed(4), ((r() - 0.5) * 400).toFixed(4), (r() * 300).toFixed(4)];
+    lines.push((sep === ';' ? [String(i + 1), ...cells.map((c) => c.replace('.', ','))] : cells).join(sep));
+  }
+  if (lines.length > 1 && r() < 0.3) lines[1] = lines[1].replace(/\d/, 'x');
+  return lines.join(pick(['\n', '\r\n'])(r));
+}
+const sphere = maybe((r) => ({ x: (r() - 0.5) * 400, y: (r() - 0.5) * 400, height: r() * 200 }));
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -293,6 +307,12 @@ export const SPECS = {
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
   ballbarEvaluate: { args: [{ csv: ballbarCsv, radius: maybe((r) => r() * 300), feed: maybe((r) => r() * 5000), tolerance: maybe((r) => r() * 0.05) }] },
+  // The designer searches a grid of poses (a second or more at the default 15°): a coarse grid
+  // and few cases.
+  probeDesign: { args: [{ machine, sphere, step: pick([45, 60, 90]), count: maybe(small(4, 12)) }], weight: 0.005 },
+  probeSimulate: { args: [{ machine, sphere, k: (r) => Array.from({ length: small(1, 6)(r) }, () => angle(r)), m: (r) => Array.from({ length: small(1, 6)(r) }, () => (r() - 0.5) * 120) }], weight: 0.2 },
+  probeReadCsv: { args: [{ machine, csv: probeCsv }], weight: 0.2 },
+  probeIdentify: { args: [{ machine, sphere, csv: probeCsv }], weight: 0.05 },
   positioningEvaluate: { args: [{ csv: positioningCsv, axis: maybe(pick(['X', 'C', 'Q'])), tolerance: maybe((r) => build({ a: maybe((q) => q() * 0.01), e: maybe((q) => q() * 0.01), r: maybe((q) => q() * 0.01) }, r)) }] },
   reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },

@@ -337,6 +337,10 @@ const BASE = {
   volumetricPaper: [{ machine: preset('C/A double turntable on an X table'), x: 0, y: 0, z: 0 }],
   volumetricReadTable: [{ name: 'E_XX', text: 'X (mm), E_XX (um)\n0, 0\n100, 1' }],
   ballbarEvaluate: [{ csv: '# radius: 100 mm\nangle (deg); deviation (µm); direction\n0; -2; ccw\n18; 0; ccw\n36; 2; ccw\n54; -1; ccw\n72; 1; ccw\n90; -2; ccw\n108; 0; ccw\n126; 2; ccw\n144; -1; ccw\n162; 1; ccw\n180; -2; ccw\n198; 0; ccw\n216; 2; ccw\n234; -1; ccw\n252; 1; ccw\n270; -2; ccw\n288; 0; ccw\n306; 2; ccw\n324; -1; ccw\n342; 1; ccw\n360; -2; cw\n378; 0; cw\n396; 2; cw\n414; -1; cw\n432; 1; cw\n450; -2; cw\n468; 0; cw\n486; 2; cw\n504; -1; cw\n522; 1; cw\n540; -2; cw\n558; 0; cw\n576; 2; cw\n594; -1; cw\n612; 1; cw\n630; -2; cw\n648; 0; cw\n666; 2; cw\n684; -1; cw\n702; 1; cw' }],
+  probeDesign: [{ step: 90 }],
+  probeSimulate: [{ k: [0, 90], m: [0, 30] }],
+  probeReadCsv: [{ csv: 'pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n1;0;0;0;0;100\n2;90;0;0;0;100' }],
+  probeIdentify: [{ csv: 'pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n1;0;0;0;0;100\n2;90;0;0;0;100\n3;180;0;0;0;100\n4;270;0;0;0;100\n5;0;30;0;0;100\n6;0;-30;0;0;100\n7;90;30;0;0;100\n8;90;-30;0;0;100' }],
   positioningEvaluate: [{ csv: 'target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 2\n0; down; 1\n0; down; 3\n100; up; 2\n100; up; 2\n100; down; 1\n100; down; 1' }],
 };
 /** `toolLength` → `toollength`, `nu` → `Nu`: what a user mistypes. */

@@ -120,8 +120,8 @@ pub struct PoseFit {
 pub struct Estimate {
     /// ISO name, or `sphere_X` ….
     pub name: String,
-    /// "mm" or "deg": the unit of `value`, `stdError` and `interval` (converted from the
-    /// engine's radians once, here, because the list mixes lengths and angles).
+    /// "mm" or "deg": the unit of `value`, `stdError` and `interval` (degrees for an angle,
+    /// converted once, here, because the list mixes lengths and angles).
     pub unit: String,
     /// The value (null: not identifiable on its own).
     pub value: Option<f64>,
@@ -148,7 +148,7 @@ pub struct Estimate {
 pub struct GroupFit {
     /// The unknowns.
     pub members: Vec<String>,
-    /// The combinations measured, with their value (engine units: per mm, per rad), in words.
+    /// The combinations measured (coefficients per mm and per degree), in words.
     pub words: Vec<String>,
 }
 
