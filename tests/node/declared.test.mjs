@@ -44,6 +44,12 @@ test('every declared function names input and result types the .d.ts declares', 
   }
 });
 
+test('no type is declared twice in the .d.ts (tsify names a type by its Rust struct, whatever its module)', () => {
+  const names = [...dts.matchAll(/^export (?:interface|type|class|enum) (\w+)/gm)].map((m) => m[1]);
+  const twice = names.filter((n, i) => names.indexOf(n) !== i);
+  assert.deepEqual(twice, [], 'two engine types with one name: rename one');
+});
+
 test('the .d.ts documents no field or input in radians: angles cross in degrees', () => {
   const docs = [...dts.matchAll(/\/\*\*([\s\S]*?)\*\//g)].map((m) => m[1].replace(/^\s*\*\s?/gm, ' ').replace(/\s+/g, ' ').trim());
   assert.ok(docs.length > 200, `only ${docs.length} doc comments read`);
