@@ -4,7 +4,8 @@
 #   2. native engine tests (cargo test)
 #   3. the exported API as WebAssembly in headless Node (wasm-bindgen-test via wasm-pack)
 #   4. build the page (engine to wasm, TypeScript check, Vite)
-#   5. Node tests of the built JS API, and browser end-to-end tests in Debian's Chromium
+#   5. Node tests of the built JS API, and browser end-to-end tests in Debian's Chromium (one
+#      Chromium for all of them, three test files at a time: tests/run.mjs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -49,4 +50,4 @@ step "build the page"
 npm run --silent build
 
 step "Node API tests and browser end-to-end tests"
-node --test --test-reporter=spec tests/node/ tests/e2e/
+node tests/run.mjs

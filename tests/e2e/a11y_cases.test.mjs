@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { ARTIFACTS, waitIdle, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, downloaded, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
 const TABS = ['nonlinear', 'cubic', 'sshape'];
@@ -82,7 +82,7 @@ test('named cases: save, list, load, delete, export and import', async () => {
     assert.equal(await page.inputValue('#m-type'), 'CBZ');
     // Export, delete, then import the file again.
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#case-export')]);
-    const json = JSON.parse(readFileSync(await dl.path(), 'utf8'));
+    const json = JSON.parse(readFileSync(await downloaded(dl), 'utf8'));
     assert.equal(json['long tool'].f['nl-length'], '321');
     assert.equal(json['long tool'].f['m-errors-E_A0C'], '0.004');
     assert.equal(json['short tool'].f['m-type'], 'CAZ');

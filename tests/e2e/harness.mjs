@@ -2,7 +2,9 @@
 // playwright-core, and collects every console error, page error and request that leaves the
 // page's own origin. Each test calls `assertClean()` at its end.
 import { chromium } from 'playwright-core';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { serve } from '../../scripts/serve.mjs';
 
@@ -20,10 +22,25 @@ export const LAUNCH_ARGS = [
   '--disable-sync',
   '--disable-quic',
 ];
+/** How the tests launch Chromium (`tests/run.mjs` launches the shared one so too). */
+export const LAUNCH = { executablePath: CHROMIUM, args: LAUNCH_ARGS, headless: true };
 
+/**
+ * The browser and the served dist/ of a test. Under `tests/run.mjs` every test file connects to
+ * the one Chromium and the one server it started (FIVEAXIS_E2E_BROWSER, FIVEAXIS_E2E_URL);
+ * alone (`node --test tests/e2e/x.test.mjs`, `npm run bench`) it launches its own. `close()`
+ * closes what the test opened: the contexts it made (and its own browser and server, if any).
+ */
 export async function startBrowser() {
+  const ws = process.env.FIVEAXIS_E2E_BROWSER;
+  const shared = process.env.FIVEAXIS_E2E_URL;
+  if (ws && shared) {
+    // A connection of its own: closing it closes the contexts made through it, and only those.
+    const browser = await chromium.connect(ws);
+    return { url: shared, browser, close: () => browser.close() };
+  }
   const { server, url } = await serve(fileURLToPath(new URL('../../dist', import.meta.url)));
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: LAUNCH_ARGS, headless: true });
+  const browser = await chromium.launch(LAUNCH);
   return {
     url,
     browser,
@@ -33,6 +50,22 @@ export async function startBrowser() {
     },
   };
 }
+
+/**
+ * The file of a finished download, copied to a folder of this process that is removed when it
+ * exits (`download.path()` is not available from a browser connected to, as the shared one is).
+ */
+export async function downloaded(download) {
+  if (!downloads) {
+    downloads = mkdtempSync(join(tmpdir(), 'fiveaxis-downloads-'));
+    process.on('exit', () => rmSync(downloads, { recursive: true, force: true }));
+  }
+  const path = join(downloads, `${++downloadCount}-${download.suggestedFilename()}`);
+  await download.saveAs(path);
+  return path;
+}
+let downloads = '';
+let downloadCount = 0;
 
 /** A page with guards: console errors, page errors and foreign requests are recorded. */
 export async function guardedPage(context, origin) {
@@ -81,8 +114,9 @@ export async function waitPlotted(page, id, count = 0) {
 }
 
 /**
- * Runs `fn({ page, assertClean, problems, context, url, browser })` on a fresh guarded page of a
- * fresh browser (the served dist/), and closes everything afterwards. `assertClean()` is called
+ * Runs `fn({ page, assertClean, problems, context, url, browser })` on a fresh guarded page in a
+ * fresh browser context (nothing stored or cached shared with another test) of the browser of
+ * `startBrowser()`, on the served dist/, and closes what it opened afterwards. `assertClean()` is called
  * at the end: any console error, page error or foreign request fails the test.
  */
 export async function withPage(contextOptions, fn) {

@@ -7,9 +7,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
 import { serve } from '../../scripts/serve.mjs';
-import { ARTIFACTS, LAUNCH_ARGS, guardedPage, waitIdle, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, guardedPage, startBrowser, waitIdle, waitPlotted } from './harness.mjs';
 import { LATENCY_MS, MBIT, link, watchFirstResult } from './link.mjs';
 
 const BUDGET_BYTES = 1.5e6;
@@ -24,9 +23,10 @@ test('first visit: ≤ 1.5 MB over the wire at 10 Mbit/s and 40 ms; the engine f
     res.on('finish', () => requests.push(`${res.statusCode} ${req.url} (asked at ${start.toFixed(0)} ms, ${res.getHeader('content-length') ?? 0} bytes)`));
   });
   const { proxy, stats, url } = await link(server.address().port);
-  const browser = await chromium.launch({ executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', args: LAUNCH_ARGS, headless: true });
+  // The shared browser (or one of its own), in a fresh context: nothing cached, nothing stored.
+  const b = await startBrowser();
   try {
-    const context = await browser.newContext({ viewport: { width: 1366, height: 900 } });
+    const context = await b.browser.newContext({ viewport: { width: 1366, height: 900 } });
     const { page, assertClean } = await guardedPage(context, url);
     // Bytes as the page's own DevTools see them (not the workers' or the service worker's).
     const cdp = await context.newCDPSession(page);
@@ -74,7 +74,7 @@ test('first visit: ≤ 1.5 MB over the wire at 10 Mbit/s and 40 ms; the engine f
     assert.ok(firstResult > 0);
     assertClean();
   } finally {
-    await browser.close();
+    await b.close();
     await new Promise((r) => proxy.close(r));
     await new Promise((r) => server.close(r));
   }

@@ -8,7 +8,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, optionValue, traceY, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, downloaded, optionValue, traceY, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -53,7 +53,7 @@ test('Rotary-axis reversal panel: trace, dent, directions, fit of the sample tra
     // magnified radius; the engine's numbers.
     const csvButton = await page.$('#rv-polar ~ .plot-tools button[data-export=csv]');
     const [dl] = await Promise.all([page.waitForEvent('download'), csvButton.click()]);
-    const [header, ...csvLines] = readFileSync(await dl.path(), 'utf8').trim().split('\n');
+    const [header, ...csvLines] = readFileSync(await downloaded(dl), 'utf8').trim().split('\n');
     assert.equal(header, 'trace angle θ (°),nominal circle [radial deviation (µm)],without friction [radial deviation (µm)],with friction (eq 2) [radial deviation (µm)]');
     assert.equal(csvLines.length, r25.theta.length);
     const k0 = r25.reversalIndex;

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitIdle, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, downloaded, guardedPage, optionValue, startBrowser, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -289,7 +289,7 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
     await settle(page, ['nl-curve', 'nl-sweep-k']);
     const csvButton = page.locator('#nl-curve ~ .plot-tools button[data-export=csv]');
     const [csv] = await Promise.all([page.waitForEvent('download'), csvButton.click()]);
-    const text = readFileSync(await csv.path(), 'utf8');
+    const text = readFileSync(await downloaded(csv), 'utf8');
     const [header, ...lines] = text.trim().split('\n');
     // Long form: trace, x, the value and its quantity with the unit (each trace its own axis).
     assert.equal(header, 'trace,interpolation parameter u,value,quantity (unit)');
@@ -304,7 +304,7 @@ test('export: CSV and PNG of a plot, numbers as the engine gives them', async ()
       assert.ok(Math.abs(Number(u) - r.u[i]) < 1e-12 && Math.abs(Number(d) - r.delta[i]) < 1e-12, `row ${i}: ${row}`);
     });
     const [png] = await Promise.all([page.waitForEvent('download'), page.locator('#nl-curve ~ .plot-tools button[data-export=png]').click()]);
-    const bytes = readFileSync(await png.path());
+    const bytes = readFileSync(await downloaded(png));
     assert.deepEqual([...bytes.subarray(0, 8)], [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a], 'a PNG file');
     assert.ok(bytes.length > 10_000);
   });
@@ -320,7 +320,7 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     await page.waitForFunction(() => document.getElementById('m-errors-E_X0B')?.value === '-0.0146');
     await settle(page, ['cb-zones', 'cb-map', 'cb-sens']);
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-zones ~ .plot-tools button[data-export=csv]').click()]);
-    const lines = readFileSync(await csv.path(), 'utf8').trim().split('\n');
+    const lines = readFileSync(await downloaded(csv), 'utf8').trim().split('\n');
     assert.match(lines[0], /^# .*rows: Y \(mm\); columns: X \(mm\)/);
     const xs = lines[1].split(',').slice(1).map(Number);
     const grid = lines.slice(2).map((l) => l.split(',').map(Number));
@@ -342,7 +342,7 @@ test('export: a heat map as CSV (the cubic 3 × 3 map), heights as the engine gi
     // The sensitivity bars: positions on the first y axis (mm/mm), angles on the second (mm/°).
     // Each column's unit is its own axis's, and each value is the engine's k = ∂height/∂error.
     const [sens] = await Promise.all([page.waitForEvent('download'), page.locator('#cb-sens ~ .plot-tools button[data-export=csv]').click()]);
-    const [head, ...body] = readFileSync(await sens.path(), 'utf8').trim().split('\n');
+    const [head, ...body] = readFileSync(await downloaded(sens), 'utf8').trim().split('\n');
     /** One CSV line's cells (RFC 4180 quoting: a quoted cell may hold commas). */
     const cellsOf = (line) => [...line.matchAll(/(?:^|,)(?:"((?:[^"]|"")*)"|([^,]*))/g)].map((m) => m[1]?.replace(/""/g, '"') ?? m[2]);
     const columns = cellsOf(head);

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, traceY, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, downloaded, traceY, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -62,7 +62,7 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     assert.ok(added > 0);
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#tp-export')]);
     assert.equal(dl.suggestedFilename(), 'dome-past-the-pole-refined-CBZ.csv');
-    const text = readFileSync(await dl.path(), 'utf8');
+    const text = readFileSync(await downloaded(dl), 'utf8');
     const back = fa.toolpathParse(text, { format: 'auto' });
     assert.equal(back.format, 'csv');
     assert.equal(back.count, 81 + added);

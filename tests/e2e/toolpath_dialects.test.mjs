@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, withPage, waitIdle, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, downloaded, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -109,7 +109,7 @@ test('toolpath panel: a Heidenhain program and an inch CLSF, read and ranked as 
     // Its CSV: every value with its quantity and unit, in µm as drawn (the rapids' axis shows mm
     // ticks: 18 mm), equal to the engine's δ.
     const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#tp-delta ~ .plot-tools button[data-export=csv]').click()]);
-    const rows = readFileSync(await csv.path(), 'utf8').trim().split('\n').map((l) => l.split(/,(?=(?:[^"]*"[^"]*")*[^"]*$)/));
+    const rows = readFileSync(await downloaded(csv), 'utf8').trim().split('\n').map((l) => l.split(/,(?=(?:[^"]*"[^"]*")*[^"]*$)/));
     assert.deepEqual(rows[0], ['trace', 'segment (from point n to n + 1)', 'value', 'quantity (unit)']);
     const values = (name) => rows.filter((r) => r[0].replace(/"/g, '') === name).map((r) => [Number(r[1]) - 1, Number(r[2]), r[3].replace(/"/g, '')]);
     const cutting = values('δ, cutting');

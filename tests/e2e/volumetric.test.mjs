@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
-import { ARTIFACTS, guardedPage, optionValue, startBrowser, waitPlotted } from './harness.mjs';
+import { ARTIFACTS, downloaded, guardedPage, optionValue, startBrowser, waitPlotted } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 const SAMPLE = new URL('../../public/samples/x-positioning.csv', import.meta.url);
@@ -68,7 +68,7 @@ test('volumetric panel: a measured table changes the map, heads the budget, is e
     // The export: a header with units and one row per point of the 41 × 41 map.
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#vm-export')]);
     assert.equal(dl.suggestedFilename(), 'volumetric-map.csv');
-    const lines = readFileSync(await dl.path(), 'utf8').trim().split('\n').filter((l) => !l.startsWith('#'));
+    const lines = readFileSync(await downloaded(dl), 'utf8').trim().split('\n').filter((l) => !l.startsWith('#'));
     assert.equal(lines[0], 'u: X (mm),v: Y (mm),X (mm),Y (mm),Z (mm),dx (µm),dy (µm),dz (µm),|Δ| (µm),tilt (°)');
     assert.equal(lines.length - 1, 41 * 41);
     const norms = lines.slice(1).map((l) => Number(l.split(',')[8]));
