@@ -4,13 +4,11 @@
 //! maxima also `"evaluations"`: orientation evaluations per move (native only, from
 //! `Deviation::peak_counted`).
 
-use fiveaxis::cubic::design::{self as cubic_design, CubicDesignInput};
-use fiveaxis::cubic::identify::{identify_zones, CubicIdentifyInput};
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::sshape::overcut::ToolPath;
-use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput, SShapeIdentifyInput};
+use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
 use fiveaxis::volumetric;
 use serde_json::{json, Value};
 use std::time::Instant;
@@ -176,6 +174,15 @@ fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -
         sum = check(&r);
     }
     (best, sum)
+}
+
+/// The number at `pointer` of an export's result (NaN when the export failed or has none).
+fn number(r: &fiveaxis::Result<Value>, pointer: &str) -> f64 {
+    r.as_ref()
+        .ok()
+        .and_then(|v| v.pointer(pointer))
+        .and_then(Value::as_f64)
+        .unwrap_or(f64::NAN)
 }
 
 fn report(name: &str, (ms, check): (f64, f64)) {
@@ -417,7 +424,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "E_C0Y", "E_A0Z", "E_B0Z", "E_A0C", "E_B0C", "E_X0B", "E_A0B", "E_C0B",
     ];
     // As the page does: the defects first (the design built and cached), then each
-    // identification reads the same JSON as `sshapeIdentify` and calls its engine entry point.
+    // identification is the declared export `sshapeIdentify` on the same JSON as
+    // scripts/bench.mjs, result written out (`api::call`: what the wasm export does, natively).
     SShapeCase::read_with::<SShapeDefectsInput>(&json!({ "machine": machine_at(0) }))
         .and_then(|(c, _)| study::Design::cached(&c))?;
     let ident = json!({ "machine": machine_at(0), "csv": csv, "parameters": paper });
@@ -426,14 +434,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         time(
             3,
             || {
-                let mut fit = None;
+                let mut r = Value::Null;
                 for _ in 0..100 {
-                    let (c, i) = SShapeCase::read_with::<SShapeIdentifyInput>(&ident)?;
-                    fit = Some(study::identify_case(&c, &i)?.1.fit);
+                    r = fiveaxis::api::call("sshapeIdentify", &ident)?;
                 }
-                fit.ok_or_else(|| fiveaxis::Error::field("bench", "no run"))
+                Ok::<_, fiveaxis::Error>(r)
             },
-            |f| f.as_ref().map_or(f64::NAN, |f| f.rms),
+            |r| number(r, "/rms"),
         ),
     );
     // The reversal test (Nishiguchi et al.): the default case, F = 1000 mm/min (19 s of motion,
@@ -465,21 +472,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     ))?)?["presets"][0]["machine"]
         .clone();
     let design_input = serde_json::json!({ "machine": li, "secondSetup": 100 });
+    // The declared exports `cubicDesign` and `cubicIdentify`, as the wasm side calls them.
     report(
         "cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)",
         time(
             3,
-            || {
-                let (i, o) = CubicInput::read_with::<CubicDesignInput>(&design_input)?;
-                cubic_design::design(&i, &o)
-            },
-            |d| d.as_ref().map_or(f64::NAN, |d| d.designed.smallest),
+            || fiveaxis::api::call("cubicDesign", &design_input),
+            |d| number(d, "/designed/smallest"),
         ),
     );
-    let (i, o) = CubicInput::read_with::<CubicDesignInput>(&design_input)?;
-    let filled = cubic_design::design(&i, &o)?
-        .designed
-        .csv
+    let designed = fiveaxis::api::call("cubicDesign", &design_input)?;
+    let filled = designed
+        .pointer("/designed/csv")
+        .and_then(Value::as_str)
+        .ok_or("cubicDesign: no designed.csv")?
         .replace(",,,\n", ",1,0.00001,-0.00001\n");
     let ident_input =
         serde_json::json!({ "machine": li, "csv": filled, "decision": { "noise": 0.001 } });
@@ -488,14 +494,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         time(
             3,
             || {
-                let mut r = None;
+                let mut r = Value::Null;
                 for _ in 0..100 {
-                    let (i, o) = CubicInput::read_with::<CubicIdentifyInput>(&ident_input)?;
-                    r = Some(identify_zones(&i, &o)?);
+                    r = fiveaxis::api::call("cubicIdentify", &ident_input)?;
                 }
-                r.ok_or_else(|| fiveaxis::Error::field("bench", "no run"))
+                Ok::<_, fiveaxis::Error>(r)
             },
-            |r| r.as_ref().map_or(f64::NAN, |r| r.judgement.fit.rms),
+            |r| number(r, "/rms"),
         ),
     );
     Ok(())
