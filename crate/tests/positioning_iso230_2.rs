@@ -81,6 +81,12 @@ fn worked_example_every_intermediate_by_hand() {
     close(t1.s_up, s2 * um, tol, "s↑_2");
     close(t1.s_down, 0.0, tol, "s↓_2");
     close(t1.r, 4.0 * s2 * um, tol, "R_2");
+    // The bands x̄ ± 2s the accuracy spans (the plot's): target 0 up 3 ± 2·1.58114, target 100
+    // down 4 ± 0.
+    close(t0.band_up[0], (3.0 - 2.0 * s1) * um, tol, "x̄↑_1 − 2s↑_1");
+    close(t0.band_up[1], (3.0 + 2.0 * s1) * um, tol, "x̄↑_1 + 2s↑_1");
+    close(t1.band_down[0], 4.0 * um, tol, "x̄↓_2 − 2s↓_2");
+    close(t1.band_down[1], 4.0 * um, tol, "x̄↓_2 + 2s↓_2");
     close(p.b, 2.0 * um, tol, "B");
     close(p.b_mean, 2.0 * um, tol, "B̄");
     close(p.r_up, 4.0 * s1 * um, tol, "R↑");

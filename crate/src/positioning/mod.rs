@@ -54,27 +54,27 @@ crate::inputs! {
     pub struct PositioningTolerances {
         /// Bidirectional accuracy A.
         pub a: f64 = "a" optional {
-            label: "Accuracy A", help: "Bidirectional accuracy of the axis (ISO 230-2); 0: not judged.",
+            label: "Tolerance of A (accuracy)", help: "Bidirectional accuracy of the axis (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional systematic positional deviation E.
         pub e: f64 = "e" optional {
-            label: "Systematic deviation E", help: "Bidirectional systematic positional deviation (ISO 230-2); 0: not judged.",
+            label: "Tolerance of E (systematic deviation)", help: "Bidirectional systematic positional deviation (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional repeatability R.
         pub r: f64 = "r" optional {
-            label: "Repeatability R", help: "Bidirectional repeatability of positioning (ISO 230-2); 0: not judged.",
+            label: "Tolerance of R (repeatability)", help: "Bidirectional repeatability of positioning (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Reversal value B.
         pub b: f64 = "b" optional {
-            label: "Reversal B", help: "Reversal value of the axis, the largest |B_i| (ISO 230-2); 0: not judged.",
+            label: "Tolerance of B (reversal)", help: "Reversal value of the axis, the largest |B_i| (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Mean bidirectional positional deviation M.
         pub m: f64 = "m" optional {
-            label: "Mean deviation M", help: "Range of the mean bidirectional positional deviation (ISO 230-2); 0: not judged.",
+            label: "Tolerance of M (mean deviation)", help: "Range of the mean bidirectional positional deviation (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
     }
@@ -86,27 +86,27 @@ crate::inputs! {
     pub struct RotaryTolerances {
         /// Bidirectional accuracy A.
         pub a: f64 = "a" optional {
-            label: "Accuracy A", help: "Bidirectional accuracy of the rotary axis (ISO 230-2); 0: not judged.",
+            label: "Tolerance of A (accuracy)", help: "Bidirectional accuracy of the rotary axis (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional systematic positional deviation E.
         pub e: f64 = "e" optional {
-            label: "Systematic deviation E", help: "Bidirectional systematic positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
+            label: "Tolerance of E (systematic deviation)", help: "Bidirectional systematic positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional repeatability R.
         pub r: f64 = "r" optional {
-            label: "Repeatability R", help: "Bidirectional repeatability of positioning of the rotary axis (ISO 230-2); 0: not judged.",
+            label: "Tolerance of R (repeatability)", help: "Bidirectional repeatability of positioning of the rotary axis (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
         },
         /// Reversal value B.
         pub b: f64 = "b" optional {
-            label: "Reversal B", help: "Reversal value of the rotary axis, the largest |B_i| (ISO 230-2); 0: not judged.",
+            label: "Tolerance of B (reversal)", help: "Reversal value of the rotary axis, the largest |B_i| (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
         },
         /// Mean bidirectional positional deviation M.
         pub m: f64 = "m" optional {
-            label: "Mean deviation M", help: "Range of the mean bidirectional positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
+            label: "Tolerance of M (mean deviation)", help: "Range of the mean bidirectional positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
             kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
         },
     }
@@ -250,6 +250,10 @@ pub struct TargetResult {
     pub r: f64,
     /// `B_i = x̄_i↑ − x̄_i↓`, the reversal value there.
     pub b: f64,
+    /// `[x̄_i↑ − 2·s_i↑, x̄_i↑ + 2·s_i↑]`: the band the accuracy `A↑` spans (for the plot).
+    pub band_up: [f64; 2],
+    /// `[x̄_i↓ − 2·s_i↓, x̄_i↓ + 2·s_i↓]`.
+    pub band_down: [f64; 2],
 }
 
 /// One result of the axis against its tolerance.
@@ -366,6 +370,8 @@ pub fn evaluate_runs(runs: &Runs) -> Vec<TargetResult> {
                     .max(4.0 * s_up)
                     .max(4.0 * s_down),
                 b,
+                band_up: [mean_up - 2.0 * s_up, mean_up + 2.0 * s_up],
+                band_down: [mean_down - 2.0 * s_down, mean_down + 2.0 * s_down],
             }
         })
         .collect()
@@ -391,8 +397,8 @@ pub fn evaluate(input: &PositioningInput) -> Result<Positioning> {
     let max = |f: fn(&TargetResult) -> f64| t.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
     let min = |f: fn(&TargetResult) -> f64| t.iter().map(f).fold(f64::INFINITY, f64::min);
     let both = t.iter().flat_map(|r| [r.mean_up, r.mean_down]);
-    let a = max(|r| r.mean_up + 2.0 * r.s_up).max(max(|r| r.mean_down + 2.0 * r.s_down))
-        - min(|r| r.mean_up - 2.0 * r.s_up).min(min(|r| r.mean_down - 2.0 * r.s_down));
+    let a = max(|r| r.band_up[1]).max(max(|r| r.band_down[1]))
+        - min(|r| r.band_up[0]).min(min(|r| r.band_down[0]));
     let mut p = Positioning {
         unit: if runs.angular { "deg" } else { "mm" },
         units: runs.units.clone(),
@@ -406,8 +412,8 @@ pub fn evaluate(input: &PositioningInput) -> Result<Positioning> {
         e_down: range(t.iter().map(|r| r.mean_down)),
         e: range(both),
         m: range(t.iter().map(|r| r.mean)),
-        a_up: max(|r| r.mean_up + 2.0 * r.s_up) - min(|r| r.mean_up - 2.0 * r.s_up),
-        a_down: max(|r| r.mean_down + 2.0 * r.s_down) - min(|r| r.mean_down - 2.0 * r.s_down),
+        a_up: max(|r| r.band_up[1]) - min(|r| r.band_up[0]),
+        a_down: max(|r| r.band_down[1]) - min(|r| r.band_down[0]),
         a,
         checks: Vec::new(),
         motion: PositioningMotion {
