@@ -3,8 +3,8 @@
 // shown is checked against ISO 230-2's definitions computed here by hand; tolerances give the
 // verdict; "Use as error motion" puts the mean bidirectional deviation into the machine as E_XX
 // (a table) and the volumetric map changes to what that table gives; a file with a missing
-// column names its line at the field and greys the last result; screenshots at 1366 × 768 and
-// 390 × 844.
+// column names its line at the field and greys the last result; the same runs as a rotary axis
+// in arc-seconds; screenshots at 1366 × 768 and 390 × 844.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -193,6 +193,27 @@ test('Laser positioning panel: values by hand, verdict, Use as error motion chan
     assert.deepEqual(await page.$eval('#ps-runs', (gd) => gd.data.map((t) => Array.from(t.y))), before, 'the last good plot kept');
     await waitIdle(page);
     await page.screenshot({ path: `${ARTIFACTS}positioning-bad.png`, fullPage: true });
+
+    // A rotary axis: the same runs as C, targets in degrees and deviations in arc-seconds, shown
+    // in ″ (the small-angle unit chosen); its tolerances are angles.
+    await page.selectOption('#units-angle', 'arcsec');
+    await page.selectOption('#ps-axis', 'C');
+    assert.ok(await page.isVisible('#ps-rotaryTolerance-a') && !(await page.isVisible('#ps-tolerance-a')), 'the rotary axis’s tolerance of A shown, the linear one hidden');
+    const rotary = FILE.replace('target (mm)', 'target (deg)').replace('deviation (µm)', 'deviation (arcsec)');
+    await drop(page, '#panel-positioning form.inputs', 'c-hand.csv', rotary);
+    await page.waitForFunction(() => /^c-hand\.csv: axis C, 3 targets from -250 to 250 °/.test(document.getElementById('ps-sum-came')?.textContent ?? ''));
+    const rotaryRows = await page.$$eval('#ps-targets-table tbody tr', (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
+    rotaryRows.forEach((cells, i) => close4(number(cells[7]), hand.targets[i].m, `C: x̄_i at ${hand.targets[i].target}° (″)`));
+    assert.match(await page.textContent('#ps-targets-table thead'), /x̄↑ \(″\)/);
+    const drawn = await waitPlotted(page, 'ps-runs');
+    await page.fill('#ps-rotaryTolerance-a', '9');
+    await page.waitForFunction(() => document.getElementById('ps-verdict')?.dataset.verdict === 'pass');
+    await waitPlotted(page, 'ps-runs', drawn);
+    assert.equal(await page.getAttribute('#ps-verdict', 'data-quantity'), 'errAngle');
+    assert.equal(Number(await page.getAttribute('#ps-verdict', 'data-tolerance')), 9 / 3600);
+    assert.match(await page.textContent('#ps-verdict-sentence'), /Axis C passes ISO 230-2’s checks entered: A 8\.49″ ≤ 9″/);
+    assert.equal(await page.$eval('#ps-runs', (gd) => gd.layout.yaxis.title.text), 'positional deviation x (″)');
+    assert.equal(await page.$eval('#ps-runs', (gd) => gd.layout.xaxis.title.text), 'target C (°)');
   });
 });
 
