@@ -312,11 +312,25 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     judgeNow();
   };
 
+  /** The table entered last (its name and values): its message goes once the machine no longer
+   *  holds it (cleared or replaced on the Volumetric tab, another machine loaded). */
+  let entered: { name: string; value: string } | null = null;
+  const checkEntered = () => {
+    if (!entered) return;
+    const fn = machine.motionFunction(entered.name);
+    if (!fn || 'poly' in fn || JSON.stringify(fn.value) !== entered.value) {
+      entered = null;
+      motionMsg.textContent = '';
+    }
+  };
+  machine.onChange(checkEntered);
+
   useButton.addEventListener('click', () => {
     if (!last || !fresh) return;
     const { r, file } = last;
     const m = r.motion;
     machine.setMotion(m.name, { position: [...m.position], value: [...m.value], file, units: [r.units[0], r.units[1]] });
+    entered = { name: m.name, value: JSON.stringify([...m.value]) };
     const axisLetter = m.name.slice(-1);
     const ctx = machine.context();
     const onMachine = !ROTARY.includes(axisLetter) || axisLetter === ctx.k || axisLetter === ctx.m;
