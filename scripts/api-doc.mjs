@@ -138,6 +138,8 @@ const GROUPS = [
   ['Cubic-machining test', /^cubic/],
   ['S-shape test piece', /^sshape/],
   ['Rotary-axis reversal', /^reversal/],
+  ['Ball-bar circular test (ISO 230-4)', /^ballbar/],
+  ['Laser positioning (ISO 230-2)', /^positioning/],
   ['Other', /./],
 ];
 const SKIP = new Set(['initSync', '__wbg_init']);

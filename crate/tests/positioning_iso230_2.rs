@@ -81,6 +81,12 @@ fn worked_example_every_intermediate_by_hand() {
     close(t1.s_up, s2 * um, tol, "s↑_2");
     close(t1.s_down, 0.0, tol, "s↓_2");
     close(t1.r, 4.0 * s2 * um, tol, "R_2");
+    // The bands x̄ ± 2s the accuracy spans (the plot's): target 0 up 3 ± 2·1.58114, target 100
+    // down 4 ± 0.
+    close(t0.band_up[0], (3.0 - 2.0 * s1) * um, tol, "x̄↑_1 − 2s↑_1");
+    close(t0.band_up[1], (3.0 + 2.0 * s1) * um, tol, "x̄↑_1 + 2s↑_1");
+    close(t1.band_down[0], 4.0 * um, tol, "x̄↓_2 − 2s↓_2");
+    close(t1.band_down[1], 4.0 * um, tol, "x̄↓_2 + 2s↓_2");
     close(p.b, 2.0 * um, tol, "B");
     close(p.b_mean, 2.0 * um, tol, "B̄");
     close(p.r_up, 4.0 * s1 * um, tol, "R↑");
@@ -223,4 +229,54 @@ fn tolerances_judge_at_or_under() {
     let below = f64::from_bits(p.e.to_bits() - 1);
     assert!(!judged(json!({ "e": below }))[0].pass);
     assert_eq!(judged(json!({})).len(), 0);
+}
+
+/// A rotary axis is judged against `rotaryTolerance`, given in degrees at the edge: the worked
+/// example in arc seconds has E = 5″ = 5/3600°, so 5″ passes and 4.99″ fails; a linear axis's
+/// `tolerance` (mm) is refused for it, naming the field and where to put it, and the reverse.
+#[test]
+fn rotary_tolerances_in_degrees_and_the_wrong_set_refused() {
+    let csv = WORKED
+        .replace("target (mm)", "target (deg)")
+        .replace("deviation (µm)", "deviation (arcsec)");
+    let judged = |e_arcsec: f64| {
+        let i = PositioningInput::read(
+            &json!({ "csv": csv, "axis": "C", "rotaryTolerance": { "e": e_arcsec / 3600.0 } }),
+        )
+        .unwrap();
+        evaluate(&i).unwrap().checks
+    };
+    let c = judged(5.0);
+    assert_eq!(c.len(), 1);
+    assert_eq!(c[0].name, "E");
+    close(
+        c[0].tolerance,
+        5.0 / 3600.0,
+        1e-15,
+        "E's tolerance, degrees",
+    );
+    assert!(c[0].pass);
+    assert!(!judged(4.99)[0].pass);
+    let e =
+        PositioningInput::read(&json!({ "csv": csv, "axis": "C", "tolerance": { "r": 0.004 } }))
+            .unwrap_err()
+            .to_string();
+    assert!(
+        e.starts_with("tolerance.r: C is a rotary axis: give its tolerances under rotaryTolerance"),
+        "{e}"
+    );
+    let e = PositioningInput::read(
+        &json!({ "csv": WORKED, "axis": "Y", "rotaryTolerance": { "a": 0.001 } }),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("rotaryTolerance.a: Y is a linear axis: give its tolerances under tolerance"),
+        "{e}"
+    );
+    // The axis is one of six.
+    let e = PositioningInput::read(&json!({ "csv": WORKED, "axis": "Q" }))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("axis: expected one of"), "{e}");
 }

@@ -16,9 +16,9 @@ fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', im
 /** Field ids the schema marks optional (empty: the engine's default or the machine's value). */
 const OPTIONAL = (() => {
   const schema = fa.schema();
-  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', machineSchematic: 'md' };
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', ballbar: 'bb', positioning: 'ps', machineSchematic: 'md' };
   const out = new Set(schema.machine.filter((f) => f.optional).map((f) => `m-${f.path.slice('machine.'.length).replace(/\./g, '-')}`));
-  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, machineSchematic: /^machineSchematic$/ };
+  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, ballbar: /^ballbar/, positioning: /^positioning/, machineSchematic: /^machineSchematic$/ };
   for (const [name, fields] of Object.entries(schema.exports)) {
     for (const [panel, re] of Object.entries(owner)) {
       if (!re.test(name)) continue;
@@ -26,6 +26,17 @@ const OPTIONAL = (() => {
     }
   }
   return out;
+})();
+
+/** Panels whose results do not depend on the machine (their exports take no `machine`): a bad
+ *  machine leaves their plots as they are, current. */
+const MACHINE_FREE = (() => {
+  const exports = fa.schema().exports;
+  const panels = { ballbar: ['ballbarEvaluate'], positioning: ['positioningEvaluate'] };
+  for (const [panel, names] of Object.entries(panels)) {
+    for (const n of names) assert.ok(exports[n] && !exports[n].some((f) => f.path.startsWith('machine')), `${panel}: ${n} takes no machine`);
+  }
+  return new Set(Object.keys(panels));
 })();
 
 /** How often each plot (of a panel, or all on the page) has been drawn. */
@@ -125,8 +136,11 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     for (const id of machineIds) await page.fill(`#${id}`, 'x');
     assert.equal((await waitIdle(page)).calls, calls, 'no engine call for a bad machine');
     assert.equal(await drawCounts(page), before, 'no plot was redrawn from a bad machine');
-    const drawn = await page.$$eval('.panel .plot', (gs) => gs.filter((g) => g.classList.contains('js-plotly-plot')).map((g) => [g.id, !!g.closest('.plot-wrap')?.classList.contains('stale')]));
-    for (const [id, greyed] of drawn) assert.ok(greyed, `${id} greyed while the machine is invalid`);
+    const drawn = await page.$$eval('.panel .plot', (gs) => gs.filter((g) => g.classList.contains('js-plotly-plot')).map((g) => [g.id, !!g.closest('.plot-wrap')?.classList.contains('stale'), g.closest('.panel').id.slice('panel-'.length)]));
+    for (const [id, greyed, panel] of drawn) {
+      if (MACHINE_FREE.has(panel)) assert.ok(!greyed, `${id} (${panel}) does not depend on the machine: not greyed`);
+      else assert.ok(greyed, `${id} greyed while the machine is invalid`);
+    }
     for (const [i, id] of machineIds.entries()) await page.fill(`#${id}`, originals[i]);
     await page.waitForFunction(() => [...document.querySelectorAll('.panel .plot-wrap')].every((w) => !w.classList.contains('stale') || !w.querySelector('.js-plotly-plot')));
     // Each panel's own fields.

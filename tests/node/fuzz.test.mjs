@@ -313,7 +313,7 @@ export const SPECS = {
   probeSimulate: { args: [{ machine, sphere, k: (r) => Array.from({ length: small(1, 6)(r) }, () => angle(r)), m: (r) => Array.from({ length: small(1, 6)(r) }, () => (r() - 0.5) * 120) }], weight: 0.2 },
   probeReadCsv: { args: [{ machine, csv: probeCsv }], weight: 0.2 },
   probeIdentify: { args: [{ machine, sphere, csv: probeCsv }], weight: 0.05 },
-  positioningEvaluate: { args: [{ csv: positioningCsv, axis: maybe(pick(['X', 'C', 'Q'])), tolerance: maybe((r) => build({ a: maybe((q) => q() * 0.01), e: maybe((q) => q() * 0.01), r: maybe((q) => q() * 0.01) }, r)) }] },
+  positioningEvaluate: { args: [{ csv: positioningCsv, axis: maybe(pick(['X', 'C', 'Q'])), tolerance: maybe((r) => build({ a: maybe((q) => q() * 0.01), e: maybe((q) => q() * 0.01), r: maybe((q) => q() * 0.01) }, r)), rotaryTolerance: maybe((r) => build({ a: maybe((q) => q() * 0.003), b: maybe((q) => q() * 0.003), m: maybe((q) => q() * 0.003) }, r)) }] },
   reversalSimulate: { args: [{ ...reversalCase, checkStep: maybe((r) => r() < 0.3) }] , weight: 0.1 },
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
   reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] , weight: 0.1 },

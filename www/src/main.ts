@@ -8,6 +8,9 @@ import { sshapePanel } from './panels/sshape';
 import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
+// ball-bar and laser
+import { ballbarPanel } from './panels/ballbar';
+import { positioningPanel } from './panels/positioning';
 import { el } from './ui/fields';
 import { encodingNote, FileRefused, readTextFile } from './ui/files';
 import { keepOnScreen } from './ui/popup';
@@ -21,7 +24,11 @@ import { printReport, setupPrint } from './ui/print';
 import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
+const panels: Panel[] = [
+  nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel,
+  // ball-bar and laser
+  ballbarPanel, positioningPanel,
+];
 let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();

@@ -27,7 +27,9 @@
 //! # Units
 //! A linear axis in mm, a rotary axis in degrees (at the edge and here: this study does not enter
 //! the chain, so its values stay in the units they cross in). The file's header gives the units
-//! (µm, arcsec, … are converted).
+//! (µm, arcsec, … are converted). Tolerances: `tolerance` (mm) for a linear axis,
+//! `rotaryTolerance` (degrees at the edge, radians inside, compared in degrees) for a rotary one;
+//! a tolerance of the other kind of axis is refused, naming it.
 //!
 //! # Into the machine
 //! The mean bidirectional deviation `x̄_i` over the targets is the axis's positioning error
@@ -48,36 +50,101 @@ use crate::{Error, Result};
 use serde::Serialize;
 
 crate::inputs! {
-    /// Tolerances of the axis's results, in its unit (mm for a linear axis, degrees for a
-    /// rotary one); 0 leaves a result unjudged.
+    /// Tolerances of a linear axis's results, mm; 0 leaves a result unjudged.
     pub struct PositioningTolerances {
         /// Bidirectional accuracy A.
         pub a: f64 = "a" optional {
-            label: "Accuracy A", help: "Bidirectional accuracy of the axis; 0: not judged.",
-            kind: schema::number(Quantity::Number, 0.0, 1e3), default: DefaultValue::Num(0.0),
+            label: "Tolerance of A (accuracy)", help: "Bidirectional accuracy of the axis (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional systematic positional deviation E.
         pub e: f64 = "e" optional {
-            label: "Systematic deviation E", help: "Bidirectional systematic positional deviation; 0: not judged.",
-            kind: schema::number(Quantity::Number, 0.0, 1e3), default: DefaultValue::Num(0.0),
+            label: "Tolerance of E (systematic deviation)", help: "Bidirectional systematic positional deviation (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Bidirectional repeatability R.
         pub r: f64 = "r" optional {
-            label: "Repeatability R", help: "Bidirectional repeatability of positioning; 0: not judged.",
-            kind: schema::number(Quantity::Number, 0.0, 1e3), default: DefaultValue::Num(0.0),
+            label: "Tolerance of R (repeatability)", help: "Bidirectional repeatability of positioning (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Reversal value B.
         pub b: f64 = "b" optional {
-            label: "Reversal B", help: "Reversal value of the axis (largest |B_i|); 0: not judged.",
-            kind: schema::number(Quantity::Number, 0.0, 1e3), default: DefaultValue::Num(0.0),
+            label: "Tolerance of B (reversal)", help: "Reversal value of the axis, the largest |B_i| (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
         /// Mean bidirectional positional deviation M.
         pub m: f64 = "m" optional {
-            label: "Mean deviation M", help: "Range of the mean bidirectional positional deviation; 0: not judged.",
-            kind: schema::number(Quantity::Number, 0.0, 1e3), default: DefaultValue::Num(0.0),
+            label: "Tolerance of M (mean deviation)", help: "Range of the mean bidirectional positional deviation (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallLength, 0.0, 10.0), default: DefaultValue::Num(0.0),
         },
     }
 }
+
+crate::inputs! {
+    /// Tolerances of a rotary axis's results, degrees at the edge (radians inside); 0 leaves a
+    /// result unjudged.
+    pub struct RotaryTolerances {
+        /// Bidirectional accuracy A.
+        pub a: f64 = "a" optional {
+            label: "Tolerance of A (accuracy)", help: "Bidirectional accuracy of the rotary axis (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
+        },
+        /// Bidirectional systematic positional deviation E.
+        pub e: f64 = "e" optional {
+            label: "Tolerance of E (systematic deviation)", help: "Bidirectional systematic positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
+        },
+        /// Bidirectional repeatability R.
+        pub r: f64 = "r" optional {
+            label: "Tolerance of R (repeatability)", help: "Bidirectional repeatability of positioning of the rotary axis (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
+        },
+        /// Reversal value B.
+        pub b: f64 = "b" optional {
+            label: "Tolerance of B (reversal)", help: "Reversal value of the rotary axis, the largest |B_i| (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
+        },
+        /// Mean bidirectional positional deviation M.
+        pub m: f64 = "m" optional {
+            label: "Tolerance of M (mean deviation)", help: "Range of the mean bidirectional positional deviation of the rotary axis (ISO 230-2); 0: not judged.",
+            kind: schema::number(Quantity::SmallAngle, 0.0, 1.0), default: DefaultValue::Num(0.0),
+        },
+    }
+}
+
+/// The axes a positioning test may name.
+const AXES: &[schema::Choice] = &[
+    schema::Choice {
+        value: "X",
+        label: "X (linear)",
+        help: "Its mean bidirectional deviation becomes E_XX.",
+    },
+    schema::Choice {
+        value: "Y",
+        label: "Y (linear)",
+        help: "Its mean bidirectional deviation becomes E_YY.",
+    },
+    schema::Choice {
+        value: "Z",
+        label: "Z (linear)",
+        help: "Its mean bidirectional deviation becomes E_ZZ.",
+    },
+    schema::Choice {
+        value: "A",
+        label: "A (rotary)",
+        help: "Its mean bidirectional deviation becomes E_AA.",
+    },
+    schema::Choice {
+        value: "B",
+        label: "B (rotary)",
+        help: "Its mean bidirectional deviation becomes E_BB.",
+    },
+    schema::Choice {
+        value: "C",
+        label: "C (rotary)",
+        help: "Its mean bidirectional deviation becomes E_CC.",
+    },
+];
 
 crate::inputs! {
     /// A positioning test of one axis (ISO 230-2).
@@ -93,24 +160,58 @@ crate::inputs! {
         pub axis: String = "axis" optional {
             label: "Axis",
             help: "The axis the runs measured: its mean bidirectional deviation becomes its positioning error motion (E_XX for X).",
-            kind: Kind::Text { max_len: 1 },
+            kind: Kind::Choice(AXES),
             default: DefaultValue::Str("X"),
             group: "Positioning (ISO 230-2)",
         },
-        /// Tolerances of the results.
+        /// Tolerances of a linear axis's results, mm.
         pub tolerance: PositioningTolerances = "tolerance" optional {
-            label: "Tolerances",
+            label: "Tolerances (linear axis)",
             kind: Kind::Object(<PositioningTolerances as schema::Inputs>::FIELDS),
             default: DefaultValue::Empty,
-            group: "Positioning (ISO 230-2)",
+            group: "Tolerances (linear axis)",
+        },
+        /// Tolerances of a rotary axis's results, degrees.
+        pub rotary_tolerance: RotaryTolerances = "rotaryTolerance" optional {
+            label: "Tolerances (rotary axis)",
+            kind: Kind::Object(<RotaryTolerances as schema::Inputs>::FIELDS),
+            default: DefaultValue::Empty,
+            group: "Tolerances (rotary axis)",
         },
     }
 }
 
 impl Checked for PositioningTolerances {}
+impl Checked for RotaryTolerances {}
 
 impl Checked for PositioningInput {
     fn check(&self) -> Result<()> {
+        let rotary = matches!(self.axis.as_str(), "A" | "B" | "C");
+        let t = &self.tolerance;
+        let r = &self.rotary_tolerance;
+        let (given, set, other) = if rotary {
+            (
+                [t.a, t.e, t.r, t.b, t.m],
+                "tolerance",
+                "rotaryTolerance (angles)",
+            )
+        } else {
+            (
+                [r.a, r.e, r.r, r.b, r.m],
+                "rotaryTolerance",
+                "tolerance (lengths)",
+            )
+        };
+        if let Some(k) = given.iter().position(|v| *v != 0.0) {
+            return Err(Error::field(
+                format!("{set}.{}", ["a", "e", "r", "b", "m"][k]),
+                format!(
+                    "{} is a {} axis: give its tolerances under {other}",
+                    self.axis,
+                    if rotary { "rotary" } else { "linear" }
+                ),
+            ));
+        }
         if !matches!(self.axis.as_str(), "X" | "Y" | "Z" | "A" | "B" | "C") {
             return Err(Error::field(
                 "axis",
@@ -149,6 +250,10 @@ pub struct TargetResult {
     pub r: f64,
     /// `B_i = x̄_i↑ − x̄_i↓`, the reversal value there.
     pub b: f64,
+    /// `[x̄_i↑ − 2·s_i↑, x̄_i↑ + 2·s_i↑]`: the band the accuracy `A↑` spans (for the plot).
+    pub band_up: [f64; 2],
+    /// `[x̄_i↓ − 2·s_i↓, x̄_i↓ + 2·s_i↓]`.
+    pub band_down: [f64; 2],
 }
 
 /// One result of the axis against its tolerance.
@@ -265,6 +370,8 @@ pub fn evaluate_runs(runs: &Runs) -> Vec<TargetResult> {
                     .max(4.0 * s_up)
                     .max(4.0 * s_down),
                 b,
+                band_up: [mean_up - 2.0 * s_up, mean_up + 2.0 * s_up],
+                band_down: [mean_down - 2.0 * s_down, mean_down + 2.0 * s_down],
             }
         })
         .collect()
@@ -290,8 +397,8 @@ pub fn evaluate(input: &PositioningInput) -> Result<Positioning> {
     let max = |f: fn(&TargetResult) -> f64| t.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
     let min = |f: fn(&TargetResult) -> f64| t.iter().map(f).fold(f64::INFINITY, f64::min);
     let both = t.iter().flat_map(|r| [r.mean_up, r.mean_down]);
-    let a = max(|r| r.mean_up + 2.0 * r.s_up).max(max(|r| r.mean_down + 2.0 * r.s_down))
-        - min(|r| r.mean_up - 2.0 * r.s_up).min(min(|r| r.mean_down - 2.0 * r.s_down));
+    let a = max(|r| r.band_up[1]).max(max(|r| r.band_down[1]))
+        - min(|r| r.band_up[0]).min(min(|r| r.band_down[0]));
     let mut p = Positioning {
         unit: if runs.angular { "deg" } else { "mm" },
         units: runs.units.clone(),
@@ -305,8 +412,8 @@ pub fn evaluate(input: &PositioningInput) -> Result<Positioning> {
         e_down: range(t.iter().map(|r| r.mean_down)),
         e: range(both),
         m: range(t.iter().map(|r| r.mean)),
-        a_up: max(|r| r.mean_up + 2.0 * r.s_up) - min(|r| r.mean_up - 2.0 * r.s_up),
-        a_down: max(|r| r.mean_down + 2.0 * r.s_down) - min(|r| r.mean_down - 2.0 * r.s_down),
+        a_up: max(|r| r.band_up[1]) - min(|r| r.band_up[0]),
+        a_down: max(|r| r.band_down[1]) - min(|r| r.band_down[0]),
         a,
         checks: Vec::new(),
         motion: PositioningMotion {
@@ -318,14 +425,19 @@ pub fn evaluate(input: &PositioningInput) -> Result<Positioning> {
         down: runs.down,
         targets: t,
     };
-    let tol = &input.tolerance;
-    for (name, value, tolerance) in [
-        ("A", p.a, tol.a),
-        ("E", p.e, tol.e),
-        ("R", p.r, tol.r),
-        ("B", p.b, tol.b),
-        ("M", p.m, tol.m),
-    ] {
+    // A rotary axis's tolerances come in radians (the edge's conversion); its values are in
+    // degrees.
+    let tol = if rotary {
+        let r = &input.rotary_tolerance;
+        [r.a, r.e, r.r, r.b, r.m].map(f64::to_degrees)
+    } else {
+        let t = &input.tolerance;
+        [t.a, t.e, t.r, t.b, t.m]
+    };
+    for ((name, value), tolerance) in [("A", p.a), ("E", p.e), ("R", p.r), ("B", p.b), ("M", p.m)]
+        .into_iter()
+        .zip(tol)
+    {
         if tolerance > 0.0 {
             p.checks.push(PositioningCheck {
                 name,

@@ -13,7 +13,7 @@ import type { MachinePreset, MachineSection } from '../machine/section';
 import { el, fields } from '../ui/fields';
 import { encodingNote, readOrRefuse } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
-import { axis, draw, note, stale } from '../ui/plot';
+import { axis, draw, note, perDivision, stale } from '../ui/plot';
 import { presetPicker } from '../ui/presets';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
@@ -41,13 +41,6 @@ function layoutDifferences(preset: MachinePreset, m: Machine | null): string[] {
   if (!m) return [];
   const at = (o: unknown, path: string) => path.split('.').reduce<unknown>((v, k) => (v && typeof v === 'object' ? (v as Record<string, unknown>)[k] : undefined), o);
   return LAYOUT.filter((k) => (at(preset.machine, k) ?? false) !== (at(m, k) ?? false));
-}
-
-/** A "nice" scale per division (1, 2 or 5 × 10^k) that puts `span` in about three divisions. */
-function perDivision(span: number): number {
-  const raw = Math.max(span, 1e-12) / 3;
-  const p = 10 ** Math.floor(Math.log10(raw));
-  return [1, 2, 5, 10].map((m) => m * p).find((v) => v >= raw) ?? 10 * p;
 }
 
 async function mount(root: HTMLElement, machine: MachineSection) {

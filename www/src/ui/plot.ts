@@ -44,6 +44,17 @@ export function axis(title: string, extra: Partial<Layout['xaxis']> = {}): Parti
   return { title: { text: title }, zeroline: false, gridcolor: '#e6e8eb', automargin: true, ...extra };
 }
 
+/**
+ * A "nice" scale per division (1, 2 or 5 × 10^k, in the unit of `span`) that puts `span` in at
+ * most three divisions: a polar plot of a deviation magnified about a nominal circle drawn at a
+ * radius of 4 divisions (a ball-bar trace) keeps the deviation between 1 and 7 divisions.
+ */
+export function perDivision(span: number): number {
+  const raw = Math.max(span, 1e-12) / 3;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  return [1, 2, 5, 10].map((m) => m * p).find((v) => v >= raw) ?? 10 * p;
+}
+
 /** Height of Plotly's mode bar, kept clear above every title. */
 const MODEBAR = 26;
 

@@ -124,6 +124,8 @@ interface Judged {
   status: 'pass' | 'fail';
   worst: number;
   tolerance: number;
+  /** What worst and tolerance are (a small length, or a small angle for a rotary axis). */
+  quantity: 'errLength' | 'errAngle';
   what: string;
   /** The sentence naming the errors entered this study cannot see, or null. */
   unseen: string | null;
@@ -144,7 +146,8 @@ function judgedOf(study: Study): Judged | null {
     status,
     worst: Number(v.dataset.worst),
     tolerance: Number(v.dataset.tolerance),
-    what: (v.querySelector('.verdict-tolerance label')?.textContent?.trim() ?? '').replace(/^Tolerance on\s+/, '') || 'its result',
+    quantity: v.dataset.quantity === 'errAngle' ? 'errAngle' : 'errLength',
+    what: v.dataset.what ?? ((v.querySelector('.verdict-tolerance label')?.textContent?.trim() ?? '').replace(/^Tolerance on\s+/, '') || 'its result'),
     hidden: (v.dataset.unseen ?? '').split(' ').filter(Boolean),
     sees: v.dataset.sees,
     unseen: v.querySelector('.verdict-unseen')?.textContent?.trim() ?? null,
@@ -168,7 +171,7 @@ export function reportSummary(studies: Study[]): HTMLElement {
     const badge = el('span', { class: 'verdict-badge' }, j.status === 'pass' ? 'PASS' : 'FAIL');
     const cell = el('td', { class: 'report-badge' });
     cell.append(badge);
-    tr.append(el('th', { scope: 'row' }, j.study.title), el('td', {}, j.what), el('td', {}, show('errLength', j.worst)), el('td', {}, show('errLength', j.tolerance)), cell);
+    tr.append(el('th', { scope: 'row' }, j.study.title), el('td', {}, j.what), el('td', {}, show(j.quantity, j.worst)), el('td', {}, show(j.quantity, j.tolerance)), cell);
     table.tBodies[0].append(tr);
   }
   box.append(table);

@@ -48,6 +48,12 @@ export interface Judgement {
   /** The errors entered that this test cannot see (its result does not change with them): null
    *  when it sees every one entered; left out when the study does not say. */
   unseen?: Unseen | null;
+  /** What `worst` and `tolerance` are when not a small length in mm: 'errAngle' (degrees) for a
+   *  rotary axis's positioning (data-quantity, for the report). */
+  quantity?: 'errLength' | 'errAngle';
+  /** What is judged, when not what the tolerance field's label says (a study with several
+   *  tolerances names the one that decides: "Reversal B"); data-what, for the report. */
+  what?: string;
 }
 
 /** Errors entered that a study cannot see: which study, and each error with its value. */
@@ -161,6 +167,8 @@ export function verdictBox(o: VerdictOptions): Verdict {
     delete root.dataset.tolerance;
     delete root.dataset.unseen;
     delete root.dataset.sees;
+    delete root.dataset.quantity;
+    delete root.dataset.what;
     printedTolerance.textContent = '';
   };
   const none = (message: string, state: State) => {
@@ -185,8 +193,12 @@ export function verdictBox(o: VerdictOptions): Verdict {
       source.textContent = `Computed at ${time} from ${j.source ?? 'the inputs shown'}.`;
       root.dataset.worst = String(j.worst);
       root.dataset.tolerance = String(j.tolerance);
-      const label = fieldRoot.querySelector('label')?.textContent?.trim() || 'Tolerance';
-      printedTolerance.textContent = `${label}: ${showValue('errLength', j.tolerance)}`;
+      const q = j.quantity ?? 'errLength';
+      root.dataset.quantity = q;
+      if (j.what) root.dataset.what = j.what;
+      else delete root.dataset.what;
+      const label = j.what ?? (fieldRoot.querySelector('label')?.textContent?.trim() || 'Tolerance');
+      printedTolerance.textContent = `${label}: ${showValue(q, j.tolerance)}`;
       notes.replaceChildren(...(j.notes ?? []).map((n) => el('li', {}, n)));
       if (j.unseen === undefined) delete root.dataset.sees;
       else root.dataset.sees = j.unseen ? 'some' : 'all';
