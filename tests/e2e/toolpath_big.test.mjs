@@ -1,7 +1,9 @@
 // A million-point toolpath on the page (issue 29, "big files"): the old file's results are greyed
-// at once with the new file's name, the page never freezes (no main-thread task near the 16 s
-// the page once took for 200,000 points), and the plots are thinned for drawing only: the δ plot
-// keeps each run's largest δ, so its highest point is the verdict's, which is the engine's.
+// at once with the new file's name, the page keeps drawing frames while the file is read (the
+// progress bar is seen at several values on the way: the page once froze for 16 s on 200,000
+// points), and the plots are thinned for drawing only: the δ plot keeps each run's largest δ, so
+// its highest point is the verdict's, which is the engine's. No time is asserted: how long the
+// page's longest task takes is printed by `npm run bench` (scripts/bench-page.mjs).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, waitIdle, waitPlotted } from './harness.mjs';
@@ -20,10 +22,15 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     const drawn = Number(await page.getAttribute('#tp-delta', 'data-plotted'));
     await page.evaluate(makeBigFile, N);
     await page.evaluate(() => {
-      window.longest = 0;
-      new PerformanceObserver((list) => {
-        for (const e of list.getEntries()) window.longest = Math.max(window.longest, e.duration);
-      }).observe({ type: 'longtask' });
+      // What the page showed of the progress bar, frame by frame: a frozen page draws no frame
+      // between the start of the reading and its end, so it would show none of the values between.
+      window.shown = new Set();
+      const watch = () => {
+        const bar = document.getElementById('tp-progress');
+        if (bar && !bar.hidden) window.shown.add(bar.value);
+        if (!window.stopWatching) requestAnimationFrame(watch);
+      };
+      requestAnimationFrame(watch);
       const d = new DataTransfer();
       d.items.add(window.bigFile);
       document.getElementById('tp-file').dispatchEvent(new DragEvent('drop', { dataTransfer: d, bubbles: true, cancelable: true }));
@@ -38,13 +45,12 @@ test('toolpath panel: a 10^6-point file greys the old results at once, never fre
     await waitPlotted(page, 'tp-delta', drawn);
     await waitPlotted(page, 'tp-path', drawn);
     await waitIdle(page, 120_000);
-    const longest = await page.evaluate(() => window.longest);
-    console.log(`longest main-thread task while reading and computing 10^6 points: ${Math.round(longest)} ms`);
-    // A freeze detector, not a speed target (npm run bench has those): the page once froze for
-    // 16 s on 200,000 points. Each plot is drawn in a task of its own (software WebGL on a
-    // two-core machine takes about 0.3 s for the 3D path), the path is sent to the workers as
-    // transferred copies: no task comes near 1 s.
-    assert.ok(longest < 1000, `a main-thread task of ${Math.round(longest)} ms`);
+    const between = await page.evaluate(() => {
+      window.stopWatching = true;
+      return [...window.shown].filter((v) => v > 0 && v < 1).length;
+    });
+    // Drawn while reading: the bar seen at several values between empty and full.
+    assert.ok(between >= 3, `the progress bar was drawn at ${between} values between 0 and 1 while the file was read`);
     // Drawn thinned, and saying so; the highest δ drawn is the verdict's worst.
     const plot = await page.evaluate(() => {
       const p = document.getElementById('tp-delta');
