@@ -2,7 +2,7 @@
 # `npm run mutants`: mutation testing of the engine with cargo-mutants (installed when missing,
 # like scripts/setup.sh installs its cargo tools). Not part of `npm test`: it is slow.
 #
-#   npm run mutants                       the default scopes: chain, binding
+#   npm run mutants                       the default scopes: chain, edge
 #   npm run mutants -- chain sshape       named scopes (list below)
 #   npm run mutants -- all                every scope, one after the other (many hours)
 #   npm run mutants -- resume cubic       go on where a stopped run of the scope left off
@@ -38,25 +38,17 @@ fi
 
 equivalents=mutants-equivalent.txt
 
-# scope → files (cargo-mutants --file globs), extra cargo-mutants filters, test binaries.
+# A scope is a module of the engine, named by its path under crate/src: `chain` is
+# crate/src/chain.rs, `cubic` every file under crate/src/cubic/. The scopes are read from the
+# tree, so a new module is a scope without an edit here. (The binding, wasm/src, has no scope:
+# it holds no mathematics, only the conversion of JavaScript values, which runs under
+# WebAssembly alone and is tested there: wasm/tests, tests/node.)
 files() {
-  case "$1" in
-    chain) echo "crate/src/chain.rs" ;;
-    rotary) echo "crate/src/rotary.rs" ;;
-    binding) echo "wasm/src/lib.rs" ;;
-    nonlinear | cubic | sshape | volumetric | reversal | toolpath | identify | machine)
-      echo "crate/src/$1/*.rs" ;;
-    *) return 1 ;;
-  esac
-}
-# The binding's exports turn JavaScript values into JSON and back through wasm-bindgen, which
-# only runs under WebAssembly (wasm-pack test, tests/node, tests/e2e); natively cargo-mutants can
-# test its pure conversions, the functions named here.
-filters() {
-  case "$1" in
-    binding) echo "--re ^wasm/src/lib.rs:.*(api_combination|error_quantity|degrees_of)" ;;
-    *) echo "" ;;
-  esac
+  [[ "$1" =~ ^[a-z_0-9]+$ ]] || return 1
+  if [ -f "crate/src/$1.rs" ]; then echo "crate/src/$1.rs"
+  elif [ -d "crate/src/$1" ]; then echo "crate/src/$1/**/*.rs"
+  else return 1
+  fi
 }
 # Two passes per scope. The first runs every mutant against the scope's own tests: the unit tests
 # (`--lib`) and the test binaries named for the scope's module, crate/tests/<scope>_*.rs (the
@@ -75,7 +67,6 @@ slow() {
   esac
 }
 quick() {
-  [ "$1" = binding ] && { echo "--lib"; return; }
   printf -- '--lib'
   for f in crate/tests/"$1"_*.rs; do
     [ -e "$f" ] || continue
@@ -86,7 +77,6 @@ quick() {
   echo
 }
 every() {
-  [ "$1" = binding ] && { echo "--lib"; return; }
   printf -- '--lib'
   for f in crate/tests/*.rs; do
     t=$(basename "$f" .rs)
@@ -104,9 +94,9 @@ regexes() {
     printf -- '%s\n^%s$\n' "$1" "$(printf '%s' "$m" | sed 's/[][\\.^$*+?(){}|]/\\&/g')"
   done
 }
-package() { [ "$1" = binding ] && echo fiveaxis-wasm || echo fiveaxis; }
-
-all_scopes="chain binding rotary nonlinear cubic sshape volumetric reversal toolpath identify machine"
+# Every module of crate/src but the crate's root (lib.rs) and the edge's declarations (api.rs:
+# a macro's list, tested by crate/tests/api_call.rs and the wasm and Node suites).
+all_scopes=$(for f in crate/src/*; do n=$(basename "$f" .rs); case "$n" in lib | api) ;; *) printf '%s ' "$n" ;; esac; done)
 scopes=()
 extra=()
 resume=0
@@ -120,7 +110,7 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-[ "${#scopes[@]}" -gt 0 ] || scopes=(chain binding)
+[ "${#scopes[@]}" -gt 0 ] || scopes=(chain edge)
 
 # Its own target directory, so that a run does not wait on the lock of the tree's builds; the
 # dependencies are built once and kept there (MUTANTS_TARGET_DIR chooses another).
@@ -133,9 +123,8 @@ for s in "${scopes[@]}"; do
   out="mutants.out/$s"
   say "scope $s: $(files "$s")"
   mkdir -p "$out"
-  args=(--package "$(package "$s")" --output "$out" -j "$jobs" --no-shuffle)
+  args=(--package fiveaxis --output "$out" -j "$jobs" --no-shuffle)
   for f in $(files "$s"); do args+=(--file "$f"); done
-  read -r -a fl <<<"$(filters "$s")"
   resumed=()
   if [ "$resume" = 1 ] && [ -f "$out/ledger.json" ]; then
     mapfile -t resumed < <(regexes --exclude-re done)
@@ -148,7 +137,7 @@ for s in "${scopes[@]}"; do
     read -r -a tb <<<"$($pass "$s")"
     targs=()
     for t in "${tb[@]}"; do targs+=("--cargo-arg=$t"); done
-    more=("${resumed[@]}" "${fl[@]}")
+    more=("${resumed[@]}")
     if [ $pass = every ]; then
       mapfile -t more < <(regexes --re survivors)
       [ "${#more[@]}" -gt 0 ] || break
