@@ -138,6 +138,7 @@ const GROUPS = [
   ['Cubic-machining test', /^cubic/],
   ['S-shape test piece', /^sshape/],
   ['Rotary-axis reversal', /^reversal/],
+  ['Probe and sphere', /^probe/],
   ['Other', /./],
 ];
 const SKIP = new Set(['initSync', '__wbg_init']);
