@@ -8,6 +8,7 @@ import { sshapePanel } from './panels/sshape';
 import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
+import { probePanel } from './panels/probe';
 import { el } from './ui/fields';
 import { encodingNote, FileRefused, readTextFile } from './ui/files';
 import { keepOnScreen } from './ui/popup';
@@ -21,7 +22,7 @@ import { printReport, setupPrint } from './ui/print';
 import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
-const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel];
+const panels: Panel[] = [nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel, probePanel];
 let machine: MachineSection | null = null;
 
 const mounted = new Map<string, HTMLElement>();
