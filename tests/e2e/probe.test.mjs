@@ -87,6 +87,10 @@ test('Probe and sphere: designed poses, the sample identified, its errors used o
       assert.ok(Math.abs(c - poses[i].k) < 6e-4 && Math.abs(bb - poses[i].m) < 6e-4, b);
     });
     assert.equal(await page.getAttribute('#pb-verdict', 'data-verdict'), 'none');
+    // Nothing measured yet: no empty plot boxes, no empty summary, no offer.
+    for (const sel of ['#pb-centres', '#pb-components', '#pb-summary', '#pb-sample-offer']) {
+      assert.ok(await page.$eval(sel, (e) => e.getBoundingClientRect().height === 0), `${sel} not shown`);
+    }
     await page.screenshot({ path: `${ARTIFACTS}probe-design-1366.png`, fullPage: true });
 
     // ---- the volumetric map before: the machine has no errors

@@ -50,6 +50,12 @@ const DECISION: Record<string, string> = {
 /** "sphere_X" → "sphere position, X"; an error keeps its ISO name. */
 const paramName = (n: string) => (n.startsWith('sphere_') ? `sphere position, ${n.slice(7)}` : n);
 const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
+/** Shows or hides `e` (and marks it `hidden` for tests and assistive technology): the page's
+ *  boxes with a display of their own (`.plots`, `.file-row`, `dl.summary`) ignore the attribute. */
+const setShown = (e: HTMLElement, on: boolean) => {
+  e.hidden = !on;
+  e.style.display = on ? '' : 'none';
+};
 
 async function mount(root: HTMLElement, machine: MachineSection) {
   const schema = await loadSchema();
@@ -73,7 +79,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   fileLabel.append(file);
   const fileMsg = el('p', { class: 'field-hint', id: 'pb-file-msg', 'aria-live': 'polite' });
   const sampleOffer = el('div', { class: 'file-row', id: 'pb-sample-offer' });
-  sampleOffer.hidden = true;
+  setShown(sampleOffer, false);
   const buttons = el('div', { class: 'file-row' });
   buttons.append(sampleButton, fileLabel);
   const identSet = inputs.groups.get('Identification');
@@ -139,9 +145,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     else summaryItems.set(id, [label, value]);
     summary.replaceChildren();
     for (const [key, [k, v]] of summaryItems) summary.append(el('dt', {}, k), el('dd', { id: key }, v));
-    summary.style.display = summaryItems.size ? '' : 'none';
+    setShown(summary, summaryItems.size > 0);
   };
-  summary.style.display = 'none';
+  setShown(summary, false);
 
   const runDesign = channel('probeDesign');
   const runIdentify = channel('probeIdentify');
@@ -289,7 +295,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const box of [corrections, ident]) stale(box, false);
     void clearPlot(centresPlot.p);
     void clearPlot(componentsPlot.p);
-    identPlots.hidden = true;
+    setShown(identPlots, false);
     for (const id of ['pb-sum-source', 'pb-sum-before', 'pb-sum-after', 'pb-sum-sphere', 'pb-sum-fit']) setSummary(id, '', null);
     summary.classList.remove('stale');
     useButton.disabled = true;
@@ -418,7 +424,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     stale(ident, false);
 
     // The plots: per pose, before and after.
-    identPlots.hidden = false;
+    setShown(identPlots, true);
     const labels = f.poses.map((p) => `pose ${p.label}: ${k} ${fmt.num(p.k, 6)}°, ${m} ${fmt.num(p.m, 6)}°`);
     const x = f.poses.map((_, i) => i + 1);
     // Upright labels while they fit (about 28 px each), else turned.
@@ -563,7 +569,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   /** The sample's preset (machine and sphere) when the machine above is another layout. */
   const offerSampleMachine = async () => {
     sampleOffer.replaceChildren();
-    sampleOffer.hidden = true;
+    setShown(sampleOffer, false);
     const presets = await loadPresets('probe').catch(() => []);
     const p = presets.find((x) => x.name.startsWith(SAMPLE_PRESET));
     const all = await machine.presets().catch(() => []);
@@ -577,11 +583,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       const text = fields.get('pb-csv')?.text() ?? '';
       await applyPreset('pb', p, machine);
       fields.get('pb-csv')?.setText(text);
-      sampleOffer.hidden = true;
+      setShown(sampleOffer, false);
       fileMsg.textContent = `The machine above is now “${base.name}”, the sphere where the sample was measured.`;
     });
     sampleOffer.append(el('span', { class: 'warn' }, `The sample was measured on “${base.name}”; the machine above differs (${differs.join(', ')}).`), button);
-    sampleOffer.hidden = false;
+    setShown(sampleOffer, true);
   };
 
   sampleButton.addEventListener('click', async () => {
@@ -619,7 +625,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (!got) return;
     setSource(f.name, got.text);
     useMsg.textContent = '';
-    sampleOffer.hidden = true;
+    setShown(sampleOffer, false);
     fields.get('pb-csv')?.setText(got.text);
     fileMsg.textContent = `Read ${f.name}${encodingNote(got)}; the result above says whether it could be used.`;
   };
