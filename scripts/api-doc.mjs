@@ -138,6 +138,7 @@ const GROUPS = [
   ['Cubic-machining test', /^cubic/],
   ['S-shape test piece', /^sshape/],
   ['Rotary-axis reversal', /^reversal/],
+  ['Probe and sphere', /^probe/],
   ['Ball-bar circular test (ISO 230-4)', /^ballbar/],
   ['Laser positioning (ISO 230-2)', /^positioning/],
   ['Other', /./],

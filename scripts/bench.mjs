@@ -55,6 +55,27 @@ function time(repeat, f, check) {
 }
 const total = (a) => a.reduce((s, v) => s + v, 0);
 
+/** The sphere test's benchmark input: same formulas as probe_input in crate/examples/bench.rs
+ *  (200 poses, centres from probeSimulate with the sample's errors, ±1 µm of integer-formula
+ *  noise, 6 decimals). */
+function probeInput() {
+  const machine = preset('B/C tilting table');
+  const sphere = { x: 150, y: 0, height: 50 };
+  const poses = Array.from({ length: 200 }, (_, i) => [((i * 37) % 360) - 180, ((i * 53) % 181) - 90]);
+  const sim = fa.probeSimulate({
+    machine: { ...machine, errors: { E_X0B: 0.012, E_Z0B: -0.008, E_A0B: 0.005, E_C0B: -0.003 } },
+    sphere, k: poses.map((p) => p[0]), m: poses.map((p) => p[1]),
+  });
+  let csv = 'pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n';
+  sim.poses.forEach((s, i) => {
+    const c = [0, 1, 2].map((a) => s.measured[a] + ((((3 * i + a) * 7919) % 2001) - 1000) * 1e-6);
+    csv += `${i + 1};${poses[i][0]};${poses[i][1]};${c.map((v) => v.toFixed(6)).join(';')}\n`;
+  });
+  return { machine, sphere, csv };
+}
+/** Same as probe_check in crate/examples/bench.rs. */
+const probeCheck = (r) => r.estimates.reduce((s, e) => s + (e.value ?? 0), 0) + r.after.sigma;
+
 /** One round of the WebAssembly timings, by kernel. */
 let ssRun = 0; // a new pivot per eq 14 run, over all rounds: the engine caches designs
 function runWasm() {
@@ -178,6 +199,9 @@ function runWasm() {
   wasm['toolpath read: CLSF, 22000 statements'] = time(10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
   const ncBytes = new TextEncoder().encode(iso(16_000));
   wasm['toolpath read: ISO program, 16000 blocks'] = time(10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
+  // The sphere test: 200 probed poses identified (same JSON as crate/examples/bench.rs).
+  const probe = probeInput();
+  wasm['probe: identification of 200 probed poses (probeIdentify)'] = time(5, () => fa.probeIdentify(probe), probeCheck);
   return wasm;
 }
 
@@ -229,6 +253,11 @@ console.table(rows);
 const rev = 'reversal: default test with and without friction (2 simulations)';
 if (native[rev] && wasm[rev]) {
   console.log(`reversal: one simulation ${(wasm[rev].ms / 2).toFixed(1)} ms as wasm (target <= 50 ms), ${(native[rev].ms / 2).toFixed(1)} ms native`);
+}
+const probeName = 'probe: identification of 200 probed poses (probeIdentify)';
+if (native[probeName] && wasm[probeName]) {
+  const ratio = wasm[probeName].ms / native[probeName].ms;
+  console.log(`probe: identification of 200 probed poses: ${wasm[probeName].ms.toFixed(1)} ms as wasm, ${native[probeName].ms.toFixed(1)} ms native, ratio ${ratio.toFixed(2)} (budget 1.5×: ${ratio <= 1.5 ? 'within' : 'ABOVE'})`);
 }
 for (const name of ['toolpath read: CLSF, 22000 statements', 'toolpath read: ISO program, 16000 blocks']) {
   if (wasm[name]) console.log(`${name}: ${wasm[name].ms.toFixed(0)} ms as wasm (target < 500 ms)`);

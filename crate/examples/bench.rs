@@ -206,6 +206,60 @@ fn report_counted(name: &str, timed: (f64, f64), t: RotaryType, moves: &[[f64; 4
     );
 }
 
+/// The sphere test's benchmark input (same as scripts/bench.mjs): the B/C tilting table preset,
+/// the sphere 150 mm off C's axis and 50 mm high, and 200 probed poses (C and B on integer
+/// formulas, B within ±90°) whose centres `probeSimulate` gives on the machine with the sample's
+/// errors, plus ±1 µm of integer-formula noise, written to 6 decimals. The JSON `probeIdentify`
+/// takes, the same on both sides.
+fn probe_input() -> Result<Value, Box<dyn std::error::Error>> {
+    let machine = preset("B/C tilting table")?;
+    let sphere = json!({ "x": 150, "y": 0, "height": 50 });
+    let poses: Vec<(i64, i64)> = (0..200i64)
+        .map(|i| ((i * 37) % 360 - 180, (i * 53) % 181 - 90))
+        .collect();
+    let mut measured = machine.clone();
+    measured["errors"] =
+        json!({ "E_X0B": 0.012, "E_Z0B": -0.008, "E_A0B": 0.005, "E_C0B": -0.003 });
+    let sim = fiveaxis::api::call(
+        "probeSimulate",
+        &json!({ "machine": measured, "sphere": sphere,
+            "k": poses.iter().map(|p| p.0).collect::<Vec<_>>(),
+            "m": poses.iter().map(|p| p.1).collect::<Vec<_>>() }),
+    )?;
+    let mut csv = String::from("pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n");
+    for (i, (p, s)) in poses
+        .iter()
+        .zip(sim["poses"].as_array().ok_or("probeSimulate: no poses")?)
+        .enumerate()
+    {
+        let c: Vec<f64> = (0..3)
+            .map(|a| {
+                let noise = (((3 * i as i64 + a as i64) * 7919) % 2001 - 1000) as f64 * 1e-6;
+                s["measured"][a].as_f64().unwrap_or(f64::NAN) + noise
+            })
+            .collect();
+        csv.push_str(&format!(
+            "{};{};{};{:.6};{:.6};{:.6}\n",
+            i + 1,
+            p.0,
+            p.1,
+            c[0],
+            c[1],
+            c[2]
+        ));
+    }
+    Ok(json!({ "machine": machine, "sphere": sphere, "csv": csv }))
+}
+
+/// The checksum of an identification (same as scripts/bench.mjs): its values and the spread
+/// after correction.
+fn probe_check(r: &Value) -> f64 {
+    let values: f64 = r["estimates"].as_array().map_or(f64::NAN, |l| {
+        l.iter().filter_map(|e| e["value"].as_f64()).sum()
+    });
+    values + r["after"]["sigma"].as_f64().unwrap_or(f64::NAN)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = bench_path(1_000_000);
     let axes: Vec<nalgebra::Vector3<f64>> = path
@@ -501,6 +555,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 Ok::<_, fiveaxis::Error>(r)
             },
             |r| number(r, "/rms"),
+        ),
+    );
+    // The sphere test: the identification of 200 probed poses, through the declared export on
+    // the same JSON as the wasm side (`api::call`: read, identify, written as JSON).
+    let probe = probe_input()?;
+    report(
+        "probe: identification of 200 probed poses (probeIdentify)",
+        time(
+            5,
+            || fiveaxis::api::call("probeIdentify", &probe),
+            |r| r.as_ref().map_or(f64::NAN, probe_check),
         ),
     );
     Ok(())

@@ -215,3 +215,43 @@ fn a_c_tilt_and_an_offset_of_c_alike_on_the_axis_are_told_apart_by_a_second_sphe
         d.second_sphere
     );
 }
+
+#[test]
+fn the_second_sphere_is_where_its_fields_say_and_each_one_left_out_follows_the_first_sphere() {
+    // The B/C table has a vertical spindle: the table's face frame is X, Y, Z, its surface at
+    // the B axis (tableHeight 0), so a place (x, y, height) is the point (x, y, height).
+    let s = study(json!({ "machine": bc_table(),
+        "sphere": { "x": 150.0, "y": 20.0, "height": 100.0 } }));
+    let second = |v: Value| {
+        let own = ProbeDesignInput::from_value(&json!({ "step": 45, "second": v }), "").unwrap();
+        design::design(&s, &own).unwrap().second_sphere.centre
+    };
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9);
+    // Left out: 100 mm further along X and 100 mm higher than the first.
+    let c = second(json!({}));
+    assert!(close(c, [250.0, 20.0, 200.0]), "{c:?}");
+    let c = second(json!({ "y": -50.0 }));
+    assert!(close(c, [250.0, -50.0, 200.0]), "{c:?}");
+    let c = second(json!({ "x": 10.0, "y": 0.0, "height": 50.0 }));
+    assert!(close(c, [10.0, 0.0, 50.0]), "{c:?}");
+    // Its fields are labelled apart from the first sphere's (the page shows both).
+    let f = fiveaxis::schema::describe(ProbeDesignInput::FIELDS, "");
+    let label = |path: &str| f.iter().find(|i| i.path == path).unwrap().label.clone();
+    assert_ne!(
+        label("second.x"),
+        "Sphere centre along the table's first axis"
+    );
+    assert!(f
+        .iter()
+        .filter(|i| i.path.starts_with("second."))
+        .all(|i| i.default.is_null()));
+}
+
+#[test]
+fn the_nc_blocks_write_no_negative_zero() {
+    // The sphere on C's axis: the expected X and Y are zero but for rounding (±1e-15 mm).
+    let d = designed(&bc_table(), [0.0, 0.0, 100.0]);
+    for l in d.designed.nc.lines().chain(d.simple.nc.lines()) {
+        assert!(!l.contains("-0.000 ") && !l.contains("-0.000)"), "{l}");
+    }
+}

@@ -8,7 +8,7 @@ import { createRequire } from 'node:module';
 import { ARTIFACTS, downloaded, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const axeSource = readFileSync(createRequire(import.meta.url).resolve('axe-core/axe.min.js'), 'utf8');
-const TABS = ['nonlinear', 'cubic', 'sshape'];
+const TABS = ['nonlinear', 'cubic', 'sshape', 'probe'];
 
 /** Ids used more than once, outside the markup Plotly draws inside a plot. */
 const duplicateIds = (page) =>

@@ -213,7 +213,7 @@ test('phone at 390 px: the toolbar pop-ups stay on the screen, the active tab is
 function declaredMinimums() {
   const s = fa.schema();
   const out = new Map();
-  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', ballbar: 'bb', positioning: 'ps' };
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbar: 'bb', positioning: 'ps' };
   for (const [name, list] of Object.entries(s.exports)) {
     const prefix = Object.entries(prefixes).find(([p]) => name.toLowerCase().startsWith(p))?.[1];
     for (const f of list) {

@@ -16,6 +16,8 @@ const PANELS = [
   { tab: 'nonlinear', prefix: 'nl', exports: ['nonlinearMove', 'nonlinearSweepM', 'nonlinearGrid', 'machineInverse'] },
   { tab: 'cubic', prefix: 'cb', exports: ['cubicTest', 'cubicHeightMap'] },
   { tab: 'sshape', prefix: 'ss', exports: ['sshapeDefects', 'sshapeOvercut', 'sshapeIdentify'] },
+  { tab: 'probe', prefix: 'pb', exports: ['probeDesign', 'probeIdentify'] },
+  // Last: the error motions' fields, checked after this list, sit on the Volumetric panel.
   { tab: 'volumetric', prefix: 'vm', exports: ['volumetricMap'] },
 ];
 const id = (prefix, path) => `${prefix}-${path.replace(/\./g, '-')}`;

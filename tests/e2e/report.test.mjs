@@ -257,7 +257,7 @@ test('the machine report: every study’s verdict with its own tolerance, the wo
     // Each study's tolerance beside its verdict: the label and value next to the badge, and the
     // sentence judging against the same value, on one page.
     for (const v of judged) {
-      const label = await page.$eval(`#${{ nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv' }[v.panel]}-verdict .verdict-tolerance label`, (l) => l.textContent.trim());
+      const label = await page.$eval(`#${{ nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb' }[v.panel]}-verdict .verdict-tolerance label`, (l) => l.textContent.trim());
       const value = `${Number((v.tolerance * 1000).toPrecision(4))} µm`;
       const badge = v.verdict === 'pass' ? 'PASS' : 'FAIL';
       const page1 = pages.findIndex((p) => flat(p).includes(`${label}: ${value}`));

@@ -16,9 +16,9 @@ fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', im
 /** Field ids the schema marks optional (empty: the engine's default or the machine's value). */
 const OPTIONAL = (() => {
   const schema = fa.schema();
-  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', ballbar: 'bb', positioning: 'ps', machineSchematic: 'md' };
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbar: 'bb', positioning: 'ps', machineSchematic: 'md' };
   const out = new Set(schema.machine.filter((f) => f.optional).map((f) => `m-${f.path.slice('machine.'.length).replace(/\./g, '-')}`));
-  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, ballbar: /^ballbar/, positioning: /^positioning/, machineSchematic: /^machineSchematic$/ };
+  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, probe: /^probe(Design|Identify)$/, ballbar: /^ballbar/, positioning: /^positioning/, machineSchematic: /^machineSchematic$/ };
   for (const [name, fields] of Object.entries(schema.exports)) {
     for (const [panel, re] of Object.entries(owner)) {
       if (!re.test(name)) continue;

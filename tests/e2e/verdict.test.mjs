@@ -10,7 +10,7 @@ import { readFileSync } from 'node:fs';
 import { fa, preset, T5_ISO } from '../papers.mjs';
 import { ARTIFACTS, optionValue, withPage } from './harness.mjs';
 
-const PREFIX = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv' };
+const PREFIX = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb' };
 /** Symbols only a reader of the papers knows: never in a headline. */
 const PAPER_ONLY = /u\*|\beq\b|\beqs?\s*\d|Σ|M_WC|KMH/i;
 
@@ -223,7 +223,7 @@ test('verdict: cubic, S-shape, volumetric, reversal with presets that pass and f
 });
 
 test('presets are named in plain words, the paper’s reference in parentheses', () => {
-  for (const panel of ['nonlinear', 'cubic', 'sshape', 'volumetric', 'reversal']) {
+  for (const panel of ['nonlinear', 'cubic', 'sshape', 'volumetric', 'reversal', 'probe']) {
     const { presets } = JSON.parse(readFileSync(new URL(`../../public/presets/${panel}.json`, import.meta.url), 'utf8'));
     for (const { name } of presets) {
       let outside = name;

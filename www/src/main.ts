@@ -8,6 +8,7 @@ import { sshapePanel } from './panels/sshape';
 import { toolpathPanel } from './panels/toolpath';
 import { volumetricPanel } from './panels/volumetric';
 import { reversalPanel } from './panels/reversal';
+import { probePanel } from './panels/probe';
 // ball-bar and laser
 import { ballbarPanel } from './panels/ballbar';
 import { positioningPanel } from './panels/positioning';
@@ -25,7 +26,7 @@ import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
 const panels: Panel[] = [
-  nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel,
+  nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel, probePanel,
   // ball-bar and laser
   ballbarPanel, positioningPanel,
 ];

@@ -60,17 +60,62 @@ crate::inputs! {
         /// Number of poses; the simple layout's when left out.
         pub count: Option<usize> = "count" optional {
             label: "Number of poses",
-            help: "How many poses to probe; left empty: as many as the simple layout (C every 30° at A = 0, A every 30° at C = 0).",
+            help: "How many poses to probe; left empty: as many as the simple layout ({K} every 30° at {M} = 0, {M} every 30° at {K} = 0).",
             kind: Kind::Count { min: 4, max: 200 },
             group: "Sphere test design",
         },
         /// A second place of the sphere, to show what it would add.
-        pub second: Option<SpherePlace> = "second" optional {
+        pub second: SecondPlace = "second" optional {
             label: "Second sphere position",
-            help: "Where a second sphere (or the same one moved) would sit; left out: 100 mm further along the table's first axis and 100 mm higher.",
-            kind: Kind::Object(SpherePlace::FIELDS),
-            group: "Sphere test design",
+            help: "Where a second sphere (or the same one moved) would sit; each coordinate left out: the first sphere's, 100 mm further along the table's first axis and 100 mm higher.",
+            kind: Kind::Object(SecondPlace::FIELDS),
+            default: DefaultValue::Empty,
         },
+    }
+}
+
+/// How far the default second sphere sits from the first: along the table's first axis and
+/// up, mm.
+pub const SECOND_SHIFT: f64 = 100.0;
+
+crate::inputs! {
+    /// Where a second sphere would sit (mm, the face frame of the table surface, as
+    /// [`SpherePlace`]); a coordinate left out is the first sphere's, moved by [`SECOND_SHIFT`]
+    /// along the first axis and up.
+    pub struct SecondPlace {
+        /// Along the face's first axis, mm; left out: the first sphere's + 100 mm.
+        pub x: Option<f64> = "x" optional {
+            label: "Second sphere along the table's first axis",
+            help: "From the table centre, along X for a vertical spindle; left empty: 100 mm further than the first sphere.",
+            kind: schema::number(Quantity::Length, -2000.0, 2000.0),
+            group: "Second sphere position",
+        },
+        /// Along the face's second axis, mm; left out: the first sphere's.
+        pub y: Option<f64> = "y" optional {
+            label: "Second sphere along the table's second axis",
+            help: "From the table centre, along Y for a vertical spindle; left empty: the first sphere's.",
+            kind: schema::number(Quantity::Length, -2000.0, 2000.0),
+            group: "Second sphere position",
+        },
+        /// Height of its centre above the table surface, mm; left out: the first's + 100 mm.
+        pub height: Option<f64> = "height" optional {
+            label: "Second sphere centre above the table",
+            help: "Height of the second sphere's centre above the table surface; left empty: 100 mm higher than the first sphere.",
+            kind: schema::number(Quantity::Length, -2000.0, 2000.0),
+            group: "Second sphere position",
+        },
+    }
+}
+
+impl SecondPlace {
+    /// The place, each coordinate left out taken from `first` (face frame coordinates, mm) as
+    /// the struct's docs say.
+    pub fn resolve(&self, first: [f64; 3]) -> SpherePlace {
+        SpherePlace {
+            x: self.x.unwrap_or(first[0] + SECOND_SHIFT),
+            y: self.y.unwrap_or(first[1]),
+            height: self.height.unwrap_or(first[2] + SECOND_SHIFT),
+        }
     }
 }
 
@@ -455,15 +500,11 @@ pub fn design(study: &Study, own: &ProbeDesignInput) -> Result<ProbeDesign> {
     let designed = layout(study, &chosen, &cands, r)?;
 
     // A second sphere position.
-    let place = own.second.clone().unwrap_or_else(|| {
+    let place = {
         let [u, v, n] = study.model.machine.face_frame();
         let s = study.sphere;
-        SpherePlace {
-            x: s.dot(&u) + 100.0,
-            y: s.dot(&v),
-            height: s.dot(&n) + 100.0,
-        }
-    });
+        own.second.resolve([s.dot(&u), s.dot(&v), s.dot(&n)])
+    };
     let study2 = study.with_sphere(&place);
     let cands2: Vec<Candidate> = cands
         .iter()
@@ -749,6 +790,17 @@ pub fn export_csv(study: &Study, poses: &[Pose]) -> String {
     s
 }
 
+/// `v` to three decimals, without the sign of a value that rounds to zero (`0.000`, never
+/// `-0.000`: a control reads both alike, a person wonders).
+fn fixed3(v: f64) -> String {
+    let t = format!("{v:.3}");
+    if t == "-0.000" {
+        "0.000".to_string()
+    } else {
+        t
+    }
+}
+
 /// NC blocks (ISO/Fanuc style, comments in parentheses): a header, then one block per pose
 /// positioning the rotary axes (`G0 C… B…`) with a comment to run the control's
 /// sphere-probing cycle there and the centre to expect.
@@ -763,13 +815,13 @@ pub fn export_nc(study: &Study, poses: &[Pose]) -> String {
         s.push_str(&format!(
             "N{} G0 {kl}{} {ml}{} (POSE {} OF {}, RUN THE CONTROL'S SPHERE-PROBING CYCLE HERE, EXPECTED CENTRE X{} Y{} Z{})\n",
             10 * (i + 1),
-            format_args!("{:.3}", p.k.to_degrees()),
-            format_args!("{:.3}", p.m.to_degrees()),
+            fixed3(p.k.to_degrees()),
+            fixed3(p.m.to_degrees()),
             i + 1,
             poses.len(),
-            format_args!("{:.3}", p.expected[0]),
-            format_args!("{:.3}", p.expected[1]),
-            format_args!("{:.3}", p.expected[2]),
+            fixed3(p.expected[0]),
+            fixed3(p.expected[1]),
+            fixed3(p.expected[2]),
         ));
     }
     s.push_str("M30\n");
