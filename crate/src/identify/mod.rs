@@ -402,7 +402,8 @@ pub fn judge(f: Fit, a: &DMatrix<f64>, params: &[Param], options: &Options) -> J
                 "{} and {} cannot be told apart: only this combination is measurable: {} = {} ± {}{}",
                 g.members[..g.members.len() - 1].join(", "),
                 g.members[g.members.len() - 1],
-                c.text,
+                // In the units of the API (an angle per degree, as the values are given).
+                result::api_text(c),
                 amount(lead, c.value),
                 amount(lead, half),
                 if verdict == Verdict::NotDistinguishable {

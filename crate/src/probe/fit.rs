@@ -468,10 +468,14 @@ pub fn enter(def: &crate::machine::errors::ErrorDef, v: f64) -> String {
     }
 }
 
-/// Reads the file and identifies (the export's engine function).
+/// Reads the file and identifies (the export's engine function). The model-fit check uses the
+/// decision's measurement noise, or, left empty, the probing noise of the study: the probe's
+/// one noise, stated once, is what the residuals are checked against.
 pub fn identify_file(study: &Study, own: &ProbeIdentifyInput) -> Result<ProbeIdentification> {
     let m = measure::read(&own.csv, Some(study.model.letters()))?;
-    identify_centres(study, m, own.rtol, &own.decision.options())
+    let mut options = own.decision.options();
+    options.noise = options.noise.or(Some(study.noise));
+    identify_centres(study, m, own.rtol, &options)
 }
 
 /// The exact centres of `poses` (rad) on the study's machine with its errors, mm: what the
