@@ -74,17 +74,19 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
             .iter()
             .enumerate()
             .flat_map(|(ti, t)| {
-                all.sweep(t).into_iter().map(move |(angle, direction)| Point {
-                    test: ti,
-                    angle,
-                    direction,
-                })
+                all.sweep(t)
+                    .into_iter()
+                    .map(move |(angle, direction)| Point {
+                        test: ti,
+                        angle,
+                        direction,
+                    })
             })
             .collect();
         let sys = fiveaxis::ballbar::rotary::see::system(&all, &points).unwrap();
         let view = fiveaxis::ballbar::rotary::see::view(&sys.a, &sys.names, 1e-2).unwrap();
-        let params: Vec<String> = fiveaxis::ballbar::rotary::see::visibility(&all, &sys, &view)
-            .identifiable;
+        let params: Vec<String> =
+            fiveaxis::ballbar::rotary::see::visibility(&all, &sys, &view).identifiable;
         assert!(params.len() >= 4, "{name}: {params:?}");
         let study = Study::new(&input(&machine, Some(&params))).unwrap();
         let offsets: Vec<(usize, f64)> = {
@@ -104,18 +106,29 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
             let def = fiveaxis::machine::errors::find(n).unwrap();
             let h = if def.quantity.is_angle() { 1e-6 } else { 1e-3 };
             api_step[j] = def.quantity.to_api(h) / h;
-            let plus = traces(&with_errors(&machine, json!({ n.clone(): def.quantity.to_api(h) })), &points);
-            let minus = traces(&with_errors(&machine, json!({ n.clone(): -def.quantity.to_api(h) })), &points);
+            let plus = traces(
+                &with_errors(&machine, json!({ n.clone(): def.quantity.to_api(h) })),
+                &points,
+            );
+            let minus = traces(
+                &with_errors(&machine, json!({ n.clone(): -def.quantity.to_api(h) })),
+                &points,
+            );
             for i in 0..points.len() {
                 a[(i, j)] = (plus[i] - minus[i]) / (2.0 * h);
             }
         }
         for (i, pt) in points.iter().enumerate() {
-            let k = offsets.iter().position(|o| *o == (pt.test, pt.direction)).unwrap();
+            let k = offsets
+                .iter()
+                .position(|o| *o == (pt.test, pt.direction))
+                .unwrap();
             a[(i, params.len() + k)] = 1.0;
         }
         let inv = (a.transpose() * &a).try_inverse().unwrap();
-        let se: Vec<f64> = (0..params.len()).map(|j| NOISE * inv[(j, j)].sqrt()).collect();
+        let se: Vec<f64> = (0..params.len())
+            .map(|j| NOISE * inv[(j, j)].sqrt())
+            .collect();
         // Truth: the 1st, 3rd and 5th identifiable errors at 5σ (signs mixed), the rest zero.
         let mut truth = vec![0.0; params.len()];
         for (j, sign) in [(0, 5.0), (2, -5.0), (4, 5.0)] {
@@ -129,7 +142,9 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
             errors.insert(n.clone(), json!(def.quantity.to_api(*v)));
         }
         let clean = traces(&with_errors(&machine, Value::Object(errors)), &points);
-        let bar: Vec<f64> = (0..offsets.len()).map(|k| 0.002 + 0.001 * k as f64).collect();
+        let bar: Vec<f64> = (0..offsets.len())
+            .map(|k| 0.002 + 0.001 * k as f64)
+            .collect();
         let options = Options {
             alpha: ALPHA,
             noise: Some(NOISE),
@@ -144,7 +159,10 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
                 .iter()
                 .zip(&clean)
                 .map(|(pt, c)| {
-                    let k = offsets.iter().position(|o| *o == (pt.test, pt.direction)).unwrap();
+                    let k = offsets
+                        .iter()
+                        .position(|o| *o == (pt.test, pt.direction))
+                        .unwrap();
                     c + bar[k] + NOISE * rng.gauss()
                 })
                 .collect();
@@ -171,8 +189,15 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
             }
         }
         let rate = false_runs as f64 / RUNS as f64;
-        println!("{name}: {} errors fitted ({}), false-call rate {rate:.4}", params.len(), params.join(", "));
-        assert!(rate <= ALPHA + margin(ALPHA, RUNS, 2.33), "{name}: false calls {rate}");
+        println!(
+            "{name}: {} errors fitted ({}), false-call rate {rate:.4}",
+            params.len(),
+            params.join(", ")
+        );
+        assert!(
+            rate <= ALPHA + margin(ALPHA, RUNS, 2.33),
+            "{name}: false calls {rate}"
+        );
         for k in 0..truth.len() {
             if truth[k] != 0.0 {
                 let f = found[k] as f64 / RUNS as f64;
@@ -181,7 +206,11 @@ fn false_calls_detections_and_coverage_hold_on_three_machines() {
             }
             let c = covered[k] as f64 / RUNS as f64;
             println!("{name}: {} interval covers in {c:.4}", params[k]);
-            assert!((c - 0.95).abs() <= margin(0.95, RUNS, 3.3), "{name}: {} coverage {c}", params[k]);
+            assert!(
+                (c - 0.95).abs() <= margin(0.95, RUNS, 3.3),
+                "{name}: {} coverage {c}",
+                params[k]
+            );
         }
         let g = flagged as f64 / RUNS as f64;
         println!("{name}: χ² check flags {g:.4} of good runs");

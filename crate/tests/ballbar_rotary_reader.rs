@@ -33,7 +33,11 @@ fn good(machine: &Value) -> String {
     let a = t["angle"].as_array().unwrap();
     for i in 0..a.len() {
         let d = t["deviation"][i].as_f64().unwrap() * 1e3;
-        let r = if t["run"][i].as_f64().unwrap() > 0.0 { "ccw" } else { "cw" };
+        let r = if t["run"][i].as_f64().unwrap() > 0.0 {
+            "ccw"
+        } else {
+            "cw"
+        };
         out.push_str(&format!("{};{d:.6};{r}\n", a[i].as_f64().unwrap()).replace('.', ","));
     }
     out
@@ -50,30 +54,104 @@ fn each_kind_of_bad_line_is_named() {
         { "ball": { "x": 150, "y": 0, "height": 50 } },
         { "ball": { "x": 150, "y": 0, "height": 50 }, "direction": "axial", "name": "ax" }
     ]);
-    let tilt = json!([{ "axis": "m", "ball": { "x": 100, "y": 0, "height": 50 }, "from": -60, "to": 30 }]);
+    let tilt =
+        json!([{ "axis": "m", "ball": { "x": 100, "y": 0, "height": 50 }, "from": -60, "to": 30 }]);
     let g = good(&m);
     let head = "angle (deg);deviation (µm);direction\n";
-    let rows = "0;1;ccw\n30;2;ccw\n60;3;ccw\n90;4;ccw\n120;5;ccw\n150;6;ccw\n180;7;ccw\n210;8;ccw\n";
+    let rows =
+        "0;1;ccw\n30;2;ccw\n60;3;ccw\n90;4;ccw\n120;5;ccw\n150;6;ccw\n180;7;ccw\n210;8;ccw\n";
     let cases: Vec<(Value, Value, &str)> = vec![
         (one_test(), json!(""), "csv: give the measured traces"),
-        (one_test(), json!("# only a comment\n"), "csv: the file is empty"),
-        (one_test(), json!("value (µm);direction\n1;ccw\n"), "csv: line 1: missing column 'angle_deg'"),
-        (one_test(), json!("angle (deg);direction\n1;ccw\n"), "csv: line 1: missing column 'deviation_mm'"),
-        (one_test(), json!("angle (deg);deviation;direction\n1;2;ccw\n"), "csv: line 1: give the unit of the deviation"),
-        (one_test(), json!("angle (deg);deviation (furlong);direction\n1;2;ccw\n"), "csv: line 1: give the unit of the deviation"),
-        (one_test(), json!("angle (grad);deviation (µm)\n1;2\n"), "csv: line 1: the angle's unit must be deg or rad"),
-        (one_test(), json!("angle (deg);c (deg);deviation (µm)\n1;1;2\n"), "csv: line 1: two columns for the angle"),
-        (one_test(), json!("angle (deg);ccw (µm)\n1;2\n"), "csv: line 1: one column per direction needs both"),
-        (one_test(), json!(format!("{head}0;1;ccw\n30;2\n")), "csv: line 3: expected 3 columns like the header, got 2"),
-        (one_test(), json!(format!("{head}0;1;ccw\n\n30;1,2,3;ccw\n")), "csv: line 4: deviation \"1,2,3\" is not a number"),
-        (one_test(), json!(format!("{head}0;1;ccw\nx;1;ccw\n")), "csv: line 3: angle \"x\" is not a number"),
-        (one_test(), json!(format!("{head}0;1;ccw\n30;1;sideways\n")), "csv: line 3: the direction must be ccw or cw"),
-        (one_test(), json!(format!("{head}0;1;ccw\n")), "csv: test 1 has 1 measured point: give at least 8"),
-        (one_test(), json!(format!("test;{head}1;0;1;ccw\n;30;1;ccw\n")), "csv: line 3: the test is empty"),
-        (one_test(), json!(format!("test;{head}1;0;1;ccw\n9;30;1;ccw\n")), "csv: line 3: test \"9\" is not one of the tests (1)"),
-        (two.clone(), json!(format!("{head}{rows}")), "csv: the file has no test column but 2 tests are defined"),
-        (tilt, json!(format!("{head}0;1;ccw\n150;1;ccw\n")), "csv: line 3: B = 150° is outside its travel"),
-        (json!([]), json!(format!("{head}0;1;ccw\n# a note\n30;1e400;ccw\n")), "csv: line 4: deviation \"1e400\" is not a number"),
+        (
+            one_test(),
+            json!("# only a comment\n"),
+            "csv: the file is empty",
+        ),
+        (
+            one_test(),
+            json!("value (µm);direction\n1;ccw\n"),
+            "csv: line 1: missing column 'angle_deg'",
+        ),
+        (
+            one_test(),
+            json!("angle (deg);direction\n1;ccw\n"),
+            "csv: line 1: missing column 'deviation_mm'",
+        ),
+        (
+            one_test(),
+            json!("angle (deg);deviation;direction\n1;2;ccw\n"),
+            "csv: line 1: give the unit of the deviation",
+        ),
+        (
+            one_test(),
+            json!("angle (deg);deviation (furlong);direction\n1;2;ccw\n"),
+            "csv: line 1: give the unit of the deviation",
+        ),
+        (
+            one_test(),
+            json!("angle (grad);deviation (µm)\n1;2\n"),
+            "csv: line 1: the angle's unit must be deg or rad",
+        ),
+        (
+            one_test(),
+            json!("angle (deg);c (deg);deviation (µm)\n1;1;2\n"),
+            "csv: line 1: two columns for the angle",
+        ),
+        (
+            one_test(),
+            json!("angle (deg);ccw (µm)\n1;2\n"),
+            "csv: line 1: one column per direction needs both",
+        ),
+        (
+            one_test(),
+            json!(format!("{head}0;1;ccw\n30;2\n")),
+            "csv: line 3: expected 3 columns like the header, got 2",
+        ),
+        (
+            one_test(),
+            json!(format!("{head}0;1;ccw\n\n30;1,2,3;ccw\n")),
+            "csv: line 4: deviation \"1,2,3\" is not a number",
+        ),
+        (
+            one_test(),
+            json!(format!("{head}0;1;ccw\nx;1;ccw\n")),
+            "csv: line 3: angle \"x\" is not a number",
+        ),
+        (
+            one_test(),
+            json!(format!("{head}0;1;ccw\n30;1;sideways\n")),
+            "csv: line 3: the direction must be ccw or cw",
+        ),
+        (
+            one_test(),
+            json!(format!("{head}0;1;ccw\n")),
+            "csv: test 1 has 1 measured point: give at least 8",
+        ),
+        (
+            one_test(),
+            json!(format!("test;{head}1;0;1;ccw\n;30;1;ccw\n")),
+            "csv: line 3: the test is empty",
+        ),
+        (
+            one_test(),
+            json!(format!("test;{head}1;0;1;ccw\n9;30;1;ccw\n")),
+            "csv: line 3: test \"9\" is not one of the tests (1)",
+        ),
+        (
+            two.clone(),
+            json!(format!("{head}{rows}")),
+            "csv: the file has no test column but 2 tests are defined",
+        ),
+        (
+            tilt,
+            json!(format!("{head}0;1;ccw\n150;1;ccw\n")),
+            "csv: line 3: B = 150° is outside its travel",
+        ),
+        (
+            json!([]),
+            json!(format!("{head}0;1;ccw\n# a note\n30;1e400;ccw\n")),
+            "csv: line 4: deviation \"1e400\" is not a number",
+        ),
     ];
     for (tests, csv, want) in cases {
         let e = identify(json!({ "machine": m, "tests": tests, "csv": csv })).unwrap_err();
@@ -84,18 +162,31 @@ fn each_kind_of_bad_line_is_named() {
     tests[0]["csv"] = json!(g);
     tests[1]["csv"] = json!(format!("{head}0;1;ccw\n30;x;ccw\n"));
     let e = identify(json!({ "machine": m, "tests": tests })).unwrap_err();
-    assert!(e.starts_with("tests[1].csv: line 3: deviation \"x\" is not a number"), "{e}");
+    assert!(
+        e.starts_with("tests[1].csv: line 3: deviation \"x\" is not a number"),
+        "{e}"
+    );
     tests[1]["csv"] = json!(format!("test;{head}1;0;1;ccw\n"));
     let e = identify(json!({ "machine": m, "tests": tests })).unwrap_err();
-    assert!(e.starts_with("tests[1].csv: line 2: test \"1\" in the file of test ax"), "{e}");
+    assert!(
+        e.starts_with("tests[1].csv: line 2: test \"1\" in the file of test ax"),
+        "{e}"
+    );
     tests[1]["csv"] = json!("");
     let e = identify(json!({ "machine": m, "tests": tests })).unwrap_err();
-    assert!(e.starts_with("tests[1].csv: test ax has 0 measured points"), "{e}");
+    assert!(
+        e.starts_with("tests[1].csv: test ax has 0 measured points"),
+        "{e}"
+    );
     // A bad test definition names its path.
     let e = identify(json!({ "machine": m, "tests": [{ "lenght": 100 }], "csv": g })).unwrap_err();
     assert!(e.starts_with("tests[0].lenght: unknown input"), "{e}");
-    let e = identify(json!({ "machine": m, "tests": [{ "ball": { "x": 0, "y": 0 } }], "csv": g })).unwrap_err();
-    assert!(e.starts_with("tests[0].ball: the table ball lies on the C axis line"), "{e}");
+    let e = identify(json!({ "machine": m, "tests": [{ "ball": { "x": 0, "y": 0 } }], "csv": g }))
+        .unwrap_err();
+    assert!(
+        e.starts_with("tests[0].ball: the table ball lies on the C axis line"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -105,7 +196,8 @@ fn decimal_commas_units_tabs_crlf_and_the_test_column_read_alike() {
     // One radial test cannot tell the line's offset from its tilt at the ball's height: the
     // offsets alone are fitted.
     let only = json!(["E_X0C", "E_Y0C"]);
-    let base = identify(json!({ "machine": m, "tests": one_test(), "csv": g, "parameters": only })).unwrap();
+    let base = identify(json!({ "machine": m, "tests": one_test(), "csv": g, "parameters": only }))
+        .unwrap();
     let value = |r: &Value| r["errors"]["E_X0C"].as_f64().unwrap();
     assert!((value(&base) - 0.012).abs() < 1e-5, "{}", base["errors"]);
     // The same in mm with points, commas; in rad; with tabs, CRLF, a BOM; as two columns.
@@ -121,35 +213,54 @@ fn decimal_commas_units_tabs_crlf_and_the_test_column_read_alike() {
         .collect();
     variants.push(
         std::iter::once("angle_deg,deviation_mm,dir,operator".to_string())
-            .chain(rows.iter().map(|(a, d, r)| format!("{a},{},{r},somebody", d / 1e3)))
+            .chain(
+                rows.iter()
+                    .map(|(a, d, r)| format!("{a},{},{r},somebody", d / 1e3)),
+            )
             .collect::<Vec<_>>()
             .join("\n"),
     );
     variants.push(
         std::iter::once("\u{feff}Angle [rad]\tDeviation [um]\tSense".to_string())
             .chain(rows.iter().map(|(a, d, r)| {
-                format!("{}\t{d}\t{}", a.to_radians(), if r == "ccw" { "+" } else { "-" })
-                    .replace('.', ",")
+                format!(
+                    "{}\t{d}\t{}",
+                    a.to_radians(),
+                    if r == "ccw" { "+" } else { "-" }
+                )
+                .replace('.', ",")
             }))
             .collect::<Vec<_>>()
             .join("\r\n"),
     );
     let ccw: Vec<&(f64, f64, String)> = rows.iter().filter(|r| r.2 == "ccw").collect();
     variants.push(
-        std::iter::once("# the bar's length change both ways\nangle (deg); ccw (µm); cw (µm)".to_string())
-            .chain(ccw.iter().map(|(a, d, _)| {
-                let back = rows.iter().find(|r| r.2 == "cw" && r.0 == *a).unwrap();
-                format!("{a}; {d}; {}", back.1)
-            }))
-            .collect::<Vec<_>>()
-            .join("\n"),
+        std::iter::once(
+            "# the bar's length change both ways\nangle (deg); ccw (µm); cw (µm)".to_string(),
+        )
+        .chain(ccw.iter().map(|(a, d, _)| {
+            let back = rows.iter().find(|r| r.2 == "cw" && r.0 == *a).unwrap();
+            format!("{a}; {d}; {}", back.1)
+        }))
+        .collect::<Vec<_>>()
+        .join("\n"),
     );
     for (i, v) in variants.iter().enumerate() {
-        let r = identify(json!({ "machine": m, "tests": one_test(), "csv": v, "parameters": only })).unwrap();
-        assert!((value(&r) - value(&base)).abs() < 1e-9, "variant {i}: {} vs {}", value(&r), value(&base));
+        let r =
+            identify(json!({ "machine": m, "tests": one_test(), "csv": v, "parameters": only }))
+                .unwrap();
+        assert!(
+            (value(&r) - value(&base)).abs() < 1e-9,
+            "variant {i}: {} vs {}",
+            value(&r),
+            value(&base)
+        );
         assert_eq!(r["tests"][0]["points"], 26);
     }
-    let r = identify(json!({ "machine": m, "tests": one_test(), "csv": variants[0], "parameters": only })).unwrap();
+    let r = identify(
+        json!({ "machine": m, "tests": one_test(), "csv": variants[0], "parameters": only }),
+    )
+    .unwrap();
     assert_eq!(r["ignored"], json!(["operator"]));
     assert_eq!(r["tests"][0]["lines"][1], 3);
     // Two tests in one file by a test column, by name and by number; or each its own file.
@@ -158,11 +269,20 @@ fn decimal_commas_units_tabs_crlf_and_the_test_column_read_alike() {
         { "ball": { "x": 150, "y": 0, "height": 50 }, "step": 30 },
         { "ball": { "x": 150, "y": 0, "height": 50 }, "step": 30, "direction": "axial", "name": "Axial" }
     ]);
-    let s = call("ballbarRotarySimulate", &json!({ "machine": m, "tests": tests })).unwrap();
+    let s = call(
+        "ballbarRotarySimulate",
+        &json!({ "machine": m, "tests": tests }),
+    )
+    .unwrap();
     let file = s["csv"].as_str().unwrap();
-    assert!(file.contains("\ntest;angle (deg);deviation (µm);direction\n1;0;"), "{file}");
+    assert!(
+        file.contains("\ntest;angle (deg);deviation (µm);direction\n1;0;"),
+        "{file}"
+    );
     let by_name = identify(json!({ "machine": m, "tests": tests, "csv": file })).unwrap();
-    let by_number = identify(json!({ "machine": m, "tests": tests, "csv": file.replace("\nAxial;", "\n2;") })).unwrap();
+    let by_number =
+        identify(json!({ "machine": m, "tests": tests, "csv": file.replace("\nAxial;", "\n2;") }))
+            .unwrap();
     assert_eq!(by_name["identification"], by_number["identification"]);
     let mut own = tests.clone();
     for (i, name) in ["1", "Axial"].iter().enumerate() {
@@ -187,9 +307,16 @@ fn one_file_goes_through_the_rotary_identification_and_the_reversal_study() {
     // The C test's file (C once round each way, decimal comma, µm) ...
     let m = with_errors(&bc_table(), json!({ "E_X0C": 0.012 }));
     let tests = json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 1 }]);
-    let s = call("ballbarRotarySimulate", &json!({ "machine": m, "tests": tests })).unwrap();
+    let s = call(
+        "ballbarRotarySimulate",
+        &json!({ "machine": m, "tests": tests }),
+    )
+    .unwrap();
     let file = s["csv"].as_str().unwrap().replace('.', ",");
-    let r = identify(json!({ "machine": m, "tests": tests, "csv": file, "parameters": ["E_X0C", "E_Y0C"] })).unwrap();
+    let r = identify(
+        json!({ "machine": m, "tests": tests, "csv": file, "parameters": ["E_X0C", "E_Y0C"] }),
+    )
+    .unwrap();
     assert!((r["errors"]["E_X0C"].as_f64().unwrap() - 0.012).abs() < 1e-5);
     // ... is read by the reversal study: its ccw run is the trace, the cw run counted unused,
     // and the dent measured (none: no friction here, the trace is the offset's cosine).
@@ -198,7 +325,10 @@ fn one_file_goes_through_the_rotary_identification_and_the_reversal_study() {
     assert_eq!(t["skipped"], 361);
     let dent = t["dent"]["depth"].as_f64().unwrap();
     // Falling from 170° to 190°: −e·cos C at most e·(1 − cos 10°) = 0.18 µm below its level.
-    assert!(dent < 0.012 * (1.0 - 10f64.to_radians().cos()) + 1e-9, "{dent}");
+    assert!(
+        dent < 0.012 * (1.0 - 10f64.to_radians().cos()) + 1e-9,
+        "{dent}"
+    );
     let m = parse_trace(&file).unwrap();
     assert_eq!(m.angle.len(), 361);
     // Three comment lines, the header, then the first point.
@@ -213,21 +343,38 @@ fn one_file_goes_through_the_rotary_identification_and_the_reversal_study() {
         let um = d.parse::<f64>().unwrap() * 1e3;
         rewritten.push_str(&format!("reversal;{a};{um:.4};ccw\n").replace('.', ","));
     }
-    let (old, new) = (parse_trace(&text).unwrap(), parse_trace(&rewritten).unwrap());
+    let (old, new) = (
+        parse_trace(&text).unwrap(),
+        parse_trace(&rewritten).unwrap(),
+    );
     assert_eq!(old.angle.len(), new.angle.len());
     for i in 0..old.angle.len() {
         assert!((old.angle[i] - new.angle[i]).abs() < 1e-12);
         assert!((old.deviation[i] - new.deviation[i]).abs() < 1e-12);
     }
     let f = call("reversalFit", &json!({ "csv": rewritten })).unwrap();
-    for (k, v) in [("friction", 12.0), ("frictionSlope", 800.0), ("positionGain", 28.0)] {
-        let (lo, hi) = (f[k]["low"].as_f64().unwrap(), f[k]["high"].as_f64().unwrap());
+    for (k, v) in [
+        ("friction", 12.0),
+        ("frictionSlope", 800.0),
+        ("positionGain", 28.0),
+    ] {
+        let (lo, hi) = (
+            f[k]["low"].as_f64().unwrap(),
+            f[k]["high"].as_f64().unwrap(),
+        );
         assert!(lo <= v && v <= hi, "{k}: {lo} to {hi} should hold {v}");
     }
     assert_eq!(f["skipped"], 0);
     // Several tests in one file, or a cw run alone, are refused by the reversal study.
-    let e = parse_trace(&format!("{rewritten}other;1;0;ccw\n")).unwrap_err().to_string();
-    assert!(e.contains("the file holds 2 tests (reversal, other)"), "{e}");
-    let e = parse_trace("angle (deg);deviation (µm);direction\n1;0;cw\n").unwrap_err().to_string();
+    let e = parse_trace(&format!("{rewritten}other;1;0;ccw\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("the file holds 2 tests (reversal, other)"),
+        "{e}"
+    );
+    let e = parse_trace("angle (deg);deviation (µm);direction\n1;0;cw\n")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("clockwise (cw) points only"), "{e}");
 }

@@ -64,8 +64,16 @@ fn every_sensitivity_matches_central_differences_of_the_exact_trace() {
             // 1 µm or 1e-6 rad, in API units (mm, degrees).
             let angle = p.starts_with("E_A") || p.starts_with("E_B") || p.starts_with("E_C");
             let h = if angle { 1e-6f64.to_degrees() } else { 1e-3 };
-            let plus = simulate(&with_errors(&machine, json!({ p.clone(): h })), &params, &tests());
-            let minus = simulate(&with_errors(&machine, json!({ p.clone(): -h })), &params, &tests());
+            let plus = simulate(
+                &with_errors(&machine, json!({ p.clone(): h })),
+                &params,
+                &tests(),
+            );
+            let minus = simulate(
+                &with_errors(&machine, json!({ p.clone(): -h })),
+                &params,
+                &tests(),
+            );
             for (ti, t) in base["tests"].as_array().unwrap().iter().enumerate() {
                 let s = &t["sensitivities"][j];
                 assert_eq!(s["name"], p.as_str());
@@ -120,7 +128,10 @@ fn an_error_declared_invisible_changes_no_trace() {
             for u in v["invisible"].as_array().unwrap() {
                 let p = u["name"].as_str().unwrap();
                 let e = effect(p);
-                assert!(e < 1e-6, "{name}: {p} declared invisible moves the bar by {e} mm");
+                assert!(
+                    e < 1e-6,
+                    "{name}: {p} declared invisible moves the bar by {e} mm"
+                );
                 println!("{name}: {p}: {}", u["why"]);
                 assert!(!u["why"].as_str().unwrap().is_empty());
                 invisible += 1;
@@ -128,7 +139,10 @@ fn an_error_declared_invisible_changes_no_trace() {
             for p in v["identifiable"].as_array().unwrap() {
                 let p = p.as_str().unwrap();
                 let e = effect(p);
-                assert!(e > 5e-4, "{name}: {p} identifiable but moves the bar by {e} mm");
+                assert!(
+                    e > 5e-4,
+                    "{name}: {p} identifiable but moves the bar by {e} mm"
+                );
                 visible += 1;
             }
         }

@@ -42,7 +42,10 @@ fn an_offset_of_the_c_axis_line_gives_the_closed_form_once_per_turn() {
     let (r, h) = (120.0_f64, 40.0);
     for (phi_deg, x, y) in [(0.0, r, 0.0), (30.0_f64, 0.0, 0.0)] {
         let (x, y) = if x == 0.0 {
-            (r * phi_deg.to_radians().cos(), r * phi_deg.to_radians().sin())
+            (
+                r * phi_deg.to_radians().cos(),
+                r * phi_deg.to_radians().sin(),
+            )
         } else {
             (x, y)
         };
@@ -101,7 +104,10 @@ fn turn(axis: char, q: f64) -> Isometry3<f64> {
         'B' => Vector3::y_axis(),
         _ => Vector3::z_axis(),
     };
-    Isometry3::from_parts(Translation3::identity(), UnitQuaternion::from_axis_angle(&a, q))
+    Isometry3::from_parts(
+        Translation3::identity(),
+        UnitQuaternion::from_axis_angle(&a, q),
+    )
 }
 
 fn shift(v: Vector3<f64>) -> Isometry3<f64> {
@@ -123,13 +129,22 @@ fn loc(errors: &Value, axis: char) -> [f64; 6] {
 
 /// The balls in the machine frame by hand: `(table ball, tool ball)` at positions `q` (by axis
 /// letter, mm and rad) for the three machines of the issue (geometry from their presets).
-fn balls(kind: &str, errors: &Value, q: &dyn Fn(char) -> f64, p: Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+fn balls(
+    kind: &str,
+    errors: &Value,
+    q: &dyn Fn(char) -> f64,
+    p: Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
     let lin = shift(Vector3::new(q('X'), q('Y'), q('Z')));
     match kind {
         // B on the bed carrying C, the table surface at the B axis, tool tip at the nose.
         "bc" => {
-            let fw = d(loc(errors, 'B')) * turn('B', -q('B')) * d(loc(errors, 'C')) * turn('C', -q('C'));
-            ((fw * Point3::from(p)).coords, (lin * Point3::origin()).coords)
+            let fw =
+                d(loc(errors, 'B')) * turn('B', -q('B')) * d(loc(errors, 'C')) * turn('C', -q('C'));
+            (
+                (fw * Point3::from(p)).coords,
+                (lin * Point3::origin()).coords,
+            )
         }
         // A on the bed carrying C, table surface 100 mm above, tool tip 100 mm below the nose.
         "ac" => {
@@ -139,13 +154,22 @@ fn balls(kind: &str, errors: &Value, q: &dyn Fn(char) -> f64, p: Vector3<f64>) -
                 * turn('C', -q('C'))
                 * shift(Vector3::new(0.0, 0.0, 100.0));
             let ft = lin * shift(Vector3::new(0.0, 0.0, -100.0));
-            ((fw * Point3::from(p)).coords, (ft * Point3::origin()).coords)
+            (
+                (fw * Point3::from(p)).coords,
+                (ft * Point3::origin()).coords,
+            )
         }
         // C table; X, Y, Z then the B head, the tip 300 mm below B's axis.
         _ => {
             let fw = d(loc(errors, 'C')) * turn('C', -q('C'));
-            let ft = lin * d(loc(errors, 'B')) * turn('B', q('B')) * shift(Vector3::new(0.0, 0.0, -300.0));
-            ((fw * Point3::from(p)).coords, (ft * Point3::origin()).coords)
+            let ft = lin
+                * d(loc(errors, 'B'))
+                * turn('B', q('B'))
+                * shift(Vector3::new(0.0, 0.0, -300.0));
+            (
+                (fw * Point3::from(p)).coords,
+                (ft * Point3::origin()).coords,
+            )
         }
     }
 }
@@ -153,12 +177,24 @@ fn balls(kind: &str, errors: &Value, q: &dyn Fn(char) -> f64, p: Vector3<f64>) -
 #[test]
 fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
     let cases = [
-        ("bc", bc_table(), json!({ "E_X0C": 0.012, "E_Y0C": -0.008, "E_Z0C": 0.005, "E_A0C": 0.003, "E_B0C": -0.002, "E_C0C": 0.004,
-            "E_X0B": -0.006, "E_Z0B": 0.01, "E_A0B": 0.002, "E_B0B": 0.003, "E_C0B": -0.001 })),
-        ("ac", ac_trunnion(), json!({ "E_X0C": -0.01, "E_Y0C": 0.007, "E_A0C": -0.002, "E_B0C": 0.004, "E_C0C": 0.002,
-            "E_Y0A": 0.009, "E_Z0A": -0.011, "E_A0A": 0.003, "E_B0A": 0.001, "E_C0A": -0.002 })),
-        ("ht", head_table(), json!({ "E_X0C": 0.015, "E_Y0C": 0.004, "E_A0C": 0.002, "E_B0C": -0.003,
-            "E_X0B": 0.008, "E_Z0B": -0.005, "E_A0B": 0.002, "E_C0B": 0.003, "E_B0B": -0.002 })),
+        (
+            "bc",
+            bc_table(),
+            json!({ "E_X0C": 0.012, "E_Y0C": -0.008, "E_Z0C": 0.005, "E_A0C": 0.003, "E_B0C": -0.002, "E_C0C": 0.004,
+            "E_X0B": -0.006, "E_Z0B": 0.01, "E_A0B": 0.002, "E_B0B": 0.003, "E_C0B": -0.001 }),
+        ),
+        (
+            "ac",
+            ac_trunnion(),
+            json!({ "E_X0C": -0.01, "E_Y0C": 0.007, "E_A0C": -0.002, "E_B0C": 0.004, "E_C0C": 0.002,
+            "E_Y0A": 0.009, "E_Z0A": -0.011, "E_A0A": 0.003, "E_B0A": 0.001, "E_C0A": -0.002 }),
+        ),
+        (
+            "ht",
+            head_table(),
+            json!({ "E_X0C": 0.015, "E_Y0C": 0.004, "E_A0C": 0.002, "E_B0C": -0.003,
+            "E_X0B": 0.008, "E_Z0B": -0.005, "E_A0B": 0.002, "E_C0B": 0.003, "E_B0B": -0.002 }),
+        ),
     ];
     let mut checked = 0;
     for (kind, machine, errors) in cases {
@@ -194,18 +230,32 @@ fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
             for i in 0..dev.len() {
                 let q = |axis: char| -> f64 {
                     let (_, unit, v) = cmd.iter().find(|c| c.0 == axis).unwrap();
-                    if unit == "deg" { v[i].to_radians() } else { v[i] }
+                    if unit == "deg" {
+                        v[i].to_radians()
+                    } else {
+                        v[i]
+                    }
                 };
                 // The ideal machine at the commanded pose: the bar at its length, the tool ball
                 // where the table ball's frame puts tool_w.
                 let (pn, tn) = balls(kind, &json!({}), &q, p);
                 let (pw, _) = balls(kind, &json!({}), &q, tool_w);
-                assert!(((tn - pn).norm() - L).abs() < 1e-9, "{kind} test {ti}: nominal bar");
-                assert!((tn - pw).norm() < 1e-9, "{kind} test {ti}: tool ball off its place");
+                assert!(
+                    ((tn - pn).norm() - L).abs() < 1e-9,
+                    "{kind} test {ti}: nominal bar"
+                );
+                assert!(
+                    (tn - pw).norm() < 1e-9,
+                    "{kind} test {ti}: tool ball off its place"
+                );
                 // With the errors.
                 let (pa, ta) = balls(kind, &errors, &q, p);
                 let want = (ta - pa).norm() - L;
-                assert!((dev[i] - want).abs() < 1e-10, "{kind} test {ti} point {i}: {} vs {want}", dev[i]);
+                assert!(
+                    (dev[i] - want).abs() < 1e-10,
+                    "{kind} test {ti} point {i}: {} vs {want}",
+                    dev[i]
+                );
                 for k in 0..3 {
                     assert!((tool[k][i] - ta[k]).abs() < 1e-9);
                     assert!((table[k][i] - pa[k]).abs() < 1e-9);
@@ -217,7 +267,10 @@ fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
             let spread = t["spread"].as_f64().unwrap();
             assert!(spread > 1e-3, "{kind} test {ti}: {spread}");
             let flat = series(&nominal["tests"][ti]["deviation"]);
-            assert!(flat.iter().all(|d| d.abs() < 1e-11), "{kind} {ti}: {flat:?}");
+            assert!(
+                flat.iter().all(|d| d.abs() < 1e-11),
+                "{kind} {ti}: {flat:?}"
+            );
         }
     }
     // 3 machines × (3 C tests × 2 × 37 + 2 tilt tests × 2 × 19 points).
@@ -229,9 +282,18 @@ fn the_first_order_change_is_within_the_second_order_of_the_exact_one() {
     // Errors of 10 µm and 0.003°: the remainder is of order |δ|²/L plus the chain's own
     // products of errors and lever arms, far below 0.1 µm; the errors move the bar by tens of µm.
     for (machine, errors) in [
-        (bc_table(), json!({ "E_X0C": 0.01, "E_A0C": 0.003, "E_Z0B": -0.01, "E_B0B": 0.003 })),
-        (ac_trunnion(), json!({ "E_Y0C": 0.01, "E_B0C": -0.003, "E_Y0A": 0.01, "E_C0A": 0.003 })),
-        (head_table(), json!({ "E_X0C": 0.01, "E_A0B": 0.003, "E_X0B": -0.01, "E_B0C": 0.003 })),
+        (
+            bc_table(),
+            json!({ "E_X0C": 0.01, "E_A0C": 0.003, "E_Z0B": -0.01, "E_B0B": 0.003 }),
+        ),
+        (
+            ac_trunnion(),
+            json!({ "E_Y0C": 0.01, "E_B0C": -0.003, "E_Y0A": 0.01, "E_C0A": 0.003 }),
+        ),
+        (
+            head_table(),
+            json!({ "E_X0C": 0.01, "E_A0B": 0.003, "E_X0B": -0.01, "E_B0C": 0.003 }),
+        ),
     ] {
         let s = simulate(
             &with_errors(&machine, errors),

@@ -187,7 +187,15 @@ fn column(cell: &str, line: usize) -> Result<Col> {
     };
     if let Some(d) = both {
         if unit.is_some() && length(&unit).is_none() {
-            return Err(give_unit(line, if d > 0.0 { "CCW deviation" } else { "CW deviation" }, cell));
+            return Err(give_unit(
+                line,
+                if d > 0.0 {
+                    "CCW deviation"
+                } else {
+                    "CW deviation"
+                },
+                cell,
+            ));
         }
         return Ok(Col::Both(d, length(&unit)));
     }
@@ -222,10 +230,7 @@ pub fn read_points(text: &str, rules: Rules) -> Result<TraceFile> {
     })?;
     let sep = separator(header).unwrap_or(',');
     let head = cells(header, sep);
-    let cols: Vec<Col> = head
-        .iter()
-        .map(|c| column(c, hl))
-        .collect::<Result<_>>()?;
+    let cols: Vec<Col> = head.iter().map(|c| column(c, hl)).collect::<Result<_>>()?;
     let find = |f: &dyn Fn(&Col) -> bool, what: &str| -> Result<Option<usize>> {
         let hits: Vec<usize> = (0..cols.len()).filter(|&i| f(&cols[i])).collect();
         match hits.len() {
@@ -253,8 +258,14 @@ pub fn read_points(text: &str, rules: Rules) -> Result<TraceFile> {
     let Col::Angle(af) = cols[ac] else {
         unreachable!("the angle column is an angle")
     };
-    let ccw = find(&|c| matches!(c, Col::Both(d, _) if *d > 0.0), "the CCW deviation")?;
-    let cw = find(&|c| matches!(c, Col::Both(d, _) if *d < 0.0), "the CW deviation")?;
+    let ccw = find(
+        &|c| matches!(c, Col::Both(d, _) if *d > 0.0),
+        "the CCW deviation",
+    )?;
+    let cw = find(
+        &|c| matches!(c, Col::Both(d, _) if *d < 0.0),
+        "the CW deviation",
+    )?;
     let dc = find(&|c| matches!(c, Col::Deviation(_)), "the deviation")?;
     let dir = find(&|c| *c == Col::Direction, "the direction")?;
     let tc = find(&|c| *c == Col::Test, "the test")?;

@@ -31,8 +31,8 @@
 use super::measure::{self, Measurements};
 use super::{Study, Unknown, SPHERE_NAMES};
 use crate::error::{Error, Result};
-pub use crate::identify::correct::{enter, Correction};
 use crate::identify::correct::found;
+pub use crate::identify::correct::{enter, Correction};
 use crate::identify::{self, amount, DecisionInput, Judgement, Options, Param, Verdict};
 use crate::machine::errors::ErrorValues;
 use crate::schema::{DefaultValue, Kind, Quantity};

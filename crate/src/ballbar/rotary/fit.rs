@@ -31,9 +31,7 @@ use crate::ballbar::read::{read_points, Rules, TraceFile};
 use crate::edge::Checked;
 use crate::error::{Error, Result};
 use crate::identify::correct::{found, Correction};
-use crate::identify::{
-    self, amount, DecisionInput, Identification, Options, Param,
-};
+use crate::identify::{self, amount, DecisionInput, Identification, Options, Param};
 use crate::machine::errors::ErrorValues;
 use crate::schema::{DefaultValue, Kind, Quantity};
 use serde::Serialize;
@@ -134,8 +132,18 @@ pub struct BallbarRotaryIdentification {
     pub summary: Vec<String>,
 }
 
-/// The points of the files, per test (module docs): `(test, line, angle, direction, value)`.
-fn gather(study: &Study, own: &BallbarRotaryIdentifyInput) -> Result<(Vec<(usize, usize, f64, f64, f64)>, Vec<String>)> {
+/// One measured point of a file.
+#[derive(Debug, Clone, Copy)]
+struct Measured {
+    test: usize,
+    line: usize,
+    angle: f64,
+    direction: f64,
+    value: f64,
+}
+
+/// The points of the files, per test (module docs), and the columns not used.
+fn gather(study: &Study, own: &BallbarRotaryIdentifyInput) -> Result<(Vec<Measured>, Vec<String>)> {
     let rules = Rules {
         deviation_unit: None,
     };
@@ -213,7 +221,13 @@ fn gather(study: &Study, own: &BallbarRotaryIdentifyInput) -> Result<(Vec<(usize
                     ),
                 ));
             }
-            out.push((test, p.line, p.angle, p.direction, p.deviation));
+            out.push(Measured {
+                test,
+                line: p.line,
+                angle: p.angle,
+                direction: p.direction,
+                value: p.deviation,
+            });
         }
         Ok(())
     };
@@ -236,7 +250,7 @@ fn gather(study: &Study, own: &BallbarRotaryIdentifyInput) -> Result<(Vec<(usize
         take(file, &field, Some(i))?;
     }
     for (i, t) in study.tests.iter().enumerate() {
-        let n = out.iter().filter(|p| p.0 == i).count();
+        let n = out.iter().filter(|p| p.test == i).count();
         if n < MIN_POINTS {
             return Err(Error::field(
                 if own.csv.trim().is_empty() {
@@ -263,21 +277,24 @@ pub fn identify(
     let (data, ignored) = gather(&study, own)?;
     let points: Vec<Point> = data
         .iter()
-        .map(|&(test, _, angle, direction, _)| Point {
-            test,
-            angle,
-            direction,
+        .map(|p| Point {
+            test: p.test,
+            angle: p.angle,
+            direction: p.direction,
         })
         .collect();
-    let d: Vec<f64> = data.iter().map(|p| p.4).collect();
-    identify_points(&study, &points, &d, own.rtol, &own.decision.options())
-        .map(|mut r| {
-            for (ti, tf) in r.tests.iter_mut().enumerate() {
-                tf.lines = data.iter().filter(|p| p.0 == ti).map(|p| p.1).collect();
-            }
-            r.ignored = ignored;
-            r
-        })
+    let d: Vec<f64> = data.iter().map(|p| p.value).collect();
+    identify_points(&study, &points, &d, own.rtol, &own.decision.options()).map(|mut r| {
+        for (ti, tf) in r.tests.iter_mut().enumerate() {
+            tf.lines = data
+                .iter()
+                .filter(|p| p.test == ti)
+                .map(|p| p.line)
+                .collect();
+        }
+        r.ignored = ignored;
+        r
+    })
 }
 
 /// Identifies the errors from measured length changes `d` (mm) at `points` (module docs); the
@@ -291,7 +308,8 @@ pub fn identify_points(
 ) -> Result<BallbarRotaryIdentification> {
     let sys = see::system(study, points)?;
     let ne = study.unknowns.len();
-    let labels: Vec<String> = sys.offsets
+    let labels: Vec<String> = sys
+        .offsets
         .iter()
         .map(|&(t, dir)| {
             format!(
@@ -329,7 +347,9 @@ pub fn identify_points(
     let mut tests = Vec::with_capacity(study.tests.len());
     let mut summary = Vec::new();
     for (ti, t) in study.tests.iter().enumerate() {
-        let idx: Vec<usize> = (0..points.len()).filter(|&i| points[i].test == ti).collect();
+        let idx: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i].test == ti)
+            .collect();
         let measured: Vec<f64> = idx.iter().map(|&i| d[i]).collect();
         let run: Vec<f64> = idx.iter().map(|&i| points[i].direction).collect();
         // Before: less the mean of each direction.

@@ -69,7 +69,11 @@ pub fn system(study: &Study, points: &[Point]) -> Result<System> {
             offsets.push((p.test, p.direction));
         }
     }
-    offsets.sort_by(|a, b| (a.0, -a.1).partial_cmp(&(b.0, -b.1)).unwrap_or(std::cmp::Ordering::Equal));
+    offsets.sort_by(|a, b| {
+        (a.0, -a.1)
+            .partial_cmp(&(b.0, -b.1))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
     let p = ne + offsets.len();
     let mut a = DMatrix::zeros(points.len(), p);
     for (i, pt) in points.iter().enumerate() {
@@ -77,10 +81,7 @@ pub fn system(study: &Study, points: &[Point]) -> Result<System> {
         for (j, s) in study.sensitivities(t, pt.angle)?.into_iter().enumerate() {
             a[(i, j)] = s;
         }
-        if let Some(k) = offsets
-            .iter()
-            .position(|o| *o == (pt.test, pt.direction))
-        {
+        if let Some(k) = offsets.iter().position(|o| *o == (pt.test, pt.direction)) {
             a[(i, ne + k)] = 1.0;
         }
     }
@@ -107,7 +108,8 @@ pub fn system(study: &Study, points: &[Point]) -> Result<System> {
             .iter()
             .map(|&(t, d)| offset_name(&study.tests[t], d)),
     );
-    let mut defs: Vec<Option<&'static ErrorDef>> = study.unknowns.iter().map(|d| Some(*d)).collect();
+    let mut defs: Vec<Option<&'static ErrorDef>> =
+        study.unknowns.iter().map(|d| Some(*d)).collect();
     defs.extend(offsets.iter().map(|_| None));
     Ok(System {
         a,
@@ -285,7 +287,9 @@ pub fn together(study: &Study, sys: &System, points: &[Point], rtol: f64) -> Res
     let identifiable_all = identifiable(&all, ne);
     let mut alone = Vec::with_capacity(study.tests.len());
     for (ti, t) in study.tests.iter().enumerate() {
-        let rows: Vec<usize> = (0..points.len()).filter(|&i| points[i].test == ti).collect();
+        let rows: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i].test == ti)
+            .collect();
         let cols: Vec<usize> = (0..ne)
             .chain(
                 sys.offsets

@@ -85,11 +85,17 @@ pub struct SimulatedTest {
     pub commanded: Vec<AxisSeries>,
     /// The tool ball on the machine with its errors, machine frame: X, Y, Z series, mm.
     #[serde(serialize_with = "crate::edge::series3")]
-    #[cfg_attr(feature = "ts", tsify(type = "[Float64Array, Float64Array, Float64Array]"))]
+    #[cfg_attr(
+        feature = "ts",
+        tsify(type = "[Float64Array, Float64Array, Float64Array]")
+    )]
     pub tool: [Vec<f64>; 3],
     /// The table ball on the machine with its errors, machine frame: X, Y, Z series, mm.
     #[serde(serialize_with = "crate::edge::series3")]
-    #[cfg_attr(feature = "ts", tsify(type = "[Float64Array, Float64Array, Float64Array]"))]
+    #[cfg_attr(
+        feature = "ts",
+        tsify(type = "[Float64Array, Float64Array, Float64Array]")
+    )]
     pub table: [Vec<f64>; 3],
     /// The bar's exact length change per point, mm (+ longer).
     #[serde(serialize_with = "crate::edge::series")]
@@ -102,7 +108,10 @@ pub struct SimulatedTest {
     /// The tool ball's displacement relative to the table in the test's radial, tangential
     /// and axial directions (exact), mm: what a bar in each direction would see.
     #[serde(serialize_with = "crate::edge::series3")]
-    #[cfg_attr(feature = "ts", tsify(type = "[Float64Array, Float64Array, Float64Array]"))]
+    #[cfg_attr(
+        feature = "ts",
+        tsify(type = "[Float64Array, Float64Array, Float64Array]")
+    )]
     pub displacement: [Vec<f64>; 3],
     /// The sensitivities to the study's errors.
     pub sensitivities: Vec<TraceSensitivity>,
@@ -250,7 +259,10 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
 }
 
 fn is_rotary(study: &Study, i: usize) -> bool {
-    matches!(study.model.chain.link(i).joint, crate::chain::Joint::Rotary(_))
+    matches!(
+        study.model.chain.link(i).joint,
+        crate::chain::Joint::Rotary(_)
+    )
 }
 
 fn empty3(n: usize) -> [Vec<f64>; 3] {
