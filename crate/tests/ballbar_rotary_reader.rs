@@ -365,7 +365,16 @@ fn one_file_goes_through_the_rotary_identification_and_the_reversal_study() {
         assert!(lo <= v && v <= hi, "{k}: {lo} to {hi} should hold {v}");
     }
     assert_eq!(f["skipped"], 0);
-    // Several tests in one file, or a cw run alone, are refused by the reversal study.
+    // Several tests in one file are refused by the circular test (ISO 230-4) and the reversal
+    // study, and a cw run alone by the reversal study.
+    let two = format!("{rewritten}other;1;0;ccw\n");
+    let e = call("ballbarEvaluate", &json!({ "csv": two, "radius": 50 }))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("csv: the file holds 2 tests (reversal, other)"),
+        "{e}"
+    );
     let e = parse_trace(&format!("{rewritten}other;1;0;ccw\n"))
         .unwrap_err()
         .to_string();

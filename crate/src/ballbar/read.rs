@@ -392,7 +392,7 @@ pub fn read_points(text: &str, rules: Rules) -> Result<TraceFile> {
 }
 
 /// Reads a trace for the ISO 230-4 evaluation (module docs): the deviation's unit must be
-/// given, at least 20 points.
+/// given, one test, at least 20 points.
 pub fn read_trace(text: &str) -> Result<Trace> {
     let f = read_points(
         text,
@@ -400,6 +400,16 @@ pub fn read_trace(text: &str) -> Result<Trace> {
             deviation_unit: None,
         },
     )?;
+    if f.tests.len() > 1 {
+        return Err(Error::field(
+            "csv",
+            format!(
+                "the file holds {} tests ({}); a circular test reads one: give its lines alone",
+                f.tests.len(),
+                f.tests.join(", ")
+            ),
+        ));
+    }
     if f.points.len() < 20 {
         return Err(Error::field(
             "csv",

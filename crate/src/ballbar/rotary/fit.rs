@@ -16,16 +16,22 @@
 //! and a one for the offset of its test and direction ([`super::see`]). Each point is one
 //! measurement with the same noise (the `decision.noise`, mm, checks the fit's residual).
 //!
+//! The model is **first order** in the errors (the sensitivities at the nominal commanded
+//! pose), the traces it is fitted to are what the machine does exactly: for errors of 10 µm and
+//! 0.003° the remainder is below 0.1 µm (crate/tests/ballbar_rotary_trace.rs), far below a
+//! ball-bar's resolution; the values found, put into the machine, reproduce the traces through
+//! the exact chain (crate/tests/ballbar_rotary_identified_errors_are_the_machines.rs).
+//!
 //! # What is reported
 //! The shared identification in API units ([`crate::identify::Identification`]); what the
-//! tests see ([`super::see::Visibility`], from the fit's own groups) and what each sees alone
-//! ([`super::see::Together`]); per test the trace, the fit and the residual, with the rms
+//! tests see ([`super::see::RotaryVisibility`], from the fit's own groups) and what each sees alone
+//! ([`super::see::RotaryTogether`]); per test the trace, the fit and the residual, with the rms
 //! **before** (the measured trace less its mean per direction) and **after** correction (the
 //! residual, what the model predicts once the errors found are entered); the errors found
 //! present as `errors` for `machine.errors` and in words with the number to enter
 //! ([`crate::identify::correct`]).
 
-use super::see::{self, Point, Together, Visibility};
+use super::see::{self, Point, RotaryTogether, RotaryVisibility};
 use super::{BallbarRotaryInput, Study, MIN_POINTS};
 use crate::ballbar::read::{read_points, Rules, TraceFile};
 use crate::edge::Checked;
@@ -71,7 +77,7 @@ impl Checked for BallbarRotaryIdentifyInput {}
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct TestFit {
+pub struct RotaryTestFit {
     /// The test's name.
     pub name: String,
     /// The moving axis's letter.
@@ -112,13 +118,13 @@ pub struct TestFit {
 #[serde(rename_all = "camelCase")]
 pub struct BallbarRotaryIdentification {
     /// Per test.
-    pub tests: Vec<TestFit>,
+    pub tests: Vec<RotaryTestFit>,
     /// The fit and its decisions, in mm and degrees (errors, then the offsets).
     pub identification: Identification,
     /// What the tests can see of the errors fitted.
-    pub visibility: Visibility,
+    pub visibility: RotaryVisibility,
     /// What each test sees alone and what they see together.
-    pub together: Together,
+    pub together: RotaryTogether,
     /// The errors found present, in words and as numbers to enter.
     pub corrections: Vec<Correction>,
     /// The errors found present by ISO name, mm and degrees (radians in Rust): put it into
@@ -382,7 +388,7 @@ pub fn identify_points(
             amount(Quantity::SmallLength, before),
             amount(Quantity::SmallLength, after),
         ));
-        tests.push(TestFit {
+        tests.push(RotaryTestFit {
             name: t.name.clone(),
             axis: t.letters[0],
             points: n,

@@ -44,6 +44,14 @@
 //! `δ = tip_actual(q) − t` (workpiece frame), is also given in the test's frame, `(δ·r̂, δ·t̂,
 //! δ·â)`: what a radial, tangential and axial bar would see to first order.
 //!
+//! The simulation is **geometric**: the axes stand where they are commanded (no servo lag, no
+//! backlash or reversal spike, no thermal drift), so the ccw and cw runs coincide; a measured
+//! trace whose runs differ carries what the model lacks, and the fit's goodness says so (the
+//! per-direction offsets take a constant lag of a tangential bar). Every error of the machine
+//! acts, those of the held axis and of the linear axes (which move during the test) included.
+//! The tool ball is taken as calibrated (its length from the spindle nose is known), as the
+//! probe's ball is in [`crate::probe`].
+//!
 //! # First order
 //! `ΔL ≈ b̂·δ`, and `δ ≈ Σ_ε J_ε·ε` with `J_ε` the chain's analytic Jacobian of the tip in the
 //! workpiece frame ([`crate::chain::Chain::jacobian`], no set-up): the **sensitivity** of the
@@ -72,9 +80,11 @@
 //! A radial or tangential bar needs the table ball off a table axis's line (the tool ball off a
 //! head axis's line): else the direction is undefined and the test is refused (the axial bar
 //! is not). A sweep outside the moving axis's travel, a `hold` outside the other's, `from ≥ to`
-//! and fewer than 8 points per test are refused; the linear axes' travel is not modelled. The
-//! identification refuses a test with no measured point and an angle of a file outside the
-//! test's travel, naming the line.
+//! and more than 20 000 points a run are refused; the linear axes' travel is not modelled. The
+//! identification refuses a test with fewer than 8 measured points and an angle of a file
+//! outside the moving axis's travel, naming the line. Errors the tests cannot separate get no
+//! value of their own (the groups of [`crate::identify::fit`]): e.g. on a machine with a B head
+//! over a C table the offsets of B's line and of C's move the bar alike in every test here.
 
 pub mod fit;
 pub mod see;
@@ -100,7 +110,7 @@ pub const MAX_POINTS: usize = 20_000;
 const ON_LINE: f64 = 1e-6;
 
 crate::choices! {
-    /// How the bar lies relative to the moving axis (module docs).
+    /// How the bar lies relative to the moving axis, from the table ball to the spindle's ball.
     pub enum BarDirection {
         /// Square to the axis, through the balls.
         Radial = "radial" {
@@ -167,7 +177,7 @@ crate::inputs! {
 }
 
 crate::inputs! {
-    /// One test: the axis moved, the ball, the bar, the sweep (module docs).
+    /// One test: the axis moved, the other's angle, the table ball, the bar, the sweep.
     pub struct RotaryTest {
         /// Its name (the `test` column of a file); its number from 1 when left empty.
         pub name: String = "name" optional {
@@ -213,14 +223,16 @@ crate::inputs! {
             default: DefaultValue::Str("radial"),
             group: "Ball-bar test",
         },
-        /// Start of the sweep, degrees (radians in Rust); left out: module docs of `sweep`.
+        /// Start of the sweep, degrees (radians in Rust); left out: 0° for an axis that turns a
+        /// full turn, else the start of its travel, at most 90° from 0°.
         pub from: Option<f64> = "from" optional {
             label: "Sweep from",
             help: "The moving axis's first command; left empty: 0° for a full turn, or the travel (at most ±90°) of a tilt axis.",
             kind: schema::number(Quantity::Angle, -3600.0, 3600.0),
             group: "Ball-bar test",
         },
-        /// End of the sweep, degrees (radians in Rust).
+        /// End of the sweep, degrees (radians in Rust); left out: 360° for an axis that turns a
+        /// full turn, else the end of its travel, at most 90° from 0°.
         pub to: Option<f64> = "to" optional {
             label: "Sweep to",
             help: "The moving axis's last command; left empty: 360° for a full turn, or the travel (at most ±90°) of a tilt axis.",
@@ -235,7 +247,8 @@ crate::inputs! {
             default: DefaultValue::Num(1.0),
             group: "Ball-bar test",
         },
-        /// The measured trace of this test (see [`crate::ballbar::read`]); empty: none.
+        /// The measured trace of this test: the moving axis's command (deg), the bar's length
+        /// change (unit in the header) and the direction per line; empty: none.
         pub csv: String = "csv" optional {
             label: "Measured trace (CSV)",
             help: "Angle of the moving axis (deg) and the bar's length change (µm or mm) per line, with a direction column (ccw/cw), units in the header.",

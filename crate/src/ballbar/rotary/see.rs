@@ -120,11 +120,12 @@ pub fn system(study: &Study, points: &[Point]) -> Result<System> {
     })
 }
 
-/// What the tests can see (module docs of [`super`]).
+/// What the tests can see: the errors each identifiable on its own, those with no effect on the
+/// bar and why, and the groups only combinations of which are measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct Visibility {
+pub struct RotaryVisibility {
     /// The errors each identifiable on its own.
     pub identifiable: Vec<String>,
     /// Errors with no effect on the bar at any angle of the tests.
@@ -137,7 +138,7 @@ pub struct Visibility {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct TestSees {
+pub struct RotaryTestSees {
     /// The test's name.
     pub name: String,
     /// The errors it identifies on its own.
@@ -148,9 +149,9 @@ pub struct TestSees {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct Together {
+pub struct RotaryTogether {
     /// Each test alone.
-    pub alone: Vec<TestSees>,
+    pub alone: Vec<RotaryTestSees>,
     /// All the tests together.
     pub identifiable: Vec<String>,
     /// Identifiable together, by no test alone.
@@ -209,7 +210,7 @@ fn why_unseen(study: &Study, def: &ErrorDef) -> String {
 }
 
 /// What the system sees, from its fit's groups (module docs).
-pub fn visibility(study: &Study, sys: &System, f: &Fit) -> Visibility {
+pub fn visibility(study: &Study, sys: &System, f: &Fit) -> RotaryVisibility {
     let ne = study.unknowns.len();
     let invisible: Vec<Unseen> = (0..ne)
         .filter(|&j| sys.zero[j])
@@ -264,7 +265,7 @@ pub fn visibility(study: &Study, sys: &System, f: &Fit) -> Visibility {
             why,
         });
     }
-    Visibility {
+    RotaryVisibility {
         identifiable: identifiable(f, ne),
         invisible,
         inseparable,
@@ -281,7 +282,12 @@ fn identifiable(f: &Fit, ne: usize) -> Vec<String> {
 }
 
 /// What each test sees alone and what the tests see together (at `rtol`).
-pub fn together(study: &Study, sys: &System, points: &[Point], rtol: f64) -> Result<Together> {
+pub fn together(
+    study: &Study,
+    sys: &System,
+    points: &[Point],
+    rtol: f64,
+) -> Result<RotaryTogether> {
     let ne = study.unknowns.len();
     let all = view(&sys.a, &sys.names, rtol)?;
     let identifiable_all = identifiable(&all, ne);
@@ -306,7 +312,7 @@ pub fn together(study: &Study, sys: &System, points: &[Point], rtol: f64) -> Res
         } else {
             Vec::new()
         };
-        alone.push(TestSees {
+        alone.push(RotaryTestSees {
             name: t.name.clone(),
             identifiable: seen,
         });
@@ -319,14 +325,14 @@ pub fn together(study: &Study, sys: &System, points: &[Point], rtol: f64) -> Res
     let words = if study.tests.len() < 2 {
         "One test: add a second (the ball at another height or radius, another bar direction, or the other axis moving) to see what two tests separate.".to_string()
     } else if gained.is_empty() {
-        "Together the tests identify no error that one of them alone does not.".to_string()
+        "RotaryTogether the tests identify no error that one of them alone does not.".to_string()
     } else {
         format!(
-            "Together the tests also identify {}, which no test alone separates: their effects differ from test to test.",
+            "RotaryTogether the tests also identify {}, which no test alone separates: their effects differ from test to test.",
             gained.join(", ")
         )
     };
-    Ok(Together {
+    Ok(RotaryTogether {
         alone,
         identifiable: identifiable_all,
         gained,

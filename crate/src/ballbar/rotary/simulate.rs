@@ -3,7 +3,7 @@
 //! first-order value and the sensitivities; what the tests can see; and the trace as a file the
 //! reader takes back ([`crate::ballbar::read`]).
 
-use super::see::{self, Point, Together, Visibility};
+use super::see::{self, Point, RotaryTogether, RotaryVisibility};
 use super::{BallbarRotaryInput, BarDirection, Study, Test};
 use crate::error::Result;
 use crate::identify::{amount, DEFAULT_RTOL};
@@ -14,7 +14,7 @@ use serde::Serialize;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct AxisSeries {
+pub struct CommandedAxis {
     /// The axis letter.
     pub name: String,
     /// "mm" or "deg".
@@ -29,7 +29,7 @@ pub struct AxisSeries {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct TraceSensitivity {
+pub struct BarSensitivity {
     /// ISO name.
     pub name: String,
     /// Per "mm" or per "deg".
@@ -44,7 +44,7 @@ pub struct TraceSensitivity {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify))]
 #[serde(rename_all = "camelCase")]
-pub struct SimulatedTest {
+pub struct RotarySimulatedTest {
     /// Its name.
     pub name: String,
     /// The moving axis's letter.
@@ -82,7 +82,7 @@ pub struct SimulatedTest {
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
     pub run: Vec<f64>,
     /// The commanded positions of every axis (chain order).
-    pub commanded: Vec<AxisSeries>,
+    pub commanded: Vec<CommandedAxis>,
     /// The tool ball on the machine with its errors, machine frame: X, Y, Z series, mm.
     #[serde(serialize_with = "crate::edge::series3")]
     #[cfg_attr(
@@ -114,7 +114,7 @@ pub struct SimulatedTest {
     )]
     pub displacement: [Vec<f64>; 3],
     /// The sensitivities to the study's errors.
-    pub sensitivities: Vec<TraceSensitivity>,
+    pub sensitivities: Vec<BarSensitivity>,
     /// Largest minus smallest length change, mm.
     pub spread: f64,
 }
@@ -125,11 +125,11 @@ pub struct SimulatedTest {
 #[serde(rename_all = "camelCase")]
 pub struct BallbarRotarySimulation {
     /// Per test.
-    pub tests: Vec<SimulatedTest>,
+    pub tests: Vec<RotarySimulatedTest>,
     /// What the tests can see of the study's errors.
-    pub visibility: Visibility,
+    pub visibility: RotaryVisibility,
     /// What each test sees alone and what they see together.
-    pub together: Together,
+    pub together: RotaryTogether,
     /// The simulated traces as a file (one test: no test column), µm.
     pub csv: String,
     /// The conclusions in words.
@@ -146,10 +146,10 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
     for (ti, t) in study.tests.iter().enumerate() {
         let sweep = study.sweep(t);
         let n = sweep.len();
-        let mut commanded: Vec<AxisSeries> = names
+        let mut commanded: Vec<CommandedAxis> = names
             .iter()
             .enumerate()
-            .map(|(i, name)| AxisSeries {
+            .map(|(i, name)| CommandedAxis {
                 name: name.clone(),
                 unit: if is_rotary(&study, i) { "deg" } else { "mm" }.to_string(),
                 values: Vec::with_capacity(n),
@@ -185,7 +185,7 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
         }
         let spread = deviation.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b))
             - deviation.iter().fold(f64::INFINITY, |a, b| a.min(*b));
-        tests.push(SimulatedTest {
+        tests.push(RotarySimulatedTest {
             name: t.name.clone(),
             axis: t.letters[0],
             held: t.letters[1],
@@ -211,7 +211,7 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
                 .unknowns
                 .iter()
                 .zip(sens)
-                .map(|(d, values)| TraceSensitivity {
+                .map(|(d, values)| BarSensitivity {
                     name: d.name.to_string(),
                     per: d.quantity.api_unit().to_string(),
                     values,
@@ -280,7 +280,7 @@ fn arr(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
 /// The simulated traces as the reader's file ([`crate::ballbar::read`]): comment lines
 /// stating each test, then `test;angle (deg);deviation (µm);direction` (no test column for
 /// one test), deviations to 0.1 nm.
-pub fn trace_csv(study: &Study, tests: &[SimulatedTest]) -> String {
+pub fn trace_csv(study: &Study, tests: &[RotarySimulatedTest]) -> String {
     let many = tests.len() > 1;
     let mut s = String::from(
         "# Ball-bar tests with a rotary axis moving (ISO 10791-6 style), SIMULATED by the\n\
