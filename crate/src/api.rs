@@ -199,6 +199,19 @@ macro_rules! for_each_export {
             #[doc = "a measurement CSV."]
             sshapeIdentify(($crate::sshape::study::SShapeCase, $crate::sshape::study::SShapeIdentifyInput) as "SShapeCase & SShapeIdentifyInput")
                 -> "SShapeIdentifyResult" = $crate::sshape::results::identify;
+            // ballbar rotary
+            #[doc = "Ball-bar tests with a rotary axis moving (ISO 10791-6 style: C with X and Y, the tilt axis"]
+            #[doc = "with Y and Z or X and Z), simulated on the machine with its errors through its chain: per"]
+            #[doc = "test and angle (degrees) the commanded pose, both balls, the bar's exact length change (mm),"]
+            #[doc = "its first-order value and sensitivities (per mm, per degree), what the tests can see, and"]
+            #[doc = "the traces as a file."]
+            ballbarRotarySimulate($crate::ballbar::rotary::BallbarRotaryInput as "BallbarRotaryInput")
+                -> "BallbarRotarySimulation" = $crate::ballbar::rotary::simulate::simulate;
+            #[doc = "The rotary axes' location errors identified from measured ball-bar traces (`csv` with a"]
+            #[doc = "test column, or each test's own `csv`): values, intervals, Holm decisions, groups, goodness"]
+            #[doc = "of fit, what the tests cannot see and why, and `errors` to put into `machine.errors`."]
+            ballbarRotaryIdentify(($crate::ballbar::rotary::BallbarRotaryInput, $crate::ballbar::rotary::fit::BallbarRotaryIdentifyInput)
+                as "BallbarRotaryInput & BallbarRotaryIdentifyInput") -> "BallbarRotaryIdentification" = $crate::ballbar::rotary::fit::identify;
         }
     };
 }

@@ -84,6 +84,31 @@ pub fn header_unit(cell: &str) -> &str {
     cell
 }
 
+/// The name and the unit of a header cell, both lower case and trimmed: `x_mm`, `x (mm)`,
+/// `x [mm]`, `x/mm` give `("x", Some("mm"))`; a cell without a unit gives `(name, None)`. A
+/// unit in brackets may be anything (the reader judges it); one after `_` or `/` only counts
+/// when it is `mm`, `um`, `µm`, `nm`, `deg`, `rad` or `°` (so `test_id` and `x_in` stay names).
+pub fn split_unit(cell: &str) -> (String, Option<String>) {
+    let c = cell.trim().to_lowercase();
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if let (Some(i), true) = (c.find(open), c.ends_with(close)) {
+            let unit = c[i + open.len_utf8()..c.len() - close.len_utf8()]
+                .trim()
+                .to_string();
+            return (c[..i].trim().to_string(), Some(unit));
+        }
+    }
+    for sep in ['/', '_'] {
+        if let Some(i) = c.rfind(sep) {
+            let unit = &c[i + 1..];
+            if ["mm", "um", "µm", "nm", "deg", "rad", "°"].contains(&unit) {
+                return (c[..i].trim().to_string(), Some(unit.to_string()));
+            }
+        }
+    }
+    (c, None)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,6 +126,18 @@ mod tests {
         assert_eq!(number("1,000.5", ';'), None);
         assert_eq!(number("1,2,3", ';'), None);
         assert_eq!(number("inf", ';'), None);
+    }
+
+    #[test]
+    fn a_header_cell_splits_into_its_name_and_unit() {
+        let own = |n: &str, u: Option<&str>| (n.to_string(), u.map(str::to_string));
+        assert_eq!(split_unit("X_mm"), own("x", Some("mm")));
+        assert_eq!(split_unit(" Angle (deg) "), own("angle", Some("deg")));
+        assert_eq!(split_unit("deviation [µm]"), own("deviation", Some("µm")));
+        assert_eq!(split_unit("C/rad"), own("c", Some("rad")));
+        assert_eq!(split_unit("angle (grad)"), own("angle", Some("grad")));
+        assert_eq!(split_unit("test_id"), own("test_id", None));
+        assert_eq!(split_unit("direction"), own("direction", None));
     }
 
     #[test]

@@ -639,6 +639,7 @@ fn measured(angle: Vec<f64>, deviation: Vec<f64>) -> fiveaxis::reversal::fit::Me
         angle,
         deviation,
         lines,
+        skipped: 0,
     }
 }
 

@@ -260,6 +260,36 @@ function probeCsv(r) {
   return lines.join(pick(['\n', '\r\n'])(r));
 }
 const sphere = maybe((r) => ({ x: (r() - 0.5) * 400, y: (r() - 0.5) * 400, height: r() * 200 }));
+/** A ball-bar test of a rotary axis: the axis moved, the ball, the bar, the sweep (coarse). */
+const rotaryTest = (r) =>
+  build({
+    name: maybe(pick(['', 'C radial', '2', 'tilt'])),
+    axis: maybe(pick(['k', 'm'])),
+    hold: maybe((q) => (q() - 0.5) * 120),
+    ball: maybe((q) => ({ x: (q() - 0.5) * 400, y: (q() - 0.5) * 400, height: q() * 200 })),
+    length: maybe((q) => 10 + q() * 300),
+    direction: maybe(pick(['radial', 'tangential', 'axial'])),
+    from: maybe((q) => (q() - 0.5) * 240),
+    to: maybe((q) => q() * 360),
+    step: (q) => 5 + 40 * q(),
+  }, r);
+const rotaryTests = (r) => Array.from({ length: small(0, 3)(r) }, () => rotaryTest(r));
+/** Measured ball-bar traces of rotary tests: a header with or without a test column, units,
+ *  points both ways, sometimes a decimal comma or a damaged cell. */
+function rotaryCsv(r) {
+  const header = pick(['angle (deg);deviation (µm);direction', 'test;angle (deg);deviation (µm);direction', 'angle_deg,deviation_mm,dir', 'angle (deg);ccw (µm);cw (µm)', 'angle;deviation'])(r);
+  const sep = header.includes(';') ? ';' : ',';
+  const lines = [header];
+  const n = small(0, 40)(r);
+  for (let i = 0; i < n; i++) {
+    const a = ((360 * i) / Math.max(1, n)).toFixed(2);
+    const v = () => ((r() - 0.5) * 20).toFixed(3);
+    const cells = header.startsWith('test') ? [pick(['1', '2', 'C radial', '9'])(r), a, v(), pick(['ccw', 'cw'])(r)] : header.includes('ccw (') ? [a, v(), v()] : header.includes('dir') ? [a, v(), pick(['ccw', 'cw', '+', '-'])(r)] : [a, v()];
+    lines.push(sep === ';' ? cells.join(';').replace(/\./g, ',') : cells.join(','));
+  }
+  if (lines.length > 2 && r() < 0.3) lines[2] = lines[2].replace(/\d/, pick(['x', '', 'e'])(r));
+  return lines.join(pick(['\n', '\r\n'])(r));
+}
 export const SPECS = {
   schema: { args: [] },
   rotaryTypes: { args: [] },
@@ -318,6 +348,9 @@ export const SPECS = {
   reversalDents: { args: [{ ...reversalCase, test: { ...reversalCase.test, radius: (r) => 1 + 4 * r() } }] , weight: 0.1 },
   reversalFit: { args: [{ ...reversalCase, csv: reversalCsv }] , weight: 0.1 },
   reversalTrace: { args: [{ ...reversalCase, csv: reversalCsv }] },
+  // Each simulated point costs a Jacobian of the chain: coarse sweeps, fewer cases.
+  ballbarRotarySimulate: { args: [{ machine: machineWithMotions, tests: rotaryTests, parameters: maybe((r) => errorsOf('CBZ').filter(() => r() < 0.3).map((e) => e.name)) }], weight: 0.2 },
+  ballbarRotaryIdentify: { args: [{ machine, tests: rotaryTests, csv: rotaryCsv, rtol: maybe((r) => 10 ** (-1 - 5 * r())), decision }], weight: 0.2 },
 };
 
 const WEIRD = [NaN, Infinity, -Infinity, 1e308, -1e308, 1e300, -1, 0, -0, 5e-324, 2 ** 53, '', 'abc', '12', true, null, undefined, {}, [], [1, 2], { k: 1 }, new Float64Array(2)];

@@ -250,6 +250,43 @@ test('nonlinearGrid, nonlinearSweepK, nonlinearSweepM: increments and start angl
   close(m.curves[0].exact[0], 100 * Math.sin(rad(5)) ** 2, 1e-9, 'sweepM at the pole');
 });
 
+test('ballbarRotarySimulate and ballbarRotaryIdentify: angles, hold and sensitivities in degrees, against closed forms and finite differences', () => {
+  // Li et al.'s B/C table: C on B, both through the origin, the table surface there (tableHeight
+  // 0), the tool ball at the spindle nose. The table ball at (150, 0, 50), a radial bar of
+  // L = 100 mm along +X on the table.
+  const BC = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+  const L = 100;
+  const e = 0.01;
+  const tests = [{ ball: { x: 150, y: 0, height: 50 }, length: L, step: 15 }];
+  const r = fa.ballbarRotarySimulate({ machine: { ...BC, errors: { E_X0C: e } }, tests, parameters: ['E_X0C', 'E_A0C'] });
+  const t = r.tests[0];
+  assert.equal(t.angle.length, 2 * 25);
+  close(t.angle[1], 15, 1e-12, 'C in degrees');
+  close(t.hold, 0, 0, 'hold');
+  // The C line e off along X: the table ball at R_Z(−C)·p + e·x̂, the tool ball at R_Z(−C)·t, so
+  // ΔL = √(L² − 2·L·e·cos C + e²) − L (C the command, in degrees here).
+  t.angle.forEach((a, i) => close(t.deviation[i], Math.sqrt(L * L - 2 * L * e * Math.cos(rad(a)) + e * e) - L, 1e-11, `E_X0C at C ${a}°`));
+  // A tilt of C about X by α turns the table ball by α·x̂ × (R_Z(−C)·p): along the bar
+  // R_Z(−C)·x̂ that is 50·α·sin C, so the bar shortens by 50·sin C·α: per degree
+  // −50·sin C·π/180, and the central difference over ±0.001° agrees.
+  const s = t.sensitivities.find((x) => x.name === 'E_A0C');
+  assert.equal(s.per, 'deg');
+  const at = (h) => fa.ballbarRotarySimulate({ machine: { ...BC, errors: { E_A0C: h } }, tests }).tests[0].deviation;
+  const [up, down] = [at(0.001), at(-0.001)];
+  s.values.forEach((v, i) => {
+    close(v, -50 * Math.sin(rad(t.angle[i])) * (Math.PI / 180), 1e-9, `per degree at C ${t.angle[i]}°`);
+    close(v, (up[i] - down[i]) / 0.002, 1e-7, `finite difference at C ${t.angle[i]}°`);
+  });
+  // The identification of a tilt of 0.002° from its own trace gives 0.002 in degrees, in
+  // machine.errors' units, and the correction in degrees.
+  const trace = fa.ballbarRotarySimulate({ machine: { ...BC, errors: { E_A0C: 0.002 } }, tests }).csv;
+  const id = fa.ballbarRotaryIdentify({ machine: BC, tests, parameters: ['E_A0C'], csv: trace });
+  close(id.errors.E_A0C, 0.002, 1e-6, 'E_A0C in degrees');
+  assert.equal(id.corrections[0].unit, 'deg');
+  assert.equal(id.identification.estimates[0].unit, 'deg');
+  close(id.tests[0].angle[1], 15, 1e-12, 'the fitted trace\'s angles in degrees');
+});
+
 test('toolVector and machineInverse: angles in degrees', () => {
   const v = fa.toolVector({ machine: { type: 'CAZ' }, k: 30, m: 50 });
   cazVector(30, 50).forEach((x, i) => close(v[i], x, 1e-12, 'toolVector'));
@@ -342,6 +379,8 @@ const BASE = {
   probeReadCsv: [{ csv: 'pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n1;0;0;0;0;100\n2;90;0;0;0;100' }],
   probeIdentify: [{ csv: 'pose;C_deg;B_deg;X_mm;Y_mm;Z_mm\n1;0;0;0;0;100\n2;90;0;0;0;100\n3;180;0;0;0;100\n4;270;0;0;0;100\n5;0;30;0;0;100\n6;0;-30;0;0;100\n7;90;30;0;0;100\n8;90;-30;0;0;100' }],
   positioningEvaluate: [{ csv: 'target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 2\n0; down; 1\n0; down; 3\n100; up; 2\n100; up; 2\n100; down; 1\n100; down; 1' }],
+  ballbarRotarySimulate: [{ tests: [{ step: 30 }] }],
+  ballbarRotaryIdentify: [{ tests: [{ step: 30 }], parameters: ['E_X0C', 'E_Y0C'], csv: 'angle (deg); deviation (µm); direction\n0; 1; ccw\n45; 0,7; ccw\n90; 0; ccw\n135; -0,7; ccw\n180; -1; ccw\n225; -0,7; ccw\n270; 0; ccw\n315; 0,7; ccw\n360; 1; ccw' }],
 };
 /** `toolLength` → `toollength`, `nu` → `Nu`: what a user mistypes. */
 const misspell = (key) => (/[A-Z]/.test(key.slice(1)) ? key[0] + key.slice(1).toLowerCase() : key[0].toUpperCase() + key.slice(1));

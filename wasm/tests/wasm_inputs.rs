@@ -413,7 +413,10 @@ fn the_schema_lists_every_exports_inputs() {
         .iter()
         .any(|f| f.path == "maxTilt" && f.unit == "deg"));
     assert!(s.exports["reversalTrace"].iter().any(|f| f.path == "csv"));
-    assert_eq!(s.exports.len(), 36);
+    assert!(s.exports["ballbarRotaryIdentify"]
+        .iter()
+        .any(|f| f.path == "tests"));
+    assert_eq!(s.exports.len(), 38);
 }
 
 fn tan_lim() -> Value {

@@ -47,7 +47,8 @@
 //! At the edge: lengths mm, angles degrees, squareness µm/m, scale mismatch ppm, servo
 //! mismatch ms. The file gives its units in the header.
 
-mod read;
+pub mod read;
+pub mod rotary;
 
 pub use read::{read_trace, Trace};
 

@@ -42,6 +42,7 @@
 //! cannot see it"); `m ≤ r` (no measurement left over to estimate σ) is an error of the fit; a
 //! zero residual gives `se = 0` and every non-zero value is found (with a `p` of 0).
 
+pub mod correct;
 pub mod csv;
 mod fit;
 mod result;

@@ -706,6 +706,19 @@ fn link_of(chain: &Chain, def: &ErrorDef) -> Result<usize> {
     })
 }
 
+/// The chain indices of the linear axes X, Y, Z (an error naming `machine.linear` when one is
+/// missing).
+pub fn linear_axes(chain: &Chain) -> Result<[usize; 3]> {
+    let mut out = [0; 3];
+    for (k, letter) in ["X", "Y", "Z"].iter().enumerate() {
+        out[k] = chain
+            .index_of(letter)
+            .filter(|&i| matches!(chain.link(i).joint, Joint::Linear(_)))
+            .ok_or_else(|| Error::field("machine.linear", format!("no {letter} axis")))?;
+    }
+    Ok(out)
+}
+
 /// The face frame of a spindle direction (see [`Machine::face_frame`]).
 pub fn face_frame(home: Axis) -> [Vector3<f64>; 3] {
     face_axes(home).map(Axis::unit)

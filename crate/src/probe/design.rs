@@ -164,29 +164,7 @@ pub struct Layout {
     pub nc: String,
 }
 
-/// An error that no pose can see.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
-#[serde(rename_all = "camelCase")]
-pub struct Unseen {
-    /// ISO name.
-    pub name: String,
-    /// Why, in words.
-    pub why: String,
-}
-
-/// Unknowns no layout of poses can separate, and what of them is measured.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
-#[serde(rename_all = "camelCase")]
-pub struct Inseparable {
-    /// The unknowns (errors, and `sphere_X` … when the sphere's position is fitted).
-    pub members: Vec<String>,
-    /// The combinations measured (first coefficient 1; the unknowns in mm and degrees).
-    pub combinations: Vec<String>,
-    /// Why, in words.
-    pub why: String,
-}
+pub use crate::identify::correct::{Inseparable, Unseen};
 
 /// What the poses of this sphere can see, over every candidate pose together.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -31,11 +31,13 @@
 use super::measure::{self, Measurements};
 use super::{Study, Unknown, SPHERE_NAMES};
 use crate::error::{Error, Result};
-use crate::identify::{self, amount, meaning, DecisionInput, Judgement, Options, Param, Verdict};
+use crate::identify::correct::found;
+pub use crate::identify::correct::{enter, Correction};
+use crate::identify::{self, amount, DecisionInput, Judgement, Options, Param, Verdict};
 use crate::machine::errors::ErrorValues;
 use crate::schema::{DefaultValue, Kind, Quantity};
 use nalgebra::{DMatrix, DVector, Vector3};
-use serde::{Serialize, Serializer};
+use serde::Serialize;
 
 crate::inputs! {
     /// The identification's own inputs (with a [`super::ProbeInput`]).
@@ -152,23 +154,6 @@ pub struct GroupFit {
     pub words: Vec<String>,
 }
 
-/// An error found present: what it means and what to enter.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "ts", derive(tsify::Tsify))]
-#[serde(rename_all = "camelCase")]
-pub struct Correction {
-    /// ISO name.
-    pub name: String,
-    /// Its value, `unit`.
-    pub value: f64,
-    /// "mm" or "deg".
-    pub unit: String,
-    /// What it means on the machine.
-    pub words: String,
-    /// What to enter in the control (module docs: signs).
-    pub enter: String,
-}
-
 /// Does the model explain the measurement? ([`crate::identify`]'s goodness of fit.)
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "ts", derive(tsify::Tsify), tsify(missing_as_null))]
@@ -215,7 +200,7 @@ pub struct ProbeIdentification {
     pub corrections: Vec<Correction>,
     /// The errors found present by ISO name, mm and degrees (radians in Rust): put it into
     /// `machine.errors` as it is.
-    #[serde(serialize_with = "api_errors")]
+    #[serde(serialize_with = "crate::identify::correct::api_errors")]
     #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
     pub errors: ErrorValues,
     /// The sphere's centre (stated, plus the fitted shift when fitted), workpiece frame, mm.
@@ -226,18 +211,6 @@ pub struct ProbeIdentification {
     #[serde(skip)]
     #[cfg_attr(feature = "ts", tsify(skip))]
     pub judgement: Judgement,
-}
-
-/// Error values held in engine units (rad), written in API units (mm, degrees) by their
-/// entry in the error table.
-fn api_errors<S: Serializer>(v: &ErrorValues, s: S) -> std::result::Result<S::Ok, S::Error> {
-    use serde::ser::SerializeMap;
-    let mut map = s.serialize_map(Some(v.0.len()))?;
-    for (name, value) in &v.0 {
-        let q = crate::machine::errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity);
-        map.serialize_entry(name, &q.to_api(*value))?;
-    }
-    map.end()
 }
 
 /// The system of the module docs: `A` (3 rows per pose, engine units) and `d`, mm.
@@ -385,24 +358,15 @@ pub fn identify_centres(
                 .collect(),
         })
         .collect();
-    let mut corrections = Vec::new();
-    let mut errors = ErrorValues::none();
-    for (u, dcs) in study.unknowns.iter().zip(&judgement.decisions) {
-        let (Unknown::Error(def), Some(v)) = (u, dcs.value) else {
-            continue;
-        };
-        if !matches!(dcs.verdict, Verdict::Present | Verdict::BelowTolerance) {
-            continue;
-        }
-        errors.set(def.name, v)?;
-        corrections.push(Correction {
-            name: def.name.to_string(),
-            value: def.quantity.to_api(v),
-            unit: def.quantity.api_unit().to_string(),
-            words: meaning(def, v),
-            enter: enter(def, v),
-        });
-    }
+    let defs: Vec<Option<&'static crate::machine::errors::ErrorDef>> = study
+        .unknowns
+        .iter()
+        .map(|u| match u {
+            Unknown::Error(d) => Some(*d),
+            Unknown::Sphere(_) => None,
+        })
+        .collect();
+    let (errors, corrections) = found(&judgement, &defs)?;
     let mut sphere = study.sphere;
     for (u, e) in study.unknowns.iter().zip(&f.estimates) {
         if let Unknown::Sphere(i) = u {
@@ -443,29 +407,6 @@ pub fn identify_centres(
         summary,
         judgement,
     })
-}
-
-/// What to enter for error `def` of value `v` (engine units), module docs.
-pub fn enter(def: &crate::machine::errors::ErrorDef, v: f64) -> String {
-    let dir = ['X', 'Y', 'Z'][def.component % 3];
-    let a = def.axis;
-    let own = matches!((a, def.component), ('A', 3) | ('B', 4) | ('C', 5));
-    if def.component < 3 {
-        format!(
-            "{a} axis line, position along {dir}: add {:+.4} mm to the control's value",
-            v
-        )
-    } else if own {
-        format!(
-            "{a} axis zero: shift it by {:+.5}° so that {a} stands at 0° when the control shows 0°",
-            -v.to_degrees()
-        )
-    } else {
-        format!(
-            "{a} axis direction: turn it by {:+.5}° about {dir} (right-hand rule) in the control's kinematics",
-            v.to_degrees()
-        )
-    }
 }
 
 /// Reads the file and identifies (the export's engine function). The model-fit check uses the

@@ -74,28 +74,8 @@ enum Col {
     Ignored,
 }
 
-/// The base name and unit of a header cell: `x_mm`, `x (mm)`, `x [mm]`, `x/mm`, `x`.
-fn split_unit(cell: &str) -> (String, Option<String>) {
-    let c = cell.trim().to_lowercase();
-    for (open, close) in [('(', ')'), ('[', ']')] {
-        if let (Some(i), true) = (c.find(open), c.ends_with(close)) {
-            let unit = c[i + 1..c.len() - 1].trim().to_string();
-            return (c[..i].trim().to_string(), Some(unit));
-        }
-    }
-    for sep in ['/', '_'] {
-        if let Some(i) = c.rfind(sep) {
-            let unit = &c[i + 1..];
-            if ["mm", "um", "µm", "deg", "rad", "°"].contains(&unit) {
-                return (c[..i].to_string(), Some(unit.to_string()));
-            }
-        }
-    }
-    (c, None)
-}
-
 fn column(cell: &str, letters: Option<[char; 2]>, line: usize) -> Result<Col> {
-    let (name, unit) = split_unit(cell);
+    let (name, unit) = csv::split_unit(cell);
     if name.starts_with("expected") || name.starts_with("tilt") {
         return Ok(Col::Ignored);
     }

@@ -78,7 +78,7 @@ pub mod design;
 pub mod fit;
 pub mod measure;
 
-use crate::chain::{Chain, Joint, Setup};
+use crate::chain::Setup;
 use crate::cubic::design::{TYPICAL_ANGLE, TYPICAL_POSITION};
 use crate::error::{Error, Result};
 use crate::machine::errors::{ErrorDef, NAMES};
@@ -223,18 +223,6 @@ pub struct Study {
     linear: [usize; 3],
 }
 
-/// The chain indices of X, Y, Z.
-fn linear_indices(chain: &Chain) -> Result<[usize; 3]> {
-    let mut out = [0; 3];
-    for (k, letter) in ["X", "Y", "Z"].iter().enumerate() {
-        out[k] = chain
-            .index_of(letter)
-            .filter(|&i| matches!(chain.link(i).joint, Joint::Linear(_)))
-            .ok_or_else(|| Error::field("machine.linear", format!("no {letter} axis")))?;
-    }
-    Ok(out)
-}
-
 /// The default unknowns: the location errors of the two rotary axes, in table order.
 pub fn rotary_errors(machine: &Machine) -> Vec<&'static ErrorDef> {
     let [k, m] = [machine.k().letter(), machine.m().letter()];
@@ -278,7 +266,7 @@ impl Study {
         if input.fit_sphere {
             unknowns.extend((0..3).map(Unknown::Sphere));
         }
-        let linear = linear_indices(&model.chain)?;
+        let linear = crate::machine::linear_axes(&model.chain)?;
         let sphere = sphere_position(machine, &input.sphere);
         Ok(Self {
             model,

@@ -2,12 +2,16 @@
 //! fitted by least squares to a ball-bar trace (or a roundness profile of the cut cylinder).
 //!
 //! # The file
-//! CSV (comma, semicolon or tab, as the header has it; with `;` or tab a decimal comma is
-//! accepted, `181,4;-0,0072`; lines starting with `#` are comments; the engine's one tokenizer,
-//! [`crate::csv`]): a header with
-//! `angle_deg` and `deviation_mm` (or `deviation_um`), then one row per point: the trace angle in
-//! degrees in this study's convention (0° at the start, the reversal of C at 180°, counter-clockwise
-//! in table coordinates) and the radial deviation (+ outwards). Angles must increase.
+//! The ball-bar traces' one reader, [`crate::ballbar::read`] (comma, semicolon or tab, as the
+//! header has it; with `;` or tab a decimal comma is accepted, `181,4;-0,0072`; lines starting
+//! with `#` are comments): a header with the angle (`angle_deg`, `angle (deg)`) and the
+//! deviation (`deviation_mm`, `deviation_um`, `deviation (µm)`; `deviation` alone is in mm),
+//! then one row per point: the trace angle in degrees in this study's convention (0° at the
+//! start, the reversal of C at 180°, counter-clockwise in table coordinates) and the radial
+//! deviation (+ outwards). Angles must increase. The files of the tests with a rotary axis
+//! moving ([`crate::ballbar::rotary`]) are read too: with a `direction` column the
+//! counter-clockwise points are the trace and the clockwise ones are counted as not used
+//! ([`Measured::skipped`]); a file holding several tests (a `test` column) is refused.
 //!
 //! A comment line `# machine: <name>` (before or among the data, the first one counts) names
 //! the machine the trace was made on, as a preset of `public/presets/machines.json` is named
@@ -27,8 +31,8 @@
 
 use super::measure::{compensation, measure_dent, MeasuredDent};
 use super::{simulate_with_step, ReversalCase, ReversalFitInput};
-use crate::csv;
-use crate::error::{quote, Error, Result};
+use crate::ballbar::read::{read_points, Rules};
+use crate::error::{Error, Result};
 use crate::numeric::{levenberg_marquardt, LsqFailure};
 use serde::Serialize;
 
@@ -41,73 +45,48 @@ pub struct Measured {
     pub deviation: Vec<f64>,
     /// The file line of each point (1-based).
     pub lines: Vec<usize>,
+    /// Clockwise points of the file, not used (the reversal trace runs counter-clockwise).
+    pub skipped: usize,
 }
 
-/// Reads a measured trace (module docs). Errors name the field `csv` and the line.
+/// Reads a measured trace (module docs) with the ball-bar traces' one reader
+/// ([`crate::ballbar::read::read_points`]; a deviation without a unit is in mm). Errors name
+/// the field `csv` and the line.
 pub fn parse_trace(text: &str) -> Result<Measured> {
     let at = |line: usize, msg: String| Error::field("csv", format!("line {line}: {msg}"));
-    let mut rows = csv::lines(text);
-    let Some((hl, header)) = rows.next() else {
+    let file = read_points(
+        text,
+        Rules {
+            deviation_unit: Some(1.0),
+        },
+    )?;
+    if file.tests.len() > 1 {
         return Err(Error::field(
             "csv",
-            "the file is empty: expected a header angle_deg,deviation_mm and one row per point",
-        ));
-    };
-    let sep = csv::separator(header).ok_or_else(|| {
-        at(
-            hl,
             format!(
-                "the header {} should be angle_deg,deviation_mm",
-                quote(header)
+                "the file holds {} tests ({}); the friction fit reads one: give its lines alone",
+                file.tests.len(),
+                file.tests.join(", ")
             ),
-        )
-    })?;
-    let cols: Vec<String> = csv::cells(header, sep)
-        .into_iter()
-        .map(str::to_ascii_lowercase)
-        .collect();
-    let col = |names: &[&str]| cols.iter().position(|c| names.contains(&c.as_str()));
-    let a_col = col(&["angle_deg", "angle"])
-        .ok_or_else(|| at(hl, "missing column 'angle_deg' in the header".into()))?;
-    let (d_col, scale) = match (
-        col(&["deviation_mm", "deviation"]),
-        col(&["deviation_um", "deviation_µm"]),
-    ) {
-        (Some(c), None) => (c, 1.0),
-        (None, Some(c)) => (c, 1e-3),
-        (Some(_), Some(_)) => {
-            return Err(at(hl, "two deviation columns (mm and µm); keep one".into()))
-        }
-        (None, None) => {
-            return Err(at(
-                hl,
-                "missing column 'deviation_mm' (or 'deviation_um') in the header".into(),
-            ))
-        }
-    };
+        ));
+    }
+    let skipped = file.points.iter().filter(|p| p.direction < 0.0).count();
+    if skipped == file.points.len() {
+        return Err(Error::field(
+            "csv",
+            "the file has clockwise (cw) points only: the reversal trace runs counter-clockwise \
+             (ccw) round the circle in table coordinates",
+        ));
+    }
     let mut m = Measured {
         angle: Vec::new(),
         deviation: Vec::new(),
         lines: Vec::new(),
+        skipped,
     };
-    for (line, row) in rows {
-        let cells = csv::cells(row, sep);
-        if cells.len() != cols.len() {
-            return Err(at(
-                line,
-                format!(
-                    "expected {} columns like the header, got {}",
-                    cols.len(),
-                    cells.len()
-                ),
-            ));
-        }
-        let num = |i: usize, what: &str| -> Result<f64> {
-            csv::number(cells[i], sep)
-                .ok_or_else(|| at(line, format!("{what} {} is not a number", quote(cells[i]))))
-        };
-        let a = num(a_col, "angle")?;
-        let d = num(d_col, "deviation")? * scale;
+    for p in file.points.iter().filter(|p| p.direction > 0.0) {
+        // The angle in degrees as the file gave it (the reader's radians rounded back).
+        let (line, a, d) = (p.line, deg_text(p.angle), p.deviation);
         if !(-30.0..=390.0).contains(&a) {
             return Err(at(line, format!("angle {a}° is outside 0° to 360°")));
         }
@@ -118,7 +97,7 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
             ));
         }
         if let (Some(&last), Some(&ll)) = (m.angle.last(), m.lines.last()) {
-            if a.to_radians() <= last {
+            if p.angle <= last {
                 return Err(at(
                     line,
                     format!(
@@ -128,7 +107,7 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
                 ));
             }
         }
-        m.angle.push(a.to_radians());
+        m.angle.push(p.angle);
         m.deviation.push(d);
         m.lines.push(line);
     }
@@ -153,6 +132,11 @@ pub fn parse_trace(text: &str) -> Result<Measured> {
         ));
     }
     Ok(m)
+}
+
+/// An angle held in radians in degrees, rounded to 10⁻⁹° (what the file wrote).
+fn deg_text(radians: f64) -> f64 {
+    (radians.to_degrees() * 1e9).round() / 1e9
 }
 
 /// The machine a trace file names in a comment line `# machine: <name>` (module docs), trimmed;
@@ -233,6 +217,8 @@ pub struct FrictionFit {
     pub torque_step: FitEstimate,
     /// The torque step over the rated torque.
     pub torque_step_share: f64,
+    /// Clockwise points of the file not used (the reversal trace runs counter-clockwise).
+    pub skipped: usize,
 }
 
 /// Samples of the model's trace in a fit (at least).
@@ -391,6 +377,7 @@ pub fn fit(case: &ReversalCase, measured: &Measured) -> Result<FrictionFit> {
         residuals: lsq.residuals,
         sigma: lsq.sigma,
         iterations: lsq.iterations,
+        skipped: measured.skipped,
     })
 }
 
@@ -409,6 +396,8 @@ pub struct MeasuredTrace {
     pub machine: Option<String>,
     /// Points read.
     pub points: usize,
+    /// Clockwise points of the file not used (the reversal trace runs counter-clockwise).
+    pub skipped: usize,
     /// The dent measured from the trace ([`measure_dent`]).
     pub dent: MeasuredDent,
     /// The dent's width as a time at the test's feed on its circle, `W·R/F`, s
@@ -425,6 +414,7 @@ pub fn measure_trace((case, own): &(ReversalCase, ReversalFitInput)) -> Result<M
     Ok(MeasuredTrace {
         machine: declared_machine(&own.csv).map(str::to_string),
         points: m.angle.len(),
+        skipped: m.skipped,
         duration: dent.duration(case.test.radius, case.test.feed),
         dent,
     })
