@@ -35,7 +35,7 @@ use crate::identify::{self, amount, meaning, DecisionInput, Judgement, Options, 
 use crate::machine::errors::ErrorValues;
 use crate::schema::{DefaultValue, Kind, Quantity};
 use nalgebra::{DMatrix, DVector, Vector3};
-use serde::{Serialize, Serializer};
+use serde::Serialize;
 
 crate::inputs! {
     /// The identification's own inputs (with a [`super::ProbeInput`]).
@@ -215,7 +215,7 @@ pub struct ProbeIdentification {
     pub corrections: Vec<Correction>,
     /// The errors found present by ISO name, mm and degrees (radians in Rust): put it into
     /// `machine.errors` as it is.
-    #[serde(serialize_with = "api_errors")]
+    #[serde(serialize_with = "crate::machine::errors::api_values")]
     #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
     pub errors: ErrorValues,
     /// The sphere's centre (stated, plus the fitted shift when fitted), workpiece frame, mm.
@@ -226,18 +226,6 @@ pub struct ProbeIdentification {
     #[serde(skip)]
     #[cfg_attr(feature = "ts", tsify(skip))]
     pub judgement: Judgement,
-}
-
-/// Error values held in engine units (rad), written in API units (mm, degrees) by their
-/// entry in the error table.
-fn api_errors<S: Serializer>(v: &ErrorValues, s: S) -> std::result::Result<S::Ok, S::Error> {
-    use serde::ser::SerializeMap;
-    let mut map = s.serialize_map(Some(v.0.len()))?;
-    for (name, value) in &v.0 {
-        let q = crate::machine::errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity);
-        map.serialize_entry(name, &q.to_api(*value))?;
-    }
-    map.end()
 }
 
 /// The system of the module docs: `A` (3 rows per pose, engine units) and `d`, mm.
