@@ -236,7 +236,8 @@ pub struct Ballbar {
     #[serde(serialize_with = "crate::machine::errors::api_values")]
     #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
     pub errors: ErrorValues,
-    /// That error in words: its value and which axis leans which way (null without a value).
+    /// That error in words: which axis leans which way, by how much in µm/m (null without a
+    /// value).
     pub errors_meaning: Option<String>,
     /// What the machine is not given, and why, one line each: the set-up, backlash, spikes,
     /// servo mismatch, scale mismatch and cyclic error are not geometric errors the machine

@@ -96,15 +96,16 @@ pub(super) fn for_machine(
         } else {
             ("−", "further apart than 90°")
         };
-        let minus = if e < 0.0 { "−" } else { "" };
         let words = format!(
-            "{name} = {minus}{:.2} µm/m ({minus}{:.7}°): {v} leans towards {towards}{u} by {:.2} µm/m (+{u} and +{v} {angle})",
-            (e * 1e6).abs(),
-            e.abs().to_degrees(),
+            "{v} leans towards {towards}{u} by {:.2} µm/m (+{u} and +{v} {angle})",
             a.abs()
         );
         if e.abs() > limit {
-            return format!("{words}; not sent: beyond the machine's limit of ±{}°", crate::machine::errors::MAX_ANGLE_ERROR);
+            return format!(
+                "{words}; not sent: {name} = {:.4}° is beyond the machine's limit of ±{}°",
+                e.to_degrees(),
+                crate::machine::errors::MAX_ANGLE_ERROR
+            );
         }
         // Always a known name of the table.
         let _ = errors.set(name, e);
