@@ -4,6 +4,10 @@
 // intervals; G shown is the engine's (called here through wasm/pkg); the polar plot draws the
 // trace at the µm per division its title states; a tolerance gives the verdict; a bad file names
 // its line at the field and greys the last result; screenshots at 1366 × 768 and 390 × 844.
+// "Use the squareness in the machine" enters the sample's squareness as E_C0Y with the sign the
+// chain gives (crate/tests/ballbar_to_machine.rs: E_C0Y = −α, α = 30 µm/m here, Y leaning
+// towards +X), keeps the machine's other values and errors, and changes the volumetric map to
+// what E_C0Y alone makes: Δx = −E_C0Y·Y.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -107,7 +111,7 @@ test('Ball-bar panel: sample, file chosen and dropped, faults against the sample
       assert.match(sentence, new RegExp(`G = ${g} µm over both directions, ${want === 'pass' ? 'within' : 'above'} the ${tol} µm tolerance`));
       assert.equal(Number(await page.getAttribute('#bb-verdict', 'data-tolerance')), tol / 1000);
     }
-    assert.match(await page.textContent('#bb-verdict-notes'), /backlash of u 8\.\d+ µm/);
+    assert.match(await page.textContent('#bb-verdict-notes'), /backlash of X \(u\) 8\.\d+ µm/);
     await page.fill('#bb-tolerance', '15');
     await page.waitForFunction(() => document.getElementById('bb-verdict')?.dataset.verdict === 'pass');
     await waitIdle(page);
@@ -146,6 +150,115 @@ test('Ball-bar panel: sample, file chosen and dropped, faults against the sample
   });
 });
 
+test('Ball-bar panel: the squareness into the machine, the volumetric map after it, the plane, a bad file', async () => {
+  await withPage({ viewport: { width: 1366, height: 768 } }, async ({ page, url }) => {
+    await page.goto(url);
+    // Small angles in µrad, so that the machine's field reads in µm/m.
+    await page.selectOption('#units-angle', 'urad');
+    // A value of the machine that is not an error, to see it kept.
+    await page.fill('#m-geometry-toolLength', '150');
+    // The volumetric map before: no error entered.
+    await page.click('#tab-volumetric');
+    await page.waitForSelector('#panel-volumetric[data-ready=true]');
+    await waitPlotted(page, 'vm-map');
+    await waitIdle(page);
+    const mapBefore = await page.textContent('#vm-worst');
+    assert.match(mapBefore, /\|Δ\| = 0 /);
+
+    await page.click('#tab-ballbar');
+    await page.waitForSelector('#panel-ballbar[data-ready=true]');
+    await waitPlotted(page, 'bb-polar');
+    await waitIdle(page);
+    // The plane is a field (XY by default) and names u and v.
+    assert.equal(await page.inputValue('#bb-plane'), 'XY');
+    assert.match(await page.textContent('#bb-faults-table caption'), /u is X and v is Y \(the XY plane\)/);
+    const button = '#bb-use-squareness';
+    assert.equal(await page.$eval(button, (b) => b.disabled), false);
+    assert.match(await page.textContent(button), /^Use the squareness in the machine \(E_C0Y = -30\.\d+ µrad\)$/);
+    const sq = await fault(page, 'squareness');
+    assert.equal(await page.inputValue('#m-errors-E_C0Y'), '0');
+
+    await page.click(button);
+    await page.waitForFunction(() => /^Entered E_C0Y/.test(document.getElementById('bb-machine-msg')?.textContent ?? ''));
+    // The field holds −30 µm/m (= µrad) within the interval the fit states: the sample's
+    // squareness with the chain's sign, not the engine's number read back.
+    const e = number(await page.inputValue('#m-errors-E_C0Y'));
+    assert.ok(e < 0 && Math.abs(e - -FAULTS.squareness) <= sq.half, `E_C0Y ${e} µrad, want −${FAULTS.squareness} ± ${sq.half}`);
+    const msg = await page.textContent('#bb-machine-msg');
+    assert.match(msg, /^Entered E_C0Y = -30\.\d+ µrad into the machine \(it held 0 µrad\): Y leans towards \+X by 30\.\d+ µm\/m \(\+X and \+Y closer than 90°\)\. /);
+    assert.match(msg, /the sample ballbar-xy\.csv \(synthetic\)/);
+    assert.match(msg, /volumetric map .* now include it/);
+    // The machine's other value is kept, and the summary counts one error.
+    assert.equal(await page.inputValue('#m-geometry-toolLength'), '150');
+    await page.waitForFunction(() => /1 error entered/.test(document.getElementById('machine-summary')?.textContent ?? ''));
+    // What is not sent, and why.
+    const notSent = await page.$$eval('#bb-not-sent li', (lis) => lis.map((l) => l.textContent));
+    assert.ok(notSent.some((l) => /^backlash and reversal spikes: they depend on the direction of travel/.test(l)), notSent.join('\n'));
+    assert.ok(notSent.some((l) => /^scale mismatch: only the difference of the X and Y positioning errors/.test(l)), notSent.join('\n'));
+    await page.click('#bb-not-sent summary');
+    await waitIdle(page);
+    await page.screenshot({ path: `${ARTIFACTS}ballbar-machine-1366.png`, fullPage: true });
+
+    // The volumetric map changes to what E_C0Y alone makes: the Y axis turned about Z moves the
+    // tip by Δ = E_C0Y·ẑ × (Y·ŷ) = −E_C0Y·Y·x̂, largest at Y = ±200 mm: |Δ| = 200 mm·|E_C0Y|,
+    // 6 µm for the sample's 30 µm/m (µrad = µm/m; 200 mm·1 µm/m = 0.2 µm).
+    await page.click('#tab-volumetric');
+    await page.waitForFunction((before) => (document.getElementById('vm-worst')?.textContent ?? before) !== before, mapBefore);
+    await waitIdle(page);
+    const worst = await page.textContent('#vm-worst');
+    const w = number(worst.split('=')[1]);
+    assert.ok(Math.abs(w - 0.2 * FAULTS.squareness) <= 0.2 * sq.half, `worst ${worst}`);
+    assert.ok(Math.abs(w - 0.2 * Math.abs(e)) <= 1e-3 * w, `worst ${worst} vs 200 mm × ${e} µrad`);
+    const y = Number(/Y (-?\d+)/.exec(worst)?.[1]);
+    assert.equal(Math.abs(y), 200, worst);
+    const dx = number((await page.textContent('#vm-worst-dev')).split('Δx')[1]);
+    assert.ok(Math.abs(dx - -e * y * 1e-3) <= 2e-3 * Math.abs(dx), `Δx ${dx} µm at Y ${y}, E_C0Y ${e} µrad`);
+
+    // Another error entered by hand, then the button again: it is kept, E_C0Y is replaced (by
+    // the same value), and the message says what the machine held.
+    await page.fill('#m-errors-E_X0B', '10');
+    await page.click('#tab-ballbar');
+    await page.click(button);
+    await page.waitForFunction(() => /it held -30\.\d+ µrad/.test(document.getElementById('bb-machine-msg')?.textContent ?? ''));
+    assert.equal(await page.inputValue('#m-errors-E_X0B'), '10');
+    assert.equal(number(await page.inputValue('#m-errors-E_C0Y')), e);
+    await page.waitForFunction(() => /2 errors entered/.test(document.getElementById('machine-summary')?.textContent ?? ''));
+
+    // On a cross table (Y on the bed carrying X) E_C0Y turns X with Y: the message says that the
+    // model cannot hold this squareness (crate/tests/ballbar_to_machine.rs shows the round circle).
+    await page.selectOption('#m-linear', 'table-xy');
+    await page.click(button);
+    await page.waitForFunction(() => /Y carries X \(a cross table\)/.test(document.getElementById('bb-machine-msg')?.textContent ?? ''));
+    await page.selectOption('#m-linear', 'spindle-xyz');
+
+    // The plane YZ: u = Y, v = Z; the same trace gives E_A0Z = −α.
+    let n = await waitPlotted(page, 'bb-polar');
+    await page.selectOption('#bb-plane', 'YZ');
+    n = await waitPlotted(page, 'bb-polar', n);
+    await page.waitForFunction(() => /E_A0Z = -30\.\d+ µrad/.test(document.getElementById('bb-use-squareness')?.textContent ?? ''));
+    assert.match(await page.textContent('#bb-faults-table caption'), /u is Y and v is Z \(the YZ plane\)/);
+    assert.equal(await page.textContent('#bb-faults-table tr[data-name=backlashU] th'), 'Backlash of Y (u)');
+    await page.selectOption('#bb-plane', 'XY');
+    await waitPlotted(page, 'bb-polar', n);
+
+    // A bad file: the button goes off and the box is greyed with the rest of the result; the
+    // machine keeps what was entered.
+    const lines = SAMPLE.split('\n');
+    const k = lines.findIndex((l) => l.startsWith('45.5,'));
+    lines[k] = lines[k].split(',').slice(0, 2).join(',');
+    const bad = `${ARTIFACTS}ballbar-bad-2.csv`;
+    writeFileSync(bad, lines.join('\n'));
+    await page.setInputFiles('#bb-file', bad);
+    await page.waitForFunction(() => document.getElementById('bb-faults')?.classList.contains('stale'));
+    assert.ok(await page.$eval(button, (b) => b.disabled), 'nothing to enter');
+    assert.ok(await page.$eval('#bb-machine', (b) => b.classList.contains('stale')), 'the machine box greyed');
+    assert.equal(number(await page.inputValue('#m-errors-E_C0Y')), e);
+    // Clicking the greyed button does nothing.
+    await page.$eval(button, (b) => b.click());
+    assert.match(await page.textContent('#bb-machine-msg'), /it held -30/);
+  });
+});
+
 test('Ball-bar panel on a phone', async () => {
   await withPage({ viewport: { width: 390, height: 844 }, isMobile: true, hasTouch: true }, async ({ page, url }) => {
     await page.goto(url);
@@ -153,6 +266,8 @@ test('Ball-bar panel on a phone', async () => {
     await page.waitForSelector('#panel-ballbar[data-ready=true]');
     await waitPlotted(page, 'bb-polar');
     await waitPlotted(page, 'bb-trace');
+    await page.click('#bb-use-squareness');
+    await page.waitForFunction(() => /^Entered E_C0Y/.test(document.getElementById('bb-machine-msg')?.textContent ?? ''));
     await waitIdle(page);
     await page.screenshot({ path: `${ARTIFACTS}ballbar-390.png`, fullPage: true });
     assert.ok(await page.evaluate(() => document.documentElement.scrollWidth <= 390), 'no sideways scrolling');

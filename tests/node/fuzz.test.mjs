@@ -336,7 +336,7 @@ export const SPECS = {
   volumetricMap: { args: [{ machine: machineWithMotions, region }] },
   volumetricPaper: { args: [{ machine: (r) => (r() < 0.7 ? { ...machineWithMotions(r), kind: 'table-table', type: 'CAZ', linear: 'table-x', geometry: { toolLength: 100 } } : machineWithMotions(r)), x: angle, y: angle, z: angle, k: maybe(angle), m: maybe(angle) }] },
   volumetricReadTable: { args: [{ name: pick(['E_XX', 'E_BX', 'E_X0B', 'E_CC']), text: motionCsv }] },
-  ballbarEvaluate: { args: [{ csv: ballbarCsv, radius: maybe((r) => r() * 300), feed: maybe((r) => r() * 5000), tolerance: maybe((r) => r() * 0.05) }] },
+  ballbarEvaluate: { args: [{ csv: ballbarCsv, plane: maybe(pick(['XY', 'YZ', 'ZX', 'XZ'])), radius: maybe((r) => r() * 300), feed: maybe((r) => r() * 5000), tolerance: maybe((r) => r() * 0.05) }] },
   // The designer searches a grid of poses (a second or more at the default 15°): a coarse grid
   // and few cases.
   probeDesign: { args: [{ machine, sphere, step: pick([45, 60, 90]), count: maybe(small(4, 12)) }], weight: 0.005 },

@@ -43,18 +43,25 @@
 //! follow it is fitted with `h·exp(−φ/w)` (`φ` the angle travelled since the reversal): `h` by
 //! linear least squares for each `w`, `w` by golden-section search on 0.1°–10°.
 //!
+//! # The plane and the machine
+//! `u` and `v` are the axes of the plane chosen, and the squareness goes to the machine as that
+//! plane's ISO 230-1 location error, with its sign through the kinematic chain ([`plane`]).
+//!
 //! # Units
 //! At the edge: lengths mm, angles degrees, squareness µm/m, scale mismatch ppm, servo
 //! mismatch ms. The file gives its units in the header.
 
+mod plane;
 pub mod read;
 pub mod rotary;
 
+pub use plane::BallbarPlane;
 pub use read::{read_trace, Trace};
 
 use crate::edge::Checked;
 use crate::identify::fit;
 use crate::identify::stats::t_quantile_two_sided;
+use crate::machine::errors::ErrorValues;
 use crate::schema::{self, DefaultValue, Kind, Quantity};
 use crate::{Error, Result};
 use nalgebra::DMatrix;
@@ -70,6 +77,13 @@ crate::inputs! {
             help: "Angle (deg) and radial deviation (µm or mm) per line, with a direction column (ccw/cw) or one column per direction. `# radius: 100 mm` and `# feed: 1000 mm/min` lines are read.",
             kind: Kind::Text { max_len: 5_000_000 },
             group: "Circular test (ISO 230-4)",
+        },
+        /// The plane: `u`, `v` are X, Y (XY), Y, Z (YZ) or Z, X (ZX), the angle from `+u`
+        /// towards `+v`, counter-clockwise seen from the plane's positive normal.
+        pub plane: BallbarPlane = "plane" optional {
+            label: "Plane", help: "The two axes the test moves: u is the first, v the second, the angle from +u towards +v.",
+            kind: Kind::Choice(BallbarPlane::CHOICES),
+            default: DefaultValue::Str("XY"), group: "Circular test (ISO 230-4)",
         },
         /// Nominal radius, mm (0: from the file).
         pub radius: f64 = "radius" optional {
@@ -211,6 +225,25 @@ pub struct Ballbar {
     pub tolerance: f64,
     /// The fitted faults.
     pub diagnostics: Diagnostics,
+    /// The plane of the test.
+    pub plane: BallbarPlane,
+    /// The letters of `u` and `v` in that plane.
+    pub axes: [&'static str; 2],
+    /// What goes into the one machine model: the out-of-squareness `α` as the plane's ISO 230-1
+    /// location error, degrees (radians in Rust), with the sign the kinematic chain gives:
+    /// `E_C0Y = −α` for XY, `E_A0Z = −α` for YZ, `E_B0Z = +α` for ZX (crate/src/ballbar/plane.rs).
+    /// Put it into `machine.errors` as it is. Empty when the trace cannot separate the
+    /// squareness (one direction only).
+    #[serde(serialize_with = "crate::machine::errors::api_values")]
+    #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
+    pub errors: ErrorValues,
+    /// That error in words: which axis leans which way, by how much in µm/m (null without a
+    /// value).
+    pub errors_meaning: Option<String>,
+    /// What the machine is not given, and why, one line each: the set-up, backlash, spikes,
+    /// servo mismatch, scale mismatch and cyclic error are not geometric errors the machine
+    /// model holds as constants of one axis.
+    pub not_sent: Vec<String>,
     /// The trace's angles, degrees (for the polar plot).
     #[serde(serialize_with = "crate::edge::series")]
     #[cfg_attr(feature = "ts", tsify(type = "Float64Array"))]
@@ -396,6 +429,8 @@ pub fn evaluate(input: &BallbarInput) -> Result<Ballbar> {
         }
     }
     let g = spread(centred.iter().copied());
+    let squareness = est(4, 2.0 / radius * 1e6);
+    let (errors, errors_meaning, not_sent) = plane::for_machine(input.plane, &squareness);
     Ok(Ballbar {
         radius,
         feed,
@@ -413,7 +448,7 @@ pub fn evaluate(input: &BallbarInput) -> Result<Ballbar> {
             // cos 2θ coefficient = R·(ε_u − ε_v)/2.
             scale_mismatch: est(3, 2.0 / radius * 1e6),
             // sin 2θ coefficient = R·α/2; α in µm/m.
-            squareness: est(4, 2.0 / radius * 1e6),
+            squareness,
             // d·sin 2θ coefficient = R·ω·τ/2; τ in ms.
             servo_mismatch: match omega {
                 Some(w) => est(5, 2.0 / (radius * w) * 1e3),
@@ -428,6 +463,11 @@ pub fn evaluate(input: &BallbarInput) -> Result<Ballbar> {
             spikes,
             residual_rms: f.rms,
         },
+        plane: input.plane,
+        axes: input.plane.axes(),
+        errors,
+        errors_meaning,
+        not_sent,
         angle: t.angle.iter().map(|a| a.to_degrees()).collect(),
         deviation: centred,
         fitted,

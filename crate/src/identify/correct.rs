@@ -14,9 +14,8 @@
 
 use super::{meaning, Judgement, Verdict};
 use crate::error::Result;
-use crate::machine::errors::{self, ErrorDef, ErrorValues};
-use crate::schema::Quantity;
-use serde::{Serialize, Serializer};
+use crate::machine::errors::{ErrorDef, ErrorValues};
+use serde::Serialize;
 
 /// An error found present: what it means and what to enter.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -58,18 +57,6 @@ pub struct Inseparable {
     pub combinations: Vec<String>,
     /// Why, in words.
     pub why: String,
-}
-
-/// Error values held in engine units (rad), written in API units (mm, degrees) by their
-/// entry in the error table: `#[serde(serialize_with = "crate::identify::correct::api_errors")]`.
-pub fn api_errors<S: Serializer>(v: &ErrorValues, s: S) -> std::result::Result<S::Ok, S::Error> {
-    use serde::ser::SerializeMap;
-    let mut map = s.serialize_map(Some(v.0.len()))?;
-    for (name, value) in &v.0 {
-        let q = errors::find(name).map_or(Quantity::SmallLength, |d| d.quantity);
-        map.serialize_entry(name, &q.to_api(*value))?;
-    }
-    map.end()
 }
 
 /// The machine errors among the judged parameters (`defs[j]`: the error table's entry of

@@ -366,6 +366,22 @@ impl ErrorValues {
     }
 }
 
+/// Error values held in engine units (rad), written in API units (mm, degrees) by their entry
+/// in the error table: a result's errors to put into `machine.errors` as they are
+/// (`#[serde(serialize_with = "crate::machine::errors::api_values")]`).
+pub fn api_values<S: serde::Serializer>(
+    v: &ErrorValues,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut map = s.serialize_map(Some(v.0.len()))?;
+    for (name, value) in &v.0 {
+        let q = find(name).map_or(Quantity::SmallLength, |d| d.quantity);
+        map.serialize_entry(name, &q.to_api(*value))?;
+    }
+    map.end()
+}
+
 /// The entry and alias a paper's symbol (or its ASCII spelling) stands for.
 pub fn alias_of(symbol: &str) -> Option<(&'static ErrorDef, &'static Alias)> {
     TABLE.iter().find_map(|d| {

@@ -200,7 +200,7 @@ pub struct ProbeIdentification {
     pub corrections: Vec<Correction>,
     /// The errors found present by ISO name, mm and degrees (radians in Rust): put it into
     /// `machine.errors` as it is.
-    #[serde(serialize_with = "crate::identify::correct::api_errors")]
+    #[serde(serialize_with = "crate::machine::errors::api_values")]
     #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
     pub errors: ErrorValues,
     /// The sphere's centre (stated, plus the fitted shift when fitted), workpiece frame, mm.

@@ -5,9 +5,12 @@
 // mismatch, squareness, servo mismatch, backlash per axis, harmonics, reversal spikes). The
 // panel judges G against the tolerance entered, tabulates the faults and draws the trace on a
 // polar plot at a stated µm per division with the fitted model, and names the file, radius and
-// feed the result came from. Nothing is computed here: every number is the engine's.
+// feed the result came from. "Use the squareness in the machine" puts the squareness into the
+// Machine section as the plane's ISO 230-1 location error the engine proposes (E_C0Y, E_A0Z or
+// E_B0Z, its sign from the kinematic chain) and says what it entered and what it did not.
+// Nothing is computed here: every number is the engine's.
 import type { Data, Layout } from 'plotly.js';
-import type { Ballbar, Fitted } from '@engine';
+import type { Ballbar, Fitted, Machine } from '@engine';
 import { channel, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el } from '../ui/fields';
@@ -32,6 +35,8 @@ const SAMPLE_NOTE = 'synthetic, made by scripts/make-ballbar-sample.mjs from 8 �
 
 /** The plane's axes in words (the engine names them u and v). */
 const UV = 'u and v are the plane’s first and second axes, the angle measured from +u towards +v: X and Y for a test in the XY plane (G17), Z and X in ZX (G18), Y and Z in YZ (G19).';
+/** The same for the plane of a result. */
+const uvOf = (r: Ballbar) => `u is ${r.axes[0]} and v is ${r.axes[1]} (the ${r.plane} plane), the angle from +${r.axes[0]} towards +${r.axes[1]}.`;
 
 /** One row of the faults' table: its name, the engine's value and what the value is. */
 interface Row {
@@ -85,6 +90,14 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   );
   const tables = [faults, harmonics, spikes];
 
+  // ---- into the machine: the squareness as the plane's location error
+  const machineBox = el('div', { class: 'motion-use', id: 'bb-machine' });
+  const useButton = el('button', { type: 'button', id: 'bb-use-squareness', disabled: '' }, 'Use the squareness in the machine');
+  const machineMsg = el('p', { class: 'field-hint', id: 'bb-machine-msg', 'aria-live': 'polite' });
+  const notSent = el('details', { id: 'bb-not-sent' });
+  machineBox.append(useButton, machineMsg, notSent);
+  summary.after(machineBox);
+
   const source = fileSource(form, {
     prefix: 'bb',
     field: 'bb-csv',
@@ -94,8 +107,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       // The result shown is of the trace before: greyed, with the reason; no verdict on it.
       run.cancel();
       fresh = false;
+      useButton.disabled = true;
       for (const p of [polar, trace]) stale(p.p, true, `${message} Greyed: the result of the trace before it.`);
-      for (const t of tables) stale(t, true, message);
+      for (const t of [...tables, machineBox]) stale(t, true, message);
       verdict.none(`No verdict: ${message}`);
     },
   });
@@ -125,8 +139,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   let fresh = false;
 
   const greyAll = (why?: string) => {
+    useButton.disabled = true;
     for (const p of [polar, trace]) stale(p.p, true, why);
-    for (const t of tables) stale(t, true, why);
+    for (const t of [...tables, machineBox]) stale(t, true, why);
   };
 
   /** What the result came from, in words. */
@@ -160,6 +175,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       return;
     }
     fresh = false;
+    useButton.disabled = true;
     verdict.pending();
     run(own as never).then((r) => {
       if (r === SUPERSEDED) return;
@@ -169,9 +185,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       showResult();
     }, (e) => {
       fresh = false;
+      useButton.disabled = true;
       engineError(e, polar.p);
       stale(trace.p, true);
-      for (const t of tables) stale(t, true, 'Showing the result of the trace before: this one was refused (see the message at the field).');
+      for (const t of [...tables, machineBox]) stale(t, true, 'Showing the result of the trace before: this one was refused (see the message at the field).');
       verdict.refused(e);
     });
   };
@@ -193,14 +210,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   const rowsOf = (r: Ballbar): Row[] => {
     const d = r.diagnostics;
+    const [u, v] = r.axes;
     return [
-      { key: 'backlashU', name: 'Backlash of u', title: 'Lost motion of the plane’s first axis: it stops half of it short in its direction of travel (steps at 0° and 180°).', fitted: d.backlashU, unit: 'len' },
-      { key: 'backlashV', name: 'Backlash of v', title: 'Lost motion of the plane’s second axis (steps at 90° and 270°).', fitted: d.backlashV, unit: 'len' },
-      { key: 'squareness', name: 'Out-of-squareness', title: 'v leans towards +u by this angle: positive when the axes are closer than 90° (an oval along the 45° diagonal, the same both ways).', fitted: d.squareness, unit: 'µm/m' },
-      { key: 'scaleMismatch', name: 'Scale mismatch u − v', title: 'u reads longer than v by this much (an oval along u or v).', fitted: d.scaleMismatch, unit: 'ppm' },
-      { key: 'servoMismatch', name: 'Servo mismatch', title: 'u lags v by this time: an oval along a diagonal, opposite ways CCW and CW (needs the feed).', fitted: d.servoMismatch, unit: 'ms' },
-      { key: 'centreU', name: 'Centre offset along u', title: 'Where the circle’s centre is from the ball-bar’s pivot, along u: the set-up, removed before G.', fitted: d.centreU, unit: 'len', setup: true },
-      { key: 'centreV', name: 'Centre offset along v', title: 'The same along v.', fitted: d.centreV, unit: 'len', setup: true },
+      { key: 'backlashU', name: `Backlash of ${u} (u)`, title: `Lost motion of ${u}, the plane’s first axis: it stops half of it short in its direction of travel (steps at 0° and 180°).`, fitted: d.backlashU, unit: 'len' },
+      { key: 'backlashV', name: `Backlash of ${v} (v)`, title: `Lost motion of ${v}, the plane’s second axis (steps at 90° and 270°).`, fitted: d.backlashV, unit: 'len' },
+      { key: 'squareness', name: 'Out-of-squareness', title: `${v} leans towards +${u} by this angle: positive when the axes are closer than 90° (an oval along the 45° diagonal, the same both ways).`, fitted: d.squareness, unit: 'µm/m' },
+      { key: 'scaleMismatch', name: `Scale mismatch ${u} − ${v}`, title: `${u} reads longer than ${v} by this much (an oval along ${u} or ${v}).`, fitted: d.scaleMismatch, unit: 'ppm' },
+      { key: 'servoMismatch', name: 'Servo mismatch', title: `${u} lags ${v} by this time: an oval along a diagonal, opposite ways CCW and CW (needs the feed).`, fitted: d.servoMismatch, unit: 'ms' },
+      { key: 'centreU', name: `Centre offset along ${u}`, title: `Where the circle’s centre is from the ball-bar’s pivot, along ${u}: the set-up, removed before G.`, fitted: d.centreU, unit: 'len', setup: true },
+      { key: 'centreV', name: `Centre offset along ${v}`, title: `The same along ${v}.`, fitted: d.centreV, unit: 'len', setup: true },
       { key: 'radius', name: 'Mean radius error', title: 'The mean of the trace: the bar’s calibration or a common scale error; removed before G.', fitted: d.radius, unit: 'len', setup: true },
     ];
   };
@@ -208,12 +226,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const judgeNow = () => {
     if (!last || !fresh) return;
     const { r, came } = last;
-    const significant = rowsOf(r).filter((row) => !row.setup && clear(row.fitted)).map((row) => `${row.name.toLowerCase()} ${valueText(row)[0]}`);
+    const significant = rowsOf(r).filter((row) => !row.setup && clear(row.fitted)).map((row) => `${row.name[0].toLowerCase()}${row.name.slice(1)} ${valueText(row)[0]}`);
     const faultsLine = significant.length
       ? `Faults the trace shows clearly (95 % interval clear of 0): ${significant.join(', ')}.`
       : 'No fault of the model stands out of the noise (every 95 % interval holds 0).';
     const parts = `G CCW ${show('errLength', r.gCcw)}, G CW ${show('errLength', r.gCw)}, H ${r.h === null ? '— (one direction)' : show('errLength', r.h)}; centre: ${r.centre}.`;
-    const notes = [parts, faultsLine, UV];
+    const notes = [parts, faultsLine, uvOf(r)];
     if (!(r.tolerance > 0) || r.pass === null) {
       return verdict.none(`G = ${show('errLength', r.g)} (${came}). No tolerance of G entered, so no verdict: enter the largest circular deviation you accept beside this line.`);
     }
@@ -244,7 +262,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
     // ---- the faults
     const table = el('table', { class: 'ident-table', id: 'bb-faults-table' });
-    table.append(el('caption', { class: 'field-hint' }, `Each fitted by least squares on its model (details under the verdict); 95 % interval as ± half-width. ${UV}`));
+    table.append(el('caption', { class: 'field-hint' }, `Each fitted by least squares on its model (details under the verdict); 95 % interval as ± half-width. ${uvOf(r)}`));
     const head = el('tr');
     for (const h of ['fault', 'value', '95 % interval']) head.append(el('th', { scope: 'col' }, h));
     table.append(el('thead'), el('tbody'));
@@ -294,6 +312,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       wrapTable(st),
     );
     for (const t of tables) stale(t, false);
+    showMachine(r);
 
     // ---- the plots
     const theta = Array.from(r.angle);
@@ -350,6 +369,57 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     } as Partial<Layout>, 'ballbar-trace');
     judgeNow();
   };
+
+  // ---- the squareness into the machine
+  const A = (deg: number) => show('errAngle', deg, 4);
+  /** What the proposed error is, from the result's errors (one entry, or none). */
+  const proposal = (r: Ballbar): [string, number] | null => {
+    const e = Object.entries(r.errors).filter((x): x is [string, number] => typeof x[1] === 'number');
+    return e.length ? e[0] : null;
+  };
+  const showMachine = (r: Ballbar) => {
+    const p = proposal(r);
+    useButton.disabled = !p || !fresh;
+    useButton.textContent = p ? `Use the squareness in the machine (${p[0]} = ${A(p[1])})` : 'Use the squareness in the machine';
+    const list = el('ul', { class: 'field-hint' });
+    list.append(...r.notSent.map((line) => el('li', {}, line)));
+    notSent.replaceChildren(el('summary', {}, p ? 'What the machine is not given, and why' : 'Nothing to give the machine: why'), list);
+    stale(machineBox, false);
+  };
+  /** The error entered last: its message goes once the machine no longer holds it. */
+  let entered: { name: string; value: number } | null = null;
+  machine.onChange(() => {
+    if (!entered) return;
+    const now = machine.current()?.errors?.[entered.name];
+    if (now === undefined || Math.abs(now - entered.value) > 1e-12) {
+      entered = null;
+      machineMsg.textContent = '';
+    }
+  });
+  useButton.addEventListener('click', () => {
+    if (!last || !fresh) return;
+    const { r, came } = last;
+    const p = proposal(r);
+    if (!p) return;
+    const [name, value] = p;
+    const cur: Machine | null = machine.current();
+    if (!cur) {
+      machineMsg.textContent = 'The machine has a field that is not valid (see the Machine section): correct it first, then enter the squareness.';
+      return;
+    }
+    const before = cur.errors?.[name] ?? 0;
+    // Only this error is set: the machine's other values and errors stay as they are.
+    machine.apply({ errors: { [name]: value } }, false);
+    entered = { name, value };
+    const sq = r.diagnostics.squareness;
+    const [u, v] = r.axes;
+    const crossTable = name === 'E_C0Y' && cur.linear === 'table-xy';
+    machineMsg.textContent = `Entered ${name} = ${A(value)} into the machine (it held ${A(before)}): ${r.errorsMeaning ?? ''}. ` +
+      `From the squareness ${fmt.num(sq.value ?? 0, 4)} ± ${fmt.num(sq.halfWidth ?? 0, 2)} µm/m of ${came}. ` +
+      (crossTable
+        ? `But on this machine Y carries X (a cross table): ${name} turns X with Y, so the model cannot hold the squareness between them and the volumetric map does not change.`
+        : `The volumetric map and every study that uses the machine's errors now include it (the ${u}–${v} squareness of the machine, replacing what was there).`);
+  });
 
   form.addEventListener('input', (e) => {
     if ((e.target as HTMLElement).id === 'bb-file') return;

@@ -129,7 +129,7 @@ pub struct BallbarRotaryIdentification {
     pub corrections: Vec<Correction>,
     /// The errors found present by ISO name, mm and degrees (radians in Rust): put it into
     /// `machine.errors` as it is.
-    #[serde(serialize_with = "crate::identify::correct::api_errors")]
+    #[serde(serialize_with = "crate::machine::errors::api_values")]
     #[cfg_attr(feature = "ts", tsify(type = "Partial<Record<string, number>>"))]
     pub errors: ErrorValues,
     /// Columns of the files the reader did not use.
