@@ -69,3 +69,51 @@ fn every_export_refuses_an_unknown_key() {
         assert!(e.contains("surelyNotAField"), "{name}: {e}");
     }
 }
+
+/// What `schema()` lists for each declared export: a one-struct export's fields, both structs'
+/// fields of a two-struct export (the shared case first), none for an export that takes no
+/// input. Found by cargo-mutants: `fields` returning nothing survived, as no native test read
+/// the declared fields (the Node suite compares them with the .d.ts).
+#[test]
+fn the_declared_fields_are_each_inputs_own() {
+    let fields = fiveaxis::api::export_fields();
+    let of = |name: &str| -> Vec<String> {
+        fields
+            .iter()
+            .find(|(n, _)| *n == name)
+            .unwrap()
+            .1
+            .iter()
+            .map(|f| f.path.clone())
+            .collect()
+    };
+    // One struct: ISO 230-2's runs and the axis.
+    let positioning = of("positioningEvaluate");
+    assert!(
+        positioning.contains(&"csv".to_string()) && positioning.contains(&"axis".to_string()),
+        "{positioning:?}"
+    );
+    // Two structs read from one object: the probe's case (the sphere) and its own (the file).
+    let probe = of("probeIdentify");
+    let sphere = probe.iter().position(|p| p == "sphere.x").unwrap();
+    let csv = probe.iter().position(|p| p == "csv").unwrap();
+    assert!(sphere < csv, "{probe:?}");
+    // No input.
+    assert!(of("rotaryTypes").is_empty());
+}
+
+/// An export that takes no input accepts nothing (JavaScript's `undefined` arrives as null) or an
+/// empty object, and refuses anything else by the key it was given. Found by cargo-mutants: its
+/// reader's arms survived, as no native test called such an export.
+#[test]
+fn an_export_without_input_refuses_any_input_by_name() {
+    let types = call("rotaryTypes", &serde_json::Value::Null).unwrap();
+    assert_eq!(types.as_array().unwrap().len(), 12);
+    assert_eq!(call("rotaryTypes", &json!({})).unwrap(), types);
+    let e = call("rotaryTypes", &json!({ "machine": {} }))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("machine: this export takes no input"), "{e}");
+    let e = call("rotaryTypes", &json!(3)).unwrap_err().to_string();
+    assert!(e.starts_with("input: this export takes no input"), "{e}");
+}
