@@ -190,6 +190,38 @@ fn three_layouts_read_alike() {
     close(s.up[0][1], 0.5e-3, 1e-15, "decimal comma between spaces");
 }
 
+/// Positions reached instead of deviations, and targets in other units, read to the same
+/// deviations in mm: the reached position less the target, each converted by its own header
+/// unit. Found by cargo-mutants: `target * unit` as `target / unit` and `reached − target` as
+/// `reached + target` survived, as every file tested gave targets in mm and deviations.
+#[test]
+fn reached_positions_and_target_units_give_the_deviations() {
+    // Target 0,1 m = 100 mm reached at 100,004 mm: +4 µm; 0 m reached at −0,002 mm: −2 µm.
+    let long = "target (m);direction;run;actual (mm)\n\
+        0;up;1;-0,002\n0,1;up;1;100,004\n0;down;1;0,001\n0,1;down;1;100,003\n\
+        0;up;2;-0,002\n0,1;up;2;100,004\n0;down;2;0,001\n0,1;down;2;100,003\n";
+    let r = read_runs(long).unwrap();
+    assert_eq!(r.targets, vec![0.0, 100.0]);
+    close(r.up[0][0], -0.002, 1e-12, "up at 0");
+    close(r.up[0][1], 0.004, 1e-12, "up at 100 mm");
+    close(r.down[0][0], 0.001, 1e-12, "down at 0");
+    close(r.down[0][1], 0.003, 1e-12, "down at 100 mm");
+    // One line per target, the target in inches (25.4 mm), deviations in µm.
+    let per_target =
+        "target (in), up 1 (µm), up 2 (µm), down 1 (µm), down 2 (µm)\n0, 1, 1, -1, -1\n4, 2, 2, 3, 3\n";
+    let r = read_runs(per_target).unwrap();
+    close(r.targets[1], 101.6, 1e-12, "4 in");
+    close(r.up[0][1], 0.002, 1e-15, "up at 4 in");
+    close(r.down[0][0], -0.001, 1e-15, "down at 0");
+    // One line per target, positions reached (mm) at targets in mm.
+    let reached =
+        "target (mm), actual up 1 (mm), actual up 2 (mm), actual down 1 (mm), actual down 2 (mm)\n\
+        0, 0.001, 0.001, -0.002, -0.002\n50, 50.003, 50.003, 49.999, 49.999\n";
+    let r = read_runs(reached).unwrap();
+    close(r.up[0][1], 0.003, 1e-12, "reached up at 50");
+    close(r.down[0][1], -0.001, 1e-12, "reached down at 50");
+}
+
 /// Each kind of bad file, with its line.
 #[test]
 fn bad_files_name_their_line() {
