@@ -192,8 +192,9 @@ fn three_layouts_read_alike() {
 
 /// Positions reached instead of deviations, and targets in other units, read to the same
 /// deviations in mm: the reached position less the target, each converted by its own header
-/// unit. Found by cargo-mutants: `target * unit` as `target / unit` and `reached − target` as
-/// `reached + target` survived, as every file tested gave targets in mm and deviations.
+/// unit, in each of the three layouts. Found by cargo-mutants: `target * unit` as
+/// `target / unit` and `reached − target` as `reached + target` survived, as every file tested
+/// gave targets in mm and deviations.
 #[test]
 fn reached_positions_and_target_units_give_the_deviations() {
     // Target 0,1 m = 100 mm reached at 100,004 mm: +4 µm; 0 m reached at −0,002 mm: −2 µm.
@@ -206,6 +207,20 @@ fn reached_positions_and_target_units_give_the_deviations() {
     close(r.up[0][1], 0.004, 1e-12, "up at 100 mm");
     close(r.down[0][0], 0.001, 1e-12, "down at 0");
     close(r.down[0][1], 0.003, 1e-12, "down at 100 mm");
+    // One line per run, the targets in columns in m, the positions reached in mm (named on the
+    // run column): the same deviations.
+    let per_run = "direction;run reached (mm);0 m;0,1 m\n\
+        up;1;-0,002;100,004\nup;2;-0,002;100,004\ndown;1;0,001;100,003\ndown;2;0,001;100,003\n";
+    let p = read_runs(per_run).unwrap();
+    assert_eq!(p.targets, r.targets);
+    for (a, b) in
+        p.up.iter()
+            .flatten()
+            .chain(p.down.iter().flatten())
+            .zip(r.up.iter().flatten().chain(r.down.iter().flatten()))
+    {
+        close(*a, *b, 1e-12, "one line per run");
+    }
     // One line per target, the target in inches (25.4 mm), deviations in µm.
     let per_target =
         "target (in), up 1 (µm), up 2 (µm), down 1 (µm), down 2 (µm)\n0, 1, 1, -1, -1\n4, 2, 2, 3, 3\n";
