@@ -137,7 +137,7 @@ test('Ball-bar panel: sample, file chosen and dropped, faults against the sample
     const before = await page.$eval('#bb-polar', (gd) => gd.data[1].r.slice(0, 5));
     await page.setInputFiles('#bb-file', bad);
     await page.waitForFunction((line) => new RegExp(`line ${line}:`).test(document.querySelector('#bb-csv')?.closest('.field')?.querySelector('.field-msg')?.textContent ?? ''), k + 1);
-    assert.match(await page.$eval('#bb-csv', (e) => e.closest('.field').querySelector('.field-msg').textContent), /CW deviation is not a number/);
+    assert.match(await page.$eval('#bb-csv', (e) => e.closest('.field').querySelector('.field-msg').textContent), new RegExp(`line ${k + 1}: expected 3 columns like the header, got 2`));
     await page.waitForFunction(() => document.getElementById('bb-polar')?.closest('.plot-wrap')?.classList.contains('stale'));
     for (const id of ['bb-trace']) assert.ok(await page.$eval(`#${id}`, (e) => e.closest('.plot-wrap').classList.contains('stale')), `${id} greyed`);
     for (const id of ['bb-faults', 'bb-spikes', 'bb-harmonics']) assert.ok(await page.$eval(`#${id}`, (e) => e.classList.contains('stale')), `${id} greyed`);
