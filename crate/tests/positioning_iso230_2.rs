@@ -250,6 +250,9 @@ fn bad_files_name_their_line() {
         ("target (mm); direction; deviation (µm)\n", "csv: has a header but no measurements"),
         ("target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 2\n0; down; 1\n0; down; 1\n", "csv: needs at least 2 targets"),
         ("target (mm); direction; deviation (µm)\n0; up; 1\n0; down; 2\n5; up; 1\n5; down; 1\n", "csv: line 2: target 0: needs at least 2 runs each way"),
+        // Two runs up but one down: too few one way is enough (found by cargo-mutants: `||` as
+        // `&&` survived, the file then refused for unequal counts instead).
+        ("target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 1\n0; down; 2\n5; up; 1\n5; up; 1\n5; down; 1\n", "csv: line 2: target 0: needs at least 2 runs each way (ISO 230-2 asks for 5), got 2 up and 1 down"),
         ("target (mm); direction; deviation (µm)\n0; up; 1\n0; up; 1\n0; down; 2\n0; down; 2\n5; up; 1\n5; up; 1\n5; up; 1\n5; down; 1\n5; down; 1\n", "csv: line 6: target 5: 3 runs up and 2 down"),
         ("target (mm);up 1 (µm);up 2 (µm)\n0;1;2\n", "csv: line 1: name the run columns"),
         ("direction; run (µm); 0; 100\nup; 1; 1; 2\n", "csv: line 1: give the target's unit"),
