@@ -230,5 +230,8 @@ fn a_trace_s_dent_crosses_in_degrees_and_its_machine_is_named() {
     )));
     // A header and no point: refused, the message naming the line (the one trace reader,
     // ballbar::read, shared with the ball-bar tests).
-    assert!(m.starts_with("csv: line 1: the header is not followed by any point"), "{m}");
+    assert!(
+        m.starts_with("csv: line 1: the header is not followed by any point"),
+        "{m}"
+    );
 }
