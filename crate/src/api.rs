@@ -37,6 +37,9 @@ pub struct Schema {
     pub motions: Vec<ErrorDef>,
     /// Per export, every field of its input object (the machine's included).
     pub exports: BTreeMap<String, Vec<FieldInfo>>,
+    /// Per list kind of a field (its `kind`, e.g. `"ballbarTests"`), the fields of one item,
+    /// paths relative to the item (`"ball.x"` of `tests[0].ball.x`).
+    pub lists: BTreeMap<String, Vec<FieldInfo>>,
 }
 
 /// The schema of every input: the machine's fields, the error table and each export's fields
@@ -52,6 +55,10 @@ pub fn schema(extra: Vec<(&str, Vec<FieldInfo>)>) -> Schema {
             .chain(extra)
             .map(|(n, f)| (n.to_string(), f))
             .collect(),
+        lists: BTreeMap::from([(
+            crate::ballbar::rotary::TESTS_KIND.to_string(),
+            describe(crate::ballbar::rotary::RotaryTest::FIELDS, ""),
+        )]),
     }
 }
 

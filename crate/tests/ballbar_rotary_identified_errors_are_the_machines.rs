@@ -109,4 +109,63 @@ fn the_errors_found_reproduce_the_measured_traces_when_put_into_the_machine() {
         .unwrap()
         .iter()
         .any(|n| n == "E_X0C"));
+    // … and say so in a sentence that starts as one.
+    let words = together["words"].as_str().unwrap();
+    assert!(
+        words.starts_with("Together the tests also identify") && words.contains("E_X0C"),
+        "{words}"
+    );
+}
+
+#[test]
+fn a_tests_range_is_twice_the_offset_of_the_axis_line_for_a_radial_bar() {
+    // C's line e off along X, a radial bar of length L: the table ball is at distance
+    // √(L² − 2·L·e·cos(C − φ) + e²) from the tool ball (module docs of ballbar::rotary), which
+    // runs from L − e (at C = φ) to L + e (at C = φ + 180°): the range is 2·e exactly. Both
+    // angles are on a 1° sweep (φ = 0). The residual's range once E_X0C is identified is the
+    // file's rounding (0.1 nm) and the first-order model's remainder (e²/(2L) ≈ 0.5 nm here).
+    let e = 0.01;
+    let machine = bc_table();
+    let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 } }]);
+    let sim = call(
+        "ballbarRotarySimulate",
+        &json!({ "machine": with_errors(&machine, json!({ "E_X0C": e })), "tests": tests }),
+    )
+    .unwrap();
+    let r = call(
+        "ballbarRotaryIdentify",
+        &json!({ "machine": machine, "tests": tests, "parameters": ["E_X0C", "E_Y0C"],
+                 "csv": sim["csv"] }),
+    )
+    .unwrap();
+    let t = &r["tests"][0];
+    let range = t["range"].as_f64().unwrap();
+    assert!((range - 2.0 * e).abs() < 2e-7, "range {range}");
+    let after = t["rangeAfter"].as_f64().unwrap();
+    assert!(after < 2e-6, "range after {after}");
+    assert!(after > 0.0);
+}
+
+#[test]
+fn a_machine_without_errors_is_said_to_leave_the_bar_alone_and_one_with_an_offset_is_not() {
+    // The exact chain leaves picometres of rounding on an ideal machine: the summary must not
+    // report them as a length change; with C's line 10 µm off, the range is 2·e = 20 µm.
+    let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 } }]);
+    let say = |machine: Value| {
+        let r = call(
+            "ballbarRotarySimulate",
+            &json!({ "machine": machine, "tests": tests }),
+        )
+        .unwrap();
+        r["summary"][0].as_str().unwrap().to_string()
+    };
+    let ideal = say(bc_table());
+    assert!(
+        ideal.ends_with(
+            "the bar's length does not change (no error of the machine moves it in this test)."
+        ),
+        "{ideal}"
+    );
+    let off = say(with_errors(&bc_table(), json!({ "E_X0C": 0.01 })));
+    assert!(off.contains("changes by 20.0 µm"), "{off}");
 }

@@ -11,6 +11,7 @@ import { reversalPanel } from './panels/reversal';
 import { probePanel } from './panels/probe';
 // ball-bar and laser
 import { ballbarPanel } from './panels/ballbar';
+import { ballbarRotaryPanel } from './panels/ballbar-rotary';
 import { positioningPanel } from './panels/positioning';
 import { el } from './ui/fields';
 import { encodingNote, FileRefused, readTextFile } from './ui/files';
@@ -28,7 +29,7 @@ import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } fro
 const panels: Panel[] = [
   nonlinearPanel, cubicPanel, sshapePanel, toolpathPanel, volumetricPanel, reversalPanel, probePanel,
   // ball-bar and laser
-  ballbarPanel, positioningPanel,
+  ballbarPanel, ballbarRotaryPanel, positioningPanel,
 ];
 let machine: MachineSection | null = null;
 

@@ -123,12 +123,13 @@ function render(info: FieldInfo, id: string, ctx: Context | null): Rendered {
       return { info, root: f.root, label: f.label, read: () => f.input.checked, setError: () => {} };
     }
     case 'choice': {
-      const options = info.choices.map((c) => ({ value: c.value, label: c.label }));
+      const options = info.choices.map((c) => ({ value: c.value, label: fill(c.label, ctx) }));
       const f = selectField(id, label, options, String(def ?? options[0]?.value ?? ''), hint);
       return { info, root: f.root, label: f.label, read: () => f.select.value, setError: () => {} };
     }
     case 'text': {
-      const f = textField(id, label, typeof def === 'string' ? def : '', 6, hint);
+      // A short text (a name) on one line; a file's text in a box.
+      const f = textField(id, label, typeof def === 'string' ? def : '', (info.max ?? Infinity) <= 200 ? 1 : 6, hint);
       return { info, root: f.root, label: f.label, read: () => f.area.value, setError: f.setError };
     }
     case 'numberList': {
@@ -197,6 +198,12 @@ export function renderFields(fields: FieldInfo[], prefix: string, container: HTM
         const hint = r.root.querySelector(':scope > .field-hint');
         if (hint && r.info.help) hint.textContent = fill(r.info.help, next);
         if (r.info.help) r.label.title = fill(r.info.help, next);
+        // A choice's options may name the axes too ("{K}").
+        const select = r.info.kind === 'choice' ? r.root.querySelector('select') : null;
+        r.info.choices.forEach((c, j) => {
+          const o = select?.options[j];
+          if (o && o.textContent !== fill(c.label, next)) o.textContent = fill(c.label, next);
+        });
         r.root.hidden = r.info.kinds.length > 0 && !r.info.kinds.includes(next.kind);
       }
       for (const set of groups.values()) {

@@ -110,6 +110,12 @@ pub struct RotaryTestFit {
     pub before: f64,
     /// rms of the residual, mm (after correction, predicted).
     pub after: f64,
+    /// Largest minus smallest measured length change over the test, both directions, mm: the
+    /// deviation range a tolerance of the test is set on (ISO 10791-6 style).
+    pub range: f64,
+    /// Largest minus smallest residual, mm: the range the model predicts once the errors found
+    /// are entered (the offsets, the bar's length and set-up, stay).
+    pub range_after: f64,
 }
 
 /// The identification's result.
@@ -395,8 +401,10 @@ pub fn identify_points(
             lines: Vec::new(),
             angle: idx.iter().map(|&i| points[i].angle).collect(),
             run,
-            measured,
+            measured: measured.clone(),
             fitted: idx.iter().map(|&i| f.fitted[i]).collect(),
+            range: super::range(&measured),
+            range_after: super::range(&residual),
             residual,
             before,
             after,

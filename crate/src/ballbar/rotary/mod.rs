@@ -266,10 +266,13 @@ impl RotaryTest {
     }
 }
 
+/// The name of [`TESTS`] in the exported schema (its items' fields: the schema's `lists`).
+pub const TESTS_KIND: &str = "ballbarTests";
+
 /// The schema kind of the list of tests: 1 to [`MAX_TESTS`] objects of [`RotaryTest`]'s
 /// fields, each read (and converted to engine units) at `tests[i]`.
 pub const TESTS: Kind = Kind::Custom(&Custom {
-    name: "ballbarTests",
+    name: TESTS_KIND,
     read: read_tests,
     list: true,
 });
@@ -729,4 +732,17 @@ fn place(model: &Model, t: &RotaryTest, i: usize) -> Result<Test> {
         step: t.step,
         csv: t.csv.clone(),
     })
+}
+
+/// Largest minus smallest of `v` (0 for none).
+pub(crate) fn range(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    let (lo, hi) = v
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
+    hi - lo
 }

@@ -325,10 +325,10 @@ pub fn together(
     let words = if study.tests.len() < 2 {
         "One test: add a second (the ball at another height or radius, another bar direction, or the other axis moving) to see what two tests separate.".to_string()
     } else if gained.is_empty() {
-        "RotaryTogether the tests identify no error that one of them alone does not.".to_string()
+        "Together the tests identify no error that one of them alone does not.".to_string()
     } else {
         format!(
-            "RotaryTogether the tests also identify {}, which no test alone separates: their effects differ from test to test.",
+            "Together the tests also identify {}, which no test alone separates: their effects differ from test to test.",
             gained.join(", ")
         )
     };

@@ -136,6 +136,10 @@ pub struct BallbarRotarySimulation {
     pub summary: Vec<String>,
 }
 
+/// A length change below this (mm, a picometre) is the exact chain's rounding: the summary says
+/// the bar's length does not change.
+pub const NO_CHANGE: f64 = 1e-9;
+
 /// Simulates every test (module docs of [`super`]).
 pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
     let study = Study::new(input)?;
@@ -183,8 +187,7 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
                 direction: d,
             });
         }
-        let spread = deviation.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b))
-            - deviation.iter().fold(f64::INFINITY, |a, b| a.min(*b));
+        let spread = super::range(&deviation);
         tests.push(RotarySimulatedTest {
             name: t.name.clone(),
             axis: t.letters[0],
@@ -227,8 +230,17 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
     let mut summary: Vec<String> = tests
         .iter()
         .map(|s| {
+            // Below a picometre the change is the chain's rounding, not the machine's errors.
+            let change = if s.spread < NO_CHANGE {
+                "does not change (no error of the machine moves it in this test)".to_string()
+            } else {
+                format!(
+                    "changes by {} (largest − smallest)",
+                    amount(Quantity::SmallLength, s.spread)
+                )
+            };
             format!(
-                "Test {}: {} from {:.1}° to {:.1}° ({} at {:.1}°), {} bar of {} mm: the bar's length changes by {} (largest − smallest).",
+                "Test {}: {} from {:.1}° to {:.1}° ({} at {:.1}°), {} bar of {} mm: the bar's length {change}.",
                 s.name,
                 s.axis,
                 s.angle.first().copied().unwrap_or(0.0).to_degrees(),
@@ -237,7 +249,6 @@ pub fn simulate(input: &BallbarRotaryInput) -> Result<BallbarRotarySimulation> {
                 s.hold.to_degrees(),
                 s.direction.value(),
                 s.length,
-                amount(Quantity::SmallLength, s.spread)
             )
         })
         .collect();
