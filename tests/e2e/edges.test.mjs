@@ -213,7 +213,8 @@ test('phone at 390 px: the toolbar pop-ups stay on the screen, the active tab is
 function declaredMinimums() {
   const s = fa.schema();
   const out = new Map();
-  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbar: 'bb', positioning: 'ps' };
+  // (Longest first: an export's name is matched by its start.)
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbarrotary: 'br', ballbar: 'bb', positioning: 'ps' };
   for (const [name, list] of Object.entries(s.exports)) {
     const prefix = Object.entries(prefixes).find(([p]) => name.toLowerCase().startsWith(p))?.[1];
     for (const f of list) {
@@ -222,6 +223,11 @@ function declaredMinimums() {
       if (f.path.startsWith('machine.')) out.set(`m-${path.slice('machine-'.length)}`, f.min);
       else if (prefix) out.set(`${prefix}-${path}`, f.min);
     }
+  }
+  // The items of a list (the rotary ball-bar tests).
+  for (const f of s.lists.ballbarTests) {
+    if (f.kind !== 'number') continue;
+    for (let i = 0; i < 8; i++) out.set(`br-tests-${i}-${f.path.replace(/\./g, '-')}`, f.min);
   }
   for (const e of s.errors) out.set(`m-errors-${e.name}`, -e.limit);
   for (const e of s.motions) out.set(`m-motions-${e.name}`, -e.limit);

@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { ARTIFACTS, withPage, waitIdle } from './harness.mjs';
 
-const TABS = ['nonlinear', 'cubic', 'sshape', 'toolpath', 'volumetric', 'reversal', 'probe', 'ballbar', 'positioning'];
+const TABS = ['nonlinear', 'cubic', 'sshape', 'toolpath', 'volumetric', 'reversal', 'probe', 'ballbar', 'ballbar-rotary', 'positioning'];
 
 /**
  * Waits until the open panel is ready and the page idle: every plot it draws on its own (and

@@ -16,14 +16,19 @@ fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', im
 /** Field ids the schema marks optional (empty: the engine's default or the machine's value). */
 const OPTIONAL = (() => {
   const schema = fa.schema();
-  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbar: 'bb', positioning: 'ps', machineSchematic: 'md' };
+  const prefixes = { nonlinear: 'nl', cubic: 'cb', sshape: 'ss', toolpath: 'tp', volumetric: 'vm', reversal: 'rv', probe: 'pb', ballbar: 'bb', ballbarRotary: 'br', positioning: 'ps', machineSchematic: 'md' };
   const out = new Set(schema.machine.filter((f) => f.optional).map((f) => `m-${f.path.slice('machine.'.length).replace(/\./g, '-')}`));
-  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, probe: /^probe(Design|Identify)$/, ballbar: /^ballbar/, positioning: /^positioning/, machineSchematic: /^machineSchematic$/ };
+  const owner = { nonlinear: /^(nonlinear|machineInverse)/, cubic: /^cubic/, sshape: /^sshape/, toolpath: /^toolpath/, volumetric: /^volumetric/, reversal: /^reversal/, probe: /^probe(Design|Identify)$/, ballbar: /^ballbar(?!Rotary)/, ballbarRotary: /^ballbarRotary/, positioning: /^positioning/, machineSchematic: /^machineSchematic$/ };
   for (const [name, fields] of Object.entries(schema.exports)) {
     for (const [panel, re] of Object.entries(owner)) {
       if (!re.test(name)) continue;
       for (const f of fields) if (f.optional && !f.path.startsWith('machine.')) out.add(`${prefixes[panel]}-${f.path.replace(/\./g, '-')}`);
     }
+  }
+  // The items of a list (the rotary ball-bar tests, `br-tests-<i>-<path>`).
+  for (const f of schema.lists.ballbarTests) {
+    if (!f.optional) continue;
+    for (let i = 0; i < 8; i++) out.add(`br-tests-${i}-${f.path.replace(/\./g, '-')}`);
   }
   return out;
 })();
@@ -106,7 +111,8 @@ test('every numeric field of the machine and of every panel: bad text shows a me
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
       await settle(page, `#panel-${tab}`);
       // The panel's form and its tolerance at the top of the results (the verdict).
-      const ids = await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`);
+      // A list's items repeat the first item's fields: the first is checked.
+      const ids = (await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`)).filter((id) => !/^br-tests-[1-9]/.test(id));
       // Every panel has at least two (the toolpath panel: L and the tolerance).
       assert.ok(ids.length >= 2, `${tab}: numeric fields found`);
       for (const id of ids) {
@@ -147,7 +153,8 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       before = await settle(page, `#panel-${tab}`);
-      const ids = await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`);
+      // A list's items repeat the first item's fields: the first is checked.
+      const ids = (await numericFields(page, `#panel-${tab} :is(form.inputs, .verdict)`)).filter((id) => !/^br-tests-[1-9]/.test(id));
       // The first is refused at the field: no engine call from then on.
       await page.fill(`#${ids[0]}`, 'x');
       ({ calls } = await waitIdle(page));
