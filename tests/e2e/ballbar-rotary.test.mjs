@@ -11,7 +11,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { rotarySample } from '../../scripts/make-ballbar-rotary-sample.mjs';
-import { ARTIFACTS, waitIdle, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, drop, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const SAMPLE_PATH = new URL('../../public/samples/ballbar-rotary.csv', import.meta.url);
 const SAMPLE = readFileSync(SAMPLE_PATH, 'utf8');
@@ -19,16 +19,6 @@ const SAMPLE = readFileSync(SAMPLE_PATH, 'utf8');
 const TRUTH = { E_X0C: 0.012, E_X0B: 0.005, E_Z0B: -0.008 };
 /** The first number in a text ("12.03 µm" → 12.03; "−8.289 µm" → −8.289). */
 const number = (text) => Number(/[-−]?\d+(\.\d+)?(e[-+]?\d+)?/.exec(text)?.[0].replace('−', '-'));
-
-/** Drops a file named `name` holding `text` on the element `selector` (as a user drags one). */
-async function drop(page, selector, name, text) {
-  await page.evaluate(([selector, name, text]) => {
-    const dt = new DataTransfer();
-    dt.items.add(new File([text], name, { type: 'text/csv' }));
-    const zone = document.querySelector(selector);
-    for (const type of ['dragenter', 'dragover', 'drop']) zone.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
-  }, [selector, name, text]);
-}
 
 /** Each test's range (largest − smallest deviation, µm) from the file's own lines. */
 function ranges(text) {

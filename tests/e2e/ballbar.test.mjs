@@ -13,7 +13,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import * as fa from '../../wasm/pkg/fiveaxis.js';
 import { FAULTS, ballbarSample } from '../../scripts/make-ballbar-sample.mjs';
-import { ARTIFACTS, waitIdle, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, drop, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 fa.initSync({ module: readFileSync(new URL('../../wasm/pkg/fiveaxis_bg.wasm', import.meta.url)) });
 
@@ -21,16 +21,6 @@ const SAMPLE_PATH = new URL('../../public/samples/ballbar-xy.csv', import.meta.u
 const SAMPLE = readFileSync(SAMPLE_PATH, 'utf8');
 /** The first number in a text ("8.023 µm" → 8.023; "−3.02 µm" → −3.02). */
 const number = (text) => Number(/[-−]?\d+(\.\d+)?(e[-+]?\d+)?/.exec(text)?.[0].replace('−', '-'));
-
-/** Drops a file named `name` holding `text` on the element `selector` (as a user drags one). */
-async function drop(page, selector, name, text) {
-  await page.evaluate(([selector, name, text]) => {
-    const dt = new DataTransfer();
-    dt.items.add(new File([text], name, { type: 'text/csv' }));
-    const zone = document.querySelector(selector);
-    for (const type of ['dragenter', 'dragover', 'drop']) zone.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
-  }, [selector, name, text]);
-}
 
 /** The value and half-width shown for a fault (display units) and its row's text. */
 async function fault(page, name) {

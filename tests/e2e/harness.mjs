@@ -153,3 +153,13 @@ export async function waitIdle(page, timeout = 60_000) {
   await page.waitForFunction(() => window.__fiveaxis?.idle(), null, { timeout });
   return page.evaluate(() => ({ calls: window.__fiveaxis.calls, done: window.__fiveaxis.done, draws: window.__fiveaxis.draws }));
 }
+
+/** Drops a file named `name` holding `text` on the element `selector`, as a user drags one. */
+export async function drop(page, selector, name, text) {
+  await page.evaluate(([selector, name, text]) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([text], name, { type: 'text/csv' }));
+    const zone = document.querySelector(selector);
+    for (const type of ['dragenter', 'dragover', 'drop']) zone.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, [selector, name, text]);
+}

@@ -8,7 +8,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
-import { ARTIFACTS, waitIdle, waitPlotted, withPage } from './harness.mjs';
+import { ARTIFACTS, drop, waitIdle, waitPlotted, withPage } from './harness.mjs';
 
 const SAMPLE = readFileSync(new URL('../../public/samples/x-laser-runs.csv', import.meta.url), 'utf8');
 const number = (text) => Number(/[-−]?\d+(\.\d+)?(e[-+]?\d+)?/.exec(text)?.[0].replace('−', '-'));
@@ -56,16 +56,6 @@ function iso230_2(runs) {
     aDown: max((t) => t.md + 2 * t.sd) - min((t) => t.md - 2 * t.sd),
     a: Math.max(max((t) => t.mu + 2 * t.su), max((t) => t.md + 2 * t.sd)) - Math.min(min((t) => t.mu - 2 * t.su), min((t) => t.md - 2 * t.sd)),
   };
-}
-
-/** Drops a file named `name` holding `text` on the element `selector`. */
-async function drop(page, selector, name, text) {
-  await page.evaluate(([selector, name, text]) => {
-    const dt = new DataTransfer();
-    dt.items.add(new File([text], name, { type: 'text/csv' }));
-    const zone = document.querySelector(selector);
-    for (const type of ['dragenter', 'dragover', 'drop']) zone.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
-  }, [selector, name, text]);
 }
 
 /** Shown to 4 significant digits: equal to `want` to that precision. */

@@ -16,6 +16,7 @@ import { loadSchema, renderFields, type RenderedForm, type ShowsError } from '..
 import { axis, draw, note, plotBox, stale } from '../ui/plot';
 import { download } from '../ui/export';
 import { identificationView, clearPlot } from '../ui/identify';
+import { correctionsView, useFound } from '../ui/found';
 import { loadPresets, presetPicker } from '../ui/presets';
 import { fileSource, sampleAsDefault } from '../ui/source';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
@@ -349,24 +350,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     summary.classList.remove('stale');
 
     if (r.corrections.length) {
-      const table = el('table', { class: 'ident-table', id: 'br-corrections-table' });
-      const head = el('tr');
-      for (const h of ['error', 'what it means', 'value', 'what to enter in the control']) head.append(el('th', { scope: 'col' }, h));
-      table.append(el('thead'), el('tbody'));
-      table.tHead!.append(head);
-      for (const c of r.corrections) {
-        const tr = el('tr');
-        tr.dataset.name = c.name;
-        tr.dataset.value = String(c.value);
-        tr.append(el('th', { scope: 'row', title: words.get(c.name)?.title ?? '' }, c.name), el('td', {}, c.words), el('td', {}, show(quantityOf(c.unit), c.value)), el('td', { class: 'enter' }, c.enter));
-        table.tBodies[0].append(tr);
-      }
-      const scroll = el('div', { class: 'table-scroll' });
-      scroll.append(table);
       corrections.replaceChildren(
         el('p', {}, 'The location errors these traces find present (Holm’s decisions below), in the machine’s frame with every axis at zero:'),
-        scroll,
-        el('p', { class: 'field-hint', id: 'br-signs' }, 'Signs (ISO 230-1): an error is where the axis really is minus where the control believes it is. A position is added to the control’s value of the axis line’s position (mm); a tilt turns the control’s axis direction by the angle (degrees, right-hand rule about the named axis).'),
+        ...correctionsView('br', r.corrections, words),
       );
     } else {
       corrections.replaceChildren(el('p', { id: 'br-no-corrections' }, `No location error is found present in ${from}: nothing to enter.`));
@@ -442,18 +428,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   useButton.addEventListener('click', () => {
     if (identState.s !== 'ok') return;
     const r = identState.r;
-    const found = r.errors as Record<string, number>;
-    const estimates = r.identification.estimates.filter((e) => !e.name.startsWith('offset_'));
-    // Measured and indistinguishable from zero: 0 on the machine as measured; not separable: kept.
-    const zero = estimates.filter((e) => e.verdict === 'not-distinguishable').map((e) => e.name);
-    const kept = estimates.filter((e) => e.verdict === 'not-identifiable').map((e) => e.name);
-    machine.apply({ errors: { ...Object.fromEntries(zero.map((n) => [n, 0])), ...found } }, false);
-    const def = (n: string) => schema.errors.find((d) => d.name === n);
-    const entered = Object.entries(found).map(([n, v]) => `${n} = ${show(def(n)?.quantity === 'smallAngle' ? 'errAngle' : 'errLength', v)}`);
-    useMsg.textContent = `Entered in the Machine section from ${identState.from}: ${entered.length ? listWords(entered) : 'no error found present'}` +
-      `${zero.length ? `; set to 0 (measured, not distinguishable from zero): ${listWords(zero)}` : ''}` +
-      `${kept.length ? `; kept as they were (these tests cannot tell them apart): ${listWords(kept)}` : ''}. ` +
-      'The volumetric map, the cubic test and every other study now run on the machine as measured; the machine’s other values are unchanged.';
+    const own = r.identification.estimates.filter((e) => !e.name.startsWith('offset_'));
+    useMsg.textContent = useFound(machine, schema, r.errors as Record<string, number>, own, identState.from, 'these tests');
   });
 
   form.addEventListener('input', (e) => {

@@ -21,6 +21,7 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, sourceText, type Source } from '../ui/identify';
+import { correctionsView, useFound } from '../ui/found';
 import { errorWords, judge, listWords, verdictBox, type Contributor } from '../ui/verdict';
 
 export const probePanel: Panel = {
@@ -359,25 +360,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
     // The corrections: plain words, the number to enter, the sign convention.
     if (f.corrections.length) {
-      const table = el('table', { class: 'ident-table', id: 'pb-corrections-table' });
-      const head = el('tr');
-      for (const h of ['error', 'what it means', 'value', 'what to enter in the control']) head.append(el('th', { scope: 'col' }, h));
-      table.append(el('thead'), el('tbody'));
-      table.tHead!.append(head);
-      for (const c of f.corrections) {
-        const tr = el('tr');
-        tr.dataset.name = c.name;
-        tr.append(el('th', { scope: 'row', title: words.get(c.name)?.title ?? '' }, c.name), el('td', {}, c.words), el('td', {}, show(quantityOf(c.unit), c.value)), el('td', { class: 'enter' }, c.enter));
-        table.tBodies[0].append(tr);
-      }
-      const scroll = el('div', { class: 'table-scroll' });
-      scroll.append(table);
       corrections.replaceChildren(
         el('p', {}, `The errors of ${k} and ${m} this measurement finds present (Holm’s decisions below), in the machine’s frame with every axis at zero:`),
-        scroll,
-        el('p', { class: 'field-hint', id: 'pb-signs' }, 'Signs (ISO 230-1): an error is where the axis really is minus where the control believes it is. ' +
-          'A position is added to the control’s value of the axis line’s position (mm); a tilt turns the control’s axis direction by the angle (degrees, right-hand rule about the named axis); ' +
-          'a zero error is corrected by shifting the axis’s zero by minus the error. Enter them where your control keeps its kinematics (Heidenhain: the kinematics table; Siemens: the TRAORI data set), or let its own cycle do it.'),
+        ...correctionsView('pb', f.corrections, words),
       );
     } else {
       corrections.replaceChildren(el('p', { id: 'pb-no-corrections' }, `No location error of ${k} or ${m} is found present in ${from.name}: nothing to enter.`));
@@ -549,20 +534,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   useButton.addEventListener('click', () => {
     if (identState.s !== 'ok') return;
     const f = identState.r;
-    const found = f.errors as Record<string, number>;
-    // The errors the measurement determines and finds indistinguishable from zero are zero on
-    // the machine as measured; those it cannot tell apart keep the values entered.
-    const zero = f.estimates.filter((e) => !e.name.startsWith('sphere_') && e.verdict === 'not-distinguishable').map((e) => e.name);
-    const kept = f.estimates.filter((e) => !e.name.startsWith('sphere_') && e.verdict === 'not-identifiable').map((e) => e.name);
-    const set: Record<string, number> = { ...Object.fromEntries(zero.map((n) => [n, 0])), ...found };
-    machine.apply({ errors: set }, false);
-    const def = (n: string) => schema.errors.find((d) => d.name === n);
-    const shownValue = (n: string, v: number) => show(def(n)?.quantity === 'smallAngle' ? 'errAngle' : 'errLength', v);
-    const entered = Object.entries(found).map(([n, v]) => `${n} = ${shownValue(n, v)}`);
-    useMsg.textContent = `Entered in the Machine section from ${identState.from.name}: ${entered.length ? listWords(entered) : 'no error found present'}` +
-      `${zero.length ? `; set to 0 (measured, not distinguishable from zero): ${listWords(zero)}` : ''}` +
-      `${kept.length ? `; kept as they were (this measurement cannot tell them apart): ${listWords(kept)}` : ''}. ` +
-      'The volumetric map, the cubic test, the S-shape part and every other study now run on the machine as measured; the machine’s other values are unchanged.';
+    const own = f.estimates.filter((e) => !e.name.startsWith('sphere_'));
+    useMsg.textContent = useFound(machine, schema, f.errors as Record<string, number>, own, identState.from.name, 'this measurement');
   });
 
   // ---- measurement files
