@@ -40,12 +40,78 @@ pub fn number(cell: &str, sep: char) -> Option<f64> {
     let cell = cell.trim();
     let decimal_comma = sep != ',' && cell.matches(',').count() == 1 && !cell.contains('.');
     let parsed = if decimal_comma {
-        cell.replace(',', ".").parse::<f64>()
+        decimal(&cell.replace(',', "."), true)
     } else {
-        cell.parse::<f64>()
+        decimal(cell, true)
     };
-    parsed.ok().filter(|v| v.is_finite())
+    parsed.filter(|v| v.is_finite())
 }
+
+/// Reads a decimal number, the grammar of every reader of the engine: `[+-]digits[.digits]` or `[+-].digits` (with an
+/// exponent `e±n` when `exponent`); `None` if `tok` is not one. The value may be infinite when
+/// the exponent overflows.
+///
+/// One pass over the bytes: the digits are gathered as an integer `m` with `k` decimals, and when
+/// `m ≤ 2⁵³` and `k ≤ 22` (every coordinate a CAM system writes) the value is `m / 10^k`, exact
+/// doubles divided once: correctly rounded by Clinger's fast path, the bits `str::parse` gives.
+/// Otherwise (an exponent, more digits) `str::parse` reads the token. (A toolpath holds 10⁵ to
+/// 10⁷ numbers: this is most of the reading time; in WebAssembly `str::parse` is slower still,
+/// its 128-bit multiplies being calls.)
+pub fn decimal(tok: &str, exponent: bool) -> Option<f64> {
+    let b = tok.as_bytes();
+    let neg = b.first() == Some(&b'-');
+    let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
+    let (mut m, mut k, mut count) = (0u64, 0usize, 0usize);
+    let mut exact = true;
+    let mut point = false;
+    while i < b.len() {
+        match b[i] {
+            c @ b'0'..=b'9' => {
+                count += 1;
+                k += usize::from(point);
+                // 19 digits always fit (10¹⁹ − 1 < 2⁶⁴), so no overflow check: a checked
+                // multiply is a 128-bit multiply in WebAssembly, a call per digit.
+                if count <= 19 {
+                    m = m * 10 + u64::from(c - b'0');
+                } else {
+                    exact = false;
+                }
+            }
+            b'.' if !point => point = true,
+            _ => break,
+        }
+        i += 1;
+    }
+    if count == 0 {
+        return None;
+    }
+    if i < b.len() {
+        // Only an exponent may follow.
+        if !exponent || !matches!(b[i], b'e' | b'E') {
+            return None;
+        }
+        i += 1;
+        if matches!(b.get(i), Some(b'+' | b'-')) {
+            i += 1;
+        }
+        let digits = b[i..].iter().take_while(|c| c.is_ascii_digit()).count();
+        if digits == 0 || i + digits != b.len() {
+            return None;
+        }
+        return tok.parse().ok();
+    }
+    if exact && m <= 1 << 53 && k < POW10.len() {
+        let v = m as f64 / POW10[k];
+        return Some(if neg { -v } else { v });
+    }
+    tok.parse().ok()
+}
+
+/// Powers of ten exactly representable as `f64`.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
 
 /// A unit a measuring program may write in a CSV header, and its factor to the API unit (mm or
 /// degrees) of its kind.

@@ -66,69 +66,10 @@ pub(super) fn shown(tok: &str) -> String {
 }
 
 /// Reads a number of the readers' grammar, `[+-]digits[.digits]` or `[+-].digits` (with an
-/// exponent `e±n` when `exponent`); `None` if `tok` is not one. The value may be infinite when
-/// the exponent overflows.
-///
-/// One pass over the bytes: the digits are gathered as an integer `m` with `k` decimals, and when
-/// `m ≤ 2⁵³` and `k ≤ 22` (every coordinate a CAM system writes) the value is `m / 10^k`, exact
-/// doubles divided once: correctly rounded by Clinger's fast path, the bits `str::parse` gives.
-/// Otherwise (an exponent, more digits) `str::parse` reads the token. (A file holds 10⁵ to 10⁷
-/// numbers: this is most of the reading time.)
+/// exponent `e±n` when `exponent`); `None` if `tok` is not one ([`crate::csv::decimal`]).
 pub(super) fn number(tok: &str, exponent: bool) -> Option<f64> {
-    let b = tok.as_bytes();
-    let neg = b.first() == Some(&b'-');
-    let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
-    let (mut m, mut k, mut count) = (0u64, 0usize, 0usize);
-    let mut exact = true;
-    let mut point = false;
-    while i < b.len() {
-        match b[i] {
-            c @ b'0'..=b'9' => {
-                count += 1;
-                k += usize::from(point);
-                match m
-                    .checked_mul(10)
-                    .and_then(|v| v.checked_add(u64::from(c - b'0')))
-                {
-                    Some(v) => m = v,
-                    None => exact = false,
-                }
-            }
-            b'.' if !point => point = true,
-            _ => break,
-        }
-        i += 1;
-    }
-    if count == 0 {
-        return None;
-    }
-    if i < b.len() {
-        // Only an exponent may follow.
-        if !exponent || !matches!(b[i], b'e' | b'E') {
-            return None;
-        }
-        i += 1;
-        if matches!(b.get(i), Some(b'+' | b'-')) {
-            i += 1;
-        }
-        let digits = b[i..].iter().take_while(|c| c.is_ascii_digit()).count();
-        if digits == 0 || i + digits != b.len() {
-            return None;
-        }
-        return tok.parse().ok();
-    }
-    if exact && m <= 1 << 53 && k < POW10.len() {
-        let v = m as f64 / POW10[k];
-        return Some(if neg { -v } else { v });
-    }
-    tok.parse().ok()
+    crate::csv::decimal(tok, exponent)
 }
-
-/// Powers of ten exactly representable as `f64`.
-const POW10: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-];
 
 /// The length of the number at the start of `b` (sign, digits and one decimal point, no
 /// exponent): NC words run together (`X10Y-2.5`).
@@ -262,6 +203,13 @@ mod tests {
             "123456789.123456",
             "1.0000000000000000000001",
             "-99999.123456",
+            // Around the 19 digits gathered without an overflow check (then `str::parse`).
+            "9999999999999999999",
+            "999999999999999999.9",
+            "18446744073709551615",
+            "18446744073709551616",
+            "0000000000000000000001.5",
+            "1234567890.1234567890123",
         ]
         .iter()
         .map(|s| (*s).to_string())
