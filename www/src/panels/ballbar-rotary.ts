@@ -38,10 +38,11 @@ const MAX_TESTS = 8;
 const COLOURS = { ccw: '#1f77b4', cw: '#d62728', fitCcw: '#0b3d6b', fitCw: '#7f1416' };
 const TEST_COLOURS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22'];
 const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
-/** "offset_C low_cw" → "bar length and set-up, test C low, CW"; an error keeps its ISO name. */
+/** "offset_C low_cw" → "offset of test C low (CW)" (the bar's length and the balls' set-up in
+ *  that test and direction); an error keeps its ISO name. */
 const paramName = (n: string) => {
   const m = /^offset_(.*)_(ccw|cw)$/.exec(n);
-  return m ? `bar length and set-up, test ${m[1]}, ${m[2].toUpperCase()}` : n;
+  return m ? `offset of test ${m[1]} (${m[2].toUpperCase()})` : n;
 };
 
 /** One test's form: its fields (paths relative to the test) in a box of its own. */

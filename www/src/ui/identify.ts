@@ -63,15 +63,20 @@ export function identificationView(prefix: string, f: Identification, source: st
     table.tBodies[0].append(tr);
   }
   const groups = el('ul', { id: `${prefix}-groups` });
+  // The names in a combination's text as the table shows them (longest first: none is then
+  // replaced inside a longer one).
+  const names = f.estimates.map((e) => e.name).sort((a, b) => b.length - a.length);
+  const labelled = (text: string) => names.reduce((t, n) => (paramLabel(n) === n ? t : t.split(n).join(paramLabel(n))), text);
   f.groups.forEach((g, i) => {
+    const members = g.members.map(paramLabel).join(', ');
     if (!g.combinations.length) {
-      groups.append(el('li', {}, `Group ${i + 1} (${g.members.join(', ')}): the test cannot see ${g.members.length > 1 ? 'them' : 'it'} at all.`));
+      groups.append(el('li', {}, `Group ${i + 1} (${members}): the test cannot see ${g.members.length > 1 ? 'them' : 'it'} at all.`));
     }
     for (const c of g.combinations) {
       const lead = f.estimates.find((e) => e.name === c.terms[0][0]);
       const q = quantity(lead?.unit ?? 'mm');
       const half = (c.interval[1] - c.interval[0]) / 2;
-      groups.append(el('li', {}, `Group ${i + 1} (${g.members.join(', ')}): only this combination is measurable: ${c.text} = ${show(q, c.value)} ± ${show(q, half, 2)} (${VERDICT[c.verdict]})`));
+      groups.append(el('li', {}, `Group ${i + 1} (${members}): only this combination is measurable: ${labelled(c.text)} = ${show(q, c.value)} ± ${show(q, half, 2)} (${VERDICT[c.verdict]})`));
     }
   });
   const svs = f.singularValues.map((s) => fmt.num(s, 2)).join(', ');
