@@ -169,3 +169,35 @@ fn a_machine_without_errors_is_said_to_leave_the_bar_alone_and_one_with_an_offse
     let off = say(with_errors(&bc_table(), json!({ "E_X0C": 0.01 })));
     assert!(off.contains("changes by 20.0 µm"), "{off}");
 }
+
+#[test]
+fn an_error_the_bar_cannot_see_is_explained_once_in_the_summary() {
+    // E_C0C (C's zero) turns the ball along its circle about C, square to a radial bar: the
+    // summary says why, once, rather than also the generic "cannot see it at all".
+    let machine = bc_table();
+    let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 5 }]);
+    let sim = call(
+        "ballbarRotarySimulate",
+        &json!({ "machine": with_errors(&machine, json!({ "E_X0C": 0.01 })), "tests": tests }),
+    )
+    .unwrap();
+    let r = call(
+        "ballbarRotaryIdentify",
+        &json!({ "machine": machine, "tests": tests, "parameters": ["E_X0C", "E_Y0C", "E_C0C"],
+                 "csv": sim["csv"] }),
+    )
+    .unwrap();
+    let lines: Vec<&str> = r["summary"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    let about: Vec<&&str> = lines.iter().filter(|l| l.contains("E_C0C")).collect();
+    assert_eq!(about.len(), 1, "{lines:#?}");
+    assert!(
+        about[0].starts_with("E_C0C: a turn about the C axis's own line"),
+        "{}",
+        about[0]
+    );
+}

@@ -423,11 +423,20 @@ pub fn identify_points(
         })
         .map(|c| c.words.as_str())
         .collect();
+    // The shared summary's "cannot see at all" of an error the visibility explains (why the bar
+    // misses it) is said once, by the visibility.
+    let unseen_said = |w: &str| {
+        w.starts_with("The test cannot see ")
+            && visibility
+                .invisible
+                .iter()
+                .any(|u| w.contains(u.name.as_str()))
+    };
     summary.extend(
         judgement
             .summary
             .iter()
-            .filter(|w| !mixed.contains(&w.as_str()))
+            .filter(|w| !mixed.contains(&w.as_str()) && !unseen_said(w))
             .cloned(),
     );
     summary.extend(
