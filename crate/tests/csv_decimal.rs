@@ -6,6 +6,8 @@
 // outcome of the tests before this file (the lexer's test reads no exponent and no second
 // point).
 
+#![allow(clippy::unwrap_used)]
+
 use fiveaxis::csv::decimal;
 
 fn same(tok: &str) {
