@@ -43,7 +43,9 @@ let printedSections: HTMLElement[] = [];
 /** The label of a field as printed, or null when it has none a reader would understand. */
 function fieldLabel(root: HTMLElement, id: string, control: HTMLElement): string | null {
   const label = root.querySelector(`label[for="${id}"]`)?.textContent?.trim();
-  if (label) return label;
+  // A field of one item of a list (a ball-bar test) is named with its item ("Test 2: Bar length").
+  const item = control.closest('.test-card')?.querySelector('legend')?.textContent?.trim();
+  if (label) return item ? `${item}: ${label}` : label;
   const aria = control.getAttribute('aria-label')?.trim();
   if (aria) return aria;
   // A group of choices (the errors to fit): its legend.
@@ -86,7 +88,8 @@ export function inputRows(root: HTMLElement, prefix: string): [string, string][]
     else if (c instanceof HTMLTextAreaElement) {
       const lines = c.value.split('\n').filter((l) => l.trim() !== '').length;
       if (!lines) continue;
-      value = `${lines} line${lines === 1 ? '' : 's'} of data`;
+      // A one-line field (a name) prints its text; a file's text, how much there is.
+      value = c.rows === 1 ? c.value.trim() : `${lines} line${lines === 1 ? '' : 's'} of data`;
     } else if (c.closest('fieldset.names')) {
       // A group of names to choose from (the errors to fit): empty is all of them.
       value = c.value.trim() === '' ? 'all' : c.value.split(',').join(', ');
