@@ -1,0 +1,35 @@
+//! How the engine reads an input object (`fiveaxis::schema::read`): what its messages say.
+//! An export whose inputs are two structs (the cubic height map: the test piece and the grid)
+//! refuses a key neither declares with the keys of both; a value of the wrong kind is named in
+//! the message, a long text as "a text" rather than all of it.
+// Found by cargo-mutants: `==` as `!=` in `read_split`'s key test, and the 40-character guard of
+// `what`, changed no outcome of the tests before this file.
+#![allow(clippy::unwrap_used)]
+
+use fiveaxis::api::call;
+use serde_json::json;
+
+#[test]
+fn an_unknown_key_of_a_two_part_input_is_refused_with_the_keys_of_both_parts() {
+    let e = call("cubicHeightMap", &json!({ "nx": 11, "bogus": 1 })).unwrap_err();
+    assert_eq!(e.field, "bogus", "{e:?}");
+    // "nx" is the grid's, "machine" the test piece's.
+    assert!(e.message.contains("\"nx\""), "{}", e.message);
+    assert!(e.message.contains("\"machine\""), "{}", e.message);
+    // A key of either part is read by its part.
+    assert!(call("cubicHeightMap", &json!({ "nx": 11, "ny": 11 })).is_ok());
+}
+
+#[test]
+fn a_value_of_the_wrong_kind_is_named_and_a_long_text_is_not_repeated() {
+    let short = call("nonlinearMove", &json!({ "length": "ten" })).unwrap_err();
+    assert!(short.message.contains("\"ten\""), "{}", short.message);
+    let long = "x".repeat(41);
+    let e = call("nonlinearMove", &json!({ "length": long })).unwrap_err();
+    assert!(e.message.contains("a text"), "{}", e.message);
+    assert!(!e.message.contains(&long), "{}", e.message);
+    // 40 characters are still quoted.
+    let forty = "y".repeat(40);
+    let e = call("nonlinearMove", &json!({ "length": forty })).unwrap_err();
+    assert!(e.message.contains(&format!("\"{forty}\"")), "{}", e.message);
+}
