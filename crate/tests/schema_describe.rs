@@ -101,3 +101,14 @@ fn a_lists_items_are_described_relative_to_the_item() {
     }
     assert_eq!(field(tests, "ball.x").section, "Table ball");
 }
+
+#[test]
+fn a_list_of_numbers_says_how_many_values_it_takes() {
+    let s = schema(Vec::new());
+    // machineInverse's tool vector: three numbers, zero allowed.
+    let v = field(&s.exports["machineInverse"], "vector");
+    let list = v.list.unwrap();
+    assert_eq!((list.min_len, list.max_len, list.nonzero), (3, 3, false));
+    // A plain number has none.
+    assert!(field(&s.exports["nonlinearMove"], "length").list.is_none());
+}

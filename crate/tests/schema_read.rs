@@ -33,3 +33,31 @@ fn a_value_of_the_wrong_kind_is_named_and_a_long_text_is_not_repeated() {
     let e = call("nonlinearMove", &json!({ "length": forty })).unwrap_err();
     assert!(e.message.contains(&format!("\"{forty}\"")), "{}", e.message);
 }
+
+#[test]
+fn a_null_value_is_a_value_left_out() {
+    // (The binding turns JavaScript's `undefined` into null: `{ length: undefined }` must read
+    // as the default, not as "expected a number, got null".)
+    let with_null = call(
+        "nonlinearMove",
+        &json!({ "length": null, "tolerance": null }),
+    )
+    .unwrap();
+    let without = call("nonlinearMove", &json!({})).unwrap();
+    assert_eq!(with_null, without);
+}
+
+#[test]
+fn a_misspelt_key_is_answered_with_the_one_nearest_key_or_none() {
+    use fiveaxis::schema::closest;
+    assert_eq!(closest("lenght", &["length", "width"]), Some("length"));
+    assert_eq!(closest("LENGTH", &["length", "width"]), Some("length"));
+    // Two at the same distance: no guess.
+    assert_eq!(closest("ab", &["ac", "ad"]), None);
+    assert_eq!(closest("ab", &["ac", "xyz", "ad"]), None);
+    // The nearer wins wherever it is in the list.
+    assert_eq!(closest("abc", &["axx", "abd"]), Some("abd"));
+    assert_eq!(closest("abc", &["abd", "axx"]), Some("abd"));
+    // Further than 2 edits: no guess.
+    assert_eq!(closest("speed", &["length"]), None);
+}
