@@ -58,6 +58,25 @@ fn a_misspelt_key_is_answered_with_the_one_nearest_key_or_none() {
     // The nearer wins wherever it is in the list.
     assert_eq!(closest("abc", &["axx", "abd"]), Some("abd"));
     assert_eq!(closest("abc", &["abd", "axx"]), Some("abd"));
-    // Further than 2 edits: no guess.
+    // Further than 2 edits: no guess (4 letters before the key are 4 edits).
     assert_eq!(closest("speed", &["length"]), None);
+    assert_eq!(closest("zzzzlength", &["length"]), None);
+    assert_eq!(closest("zzlength", &["length"]), Some("length"));
+}
+
+#[test]
+fn a_count_takes_a_whole_number_within_its_limits() {
+    for bad in [json!(10.5), json!(0), json!(-3), json!(1e9)] {
+        let e = call("cubicHeightMap", &json!({ "nx": bad })).unwrap_err();
+        assert_eq!(e.field, "nx", "{e:?}");
+        assert!(e.message.contains("whole number"), "{}", e.message);
+    }
+    assert!(call("cubicHeightMap", &json!({ "nx": 11 })).is_ok());
+}
+
+#[test]
+fn a_list_left_out_is_an_empty_list() {
+    // The rotary ball-bar's tests, left out: the one default test.
+    let r = call("ballbarRotarySimulate", &json!({})).unwrap();
+    assert_eq!(r["tests"].as_array().unwrap().len(), 1);
 }
