@@ -80,3 +80,25 @@ fn a_list_left_out_is_an_empty_list() {
     let r = call("ballbarRotarySimulate", &json!({})).unwrap();
     assert_eq!(r["tests"].as_array().unwrap().len(), 1);
 }
+
+#[test]
+fn a_text_longer_than_its_limit_is_refused_with_its_length() {
+    // A rotary ball-bar test's name takes at most 40 bytes.
+    let long = "n".repeat(41);
+    let e = call("ballbarRotarySimulate", &json!({ "tests": [{ "name": long }] })).unwrap_err();
+    assert_eq!(e.field, "tests[0].name", "{e:?}");
+    assert!(e.message.contains("41 bytes long; at most 40"), "{}", e.message);
+    assert!(call("ballbarRotarySimulate", &json!({ "tests": [{ "name": "n".repeat(40) }] })).is_ok());
+    let e = call("ballbarRotarySimulate", &json!({ "tests": [{ "name": 7 }] })).unwrap_err();
+    assert!(e.message.contains("expected a text, got 7"), "{}", e.message);
+}
+
+#[test]
+fn a_list_of_numbers_of_the_wrong_length_is_refused_with_the_count_it_takes() {
+    for bad in [json!([1, 0]), json!([1, 0, 0, 0])] {
+        let e = call("machineInverse", &json!({ "vector": bad })).unwrap_err();
+        assert_eq!(e.field, "vector", "{e:?}");
+        assert!(e.message.contains("expected 3 values"), "{}", e.message);
+    }
+    assert!(call("machineInverse", &json!({ "vector": [0, 0, 1] })).is_ok());
+}
