@@ -85,12 +85,32 @@ fn a_list_left_out_is_an_empty_list() {
 fn a_text_longer_than_its_limit_is_refused_with_its_length() {
     // A rotary ball-bar test's name takes at most 40 bytes.
     let long = "n".repeat(41);
-    let e = call("ballbarRotarySimulate", &json!({ "tests": [{ "name": long }] })).unwrap_err();
+    let e = call(
+        "ballbarRotarySimulate",
+        &json!({ "tests": [{ "name": long }] }),
+    )
+    .unwrap_err();
     assert_eq!(e.field, "tests[0].name", "{e:?}");
-    assert!(e.message.contains("41 bytes long; at most 40"), "{}", e.message);
-    assert!(call("ballbarRotarySimulate", &json!({ "tests": [{ "name": "n".repeat(40) }] })).is_ok());
-    let e = call("ballbarRotarySimulate", &json!({ "tests": [{ "name": 7 }] })).unwrap_err();
-    assert!(e.message.contains("expected a text, got 7"), "{}", e.message);
+    assert!(
+        e.message.contains("41 bytes long; at most 40"),
+        "{}",
+        e.message
+    );
+    assert!(call(
+        "ballbarRotarySimulate",
+        &json!({ "tests": [{ "name": "n".repeat(40) }] })
+    )
+    .is_ok());
+    let e = call(
+        "ballbarRotarySimulate",
+        &json!({ "tests": [{ "name": 7 }] }),
+    )
+    .unwrap_err();
+    assert!(
+        e.message.contains("expected a text, got 7"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
