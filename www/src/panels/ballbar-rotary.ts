@@ -12,12 +12,12 @@ import type { BallbarRotaryIdentification, BallbarRotarySimulation, FieldInfo, M
 import { channel, EngineError, SUPERSEDED } from '../engine/client';
 import type { MachineSection } from '../machine/section';
 import { el, fields, selectField } from '../ui/fields';
-import { loadSchema, renderFields, type RenderedForm, type ShowsError } from '../ui/form';
+import { fieldId, loadSchema, renderFields, type RenderedForm, type ShowsError } from '../ui/form';
 import { axis, draw, note, plotBox, stale } from '../ui/plot';
 import { download } from '../ui/export';
 import { identificationView, clearPlot } from '../ui/identify';
 import { correctionsView, useFound } from '../ui/found';
-import { loadPresets, presetPicker } from '../ui/presets';
+import { leaves, loadPresets, presetPicker } from '../ui/presets';
 import { fileSource, sampleAsDefault } from '../ui/source';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { errorWords, judge, listWords, verdictBox, type Contributor } from '../ui/verdict';
@@ -99,10 +99,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   };
   const sampleInput = (samplePreset?.input ?? {}) as { count?: number; tests?: Record<string, Record<string, unknown>> };
   if (sampleInput.count) adopt('br-count', String(sampleInput.count));
-  const leaves = (o: Record<string, unknown>, path: string): [string, unknown][] =>
-    Object.entries(o).flatMap(([k, v]) => (v && typeof v === 'object' ? leaves(v as Record<string, unknown>, `${path}-${k}`) : [[`${path}-${k}`, v] as [string, unknown]]));
   for (const [i, t] of Object.entries(sampleInput.tests ?? {})) {
-    for (const [id, v] of leaves(t, `br-tests-${i}`)) adopt(id, v as number | string);
+    for (const [path, v] of leaves(t)) adopt(fieldId('br', `tests.${i}.${path}`), v as number | string);
   }
 
   // ---- outputs
