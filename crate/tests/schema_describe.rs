@@ -112,3 +112,22 @@ fn a_list_of_numbers_says_how_many_values_it_takes() {
     // A plain number has none.
     assert!(field(&s.exports["nonlinearMove"], "length").list.is_none());
 }
+
+// Found by cargo-mutants: `PartialEq for Custom` as `!=` or `false`, and its `Debug` writing
+// nothing, changed no outcome (no test compared two kinds declared above the schema).
+#[test]
+fn kinds_declared_above_the_schema_are_the_same_when_their_names_are_and_print_their_name() {
+    use fiveaxis::machine::errors::{NAMES, VALUES};
+    use fiveaxis::schema::Custom;
+    assert_eq!(VALUES, VALUES);
+    assert_ne!(VALUES, NAMES);
+    // Another declaration of the same name is the same kind, whatever its reader.
+    static AGAIN: Custom = Custom {
+        name: "errors",
+        read: |v, _| Ok(v.clone()),
+        list: true,
+    };
+    assert_eq!(VALUES, Kind::Custom(&AGAIN));
+    let shown = format!("{VALUES:?}");
+    assert!(shown.contains("\"errors\""), "{shown}");
+}
