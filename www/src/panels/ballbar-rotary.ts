@@ -16,11 +16,12 @@ import { fieldId, loadSchema, renderFields, type RenderedForm, type ShowsError }
 import { axis, draw, note, plotBox, stale } from '../ui/plot';
 import { download } from '../ui/export';
 import { identificationView, clearPlot } from '../ui/identify';
-import { correctionsView, useFound } from '../ui/found';
+import { contributorsOf, correctionsView, useFound } from '../ui/found';
+import { measured } from '../ui/measured';
 import { leaves, loadPresets, presetPicker } from '../ui/presets';
 import { fileSource, sampleAsDefault } from '../ui/source';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
-import { errorWords, judge, listWords, verdictBox, type Contributor } from '../ui/verdict';
+import { errorWords, judge, listWords, verdictBox } from '../ui/verdict';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 
 export const ballbarRotaryPanel: Panel = {
@@ -37,7 +38,6 @@ const SAMPLE_NOTE = 'synthetic, made by scripts/make-ballbar-rotary-sample.mjs o
 const MAX_TESTS = 8;
 const COLOURS = { ccw: '#1f77b4', cw: '#d62728', fitCcw: '#0b3d6b', fitCw: '#7f1416' };
 const TEST_COLOURS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22'];
-const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 /** "offset_C low_cw" → "offset of test C low (CW)" (the bar's length and the balls' set-up in
  *  that test and direction); an error keeps its ISO name. */
 const paramName = (n: string) => {
@@ -145,12 +145,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     field: 'br-csv',
     sample: { url: SAMPLE, button: 'Load the sample traces', note: SAMPLE_NOTE },
     expected: 'ball-bar traces (CSV or text)',
-    refused: (message) => {
-      runIdentify.cancel();
-      identState = { s: 'error', message, from: 'the file chosen' };
-      refused('the file chosen', message);
-      judgeNow();
-    },
+    refused: (message) => measurement.refuse('the file chosen', message),
   });
   identSet.querySelector('legend')?.after(source.root);
   const sampleText = await sampleAsDefault('br-csv', SAMPLE);
@@ -176,14 +171,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const runSim = channel('ballbarRotarySimulate');
   const runIdentify = channel('ballbarRotaryIdentify');
 
-  type IdentState =
-    | { s: 'none' }
-    | { s: 'pending'; from: string }
-    | { s: 'ok'; r: BallbarRotaryIdentification; from: string }
-    | { s: 'error'; message: string; from: string };
-  let identState: IdentState = { s: 'none' };
-  /** The identification on screen (current or greyed) and what it came from. */
-  let shown: { r: BallbarRotaryIdentification; from: string } | null = null;
   let lastSim: BallbarRotarySimulation | null = null;
 
   const count = () => Number(fields.get('br-count')?.text() ?? '1') || 1;
@@ -210,10 +197,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     return { simulate: common, identify: { ...common, csv: String(csv ?? ''), rtol, decision } };
   };
 
-  const setAlert = (text: string | null) => {
-    alert.textContent = text ?? '';
-    alert.hidden = !text;
-  };
   const setSummary = (items: [string, string, string][]) => {
     summary.replaceChildren();
     for (const [id, k, v] of items) summary.append(el('dt', {}, k), el('dd', { id }, v));
@@ -226,10 +209,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const box of [corrections, ident]) stale(box, true, why);
     tracePlotBoxes.forEach((b) => b.p.isConnected && stale(b.p, true, why));
     summary.classList.toggle('stale', summary.childElementCount > 0);
-    useButton.disabled = true;
   };
   const clearIdentification = () => {
-    shown = null;
     corrections.replaceChildren(el('p', { class: 'field-hint' }, 'The errors found, the numbers to enter in the control and the button that puts them into the machine above appear here once traces are loaded.'));
     ident.replaceChildren(el('p', { class: 'field-hint' }, 'Choose or drop the traces your ball-bar software exports, paste them, or load the sample traces.'));
     for (const box of [corrections, ident]) stale(box, false);
@@ -237,23 +218,25 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     tracePlots.replaceChildren();
     setSummary([]);
     summary.classList.remove('stale');
-    useButton.disabled = true;
   };
-  const refused = (name: string, message: string) => {
-    message = /[.!?]$/.test(message) ? message : `${message}.`;
-    const last = shown ? ` The results below are greyed: they belong to ${shown.from}.` : '';
-    setAlert(`No identification from ${name}: ${message}${last}`);
-    greyIdentification(`Greyed: ${name} could not be used (${message.replace(/\.$/, '')}). This is the result of ${shown?.from ?? 'the traces before'}.`);
-  };
+  const measurement = measured(runIdentify, {
+    name: (from: string) => from,
+    before: 'the traces before',
+    alert, useButton, useMsg,
+    grey: greyIdentification,
+    clear: clearIdentification,
+    show: (r, from) => showIdentification(r, from),
+    judge: () => judgeNow(),
+    fieldOk: () => study.byPath.csv?.setError(null),
+    fieldError: (e) => showAtField(e, byPath, machine),
+  });
 
   // ---- the verdict: on the traces as measured
   const judgeNow = () => {
     const tol = verdict.tolerance();
     if (tol === null) return verdict.invalid();
-    const st = identState;
-    if (st.s === 'none') return verdict.none('No verdict yet: load the measured traces (choose or drop a file, paste it, or load the sample traces). What the tests would show on the machine above is simulated below.');
-    if (st.s === 'pending') return verdict.pending(`Identifying the errors from ${st.from}…`);
-    if (st.s === 'error') return verdict.none(`No verdict: ${st.from} could not be used (${st.message}).${shown ? ' The results below are greyed: they belong to the traces before.' : ''}`);
+    const st = measurement.toJudge(verdict, 'No verdict yet: load the measured traces (choose or drop a file, paste it, or load the sample traces). What the tests would show on the machine above is simulated below.');
+    if (!st) return;
     const r = st.r;
     const worst = r.tests.reduce((a, t) => (t.range > a.range ? t : a), r.tests[0]);
     const status = judge(worst.range, tol);
@@ -263,11 +246,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       ? ` Entering the ${n === 1 ? 'correction' : `${n} corrections`} below would bring it to ${show('errLength', afterWorst)} at most (predicted by the model; the bar’s length and set-up stay), ${afterWorst <= tol ? 'within' : 'still above'} the tolerance.`
       : status === 'fail' ? ' No location error is found present: the trace is not one the errors identified explain (see the model fit below).' : ' No error found present: nothing to correct.';
     const sentence = `The bar’s length varies by up to ${show('errLength', worst.range)} over a test (test ${worst.name}, ${worst.axis} moving; largest − smallest, both directions): ${status === 'pass' ? 'within' : 'above'} the ${show('errLength', tol)} tolerance.${fix}`;
-    const effects = r.corrections.map((c) => [c, r.identification.estimates.find((e) => e.name === c.name)?.effect ?? 0] as const);
-    const sum = effects.reduce((s, [, e]) => s + Math.abs(e), 0);
-    const contributors: Contributor[] = sum > 0
-      ? effects.map(([c, e]) => ({ name: c.name, label: words.get(c.name)?.label, title: words.get(c.name)?.title, share: Math.abs(e) / sum, amount: show(quantityOf(c.unit), c.value) })).sort((a, b) => b.share - a.share)
-      : [];
+    const contributors = contributorsOf(r.corrections, r.identification.estimates, words);
     verdict.show({
       status, worst: worst.range, tolerance: tol, sentence, contributors, source: st.from,
       contributorsOf: 'each error found, by its largest effect on the bar, as a share of their sum',
@@ -283,11 +262,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const i = read();
     if (!i) {
       runSim.cancel();
-      runIdentify.cancel();
       verdict.invalid();
       stale(simulated, true);
       stale(simPlot.p, true);
-      greyIdentification();
+      measurement.invalid();
       return;
     }
     runSim(i.simulate as never).then((r) => {
@@ -299,39 +277,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       engineError(e, simPlot.p);
       stale(simulated, true, `Showing the last simulation; the engine refused these inputs: ${EngineError.of(e).text}`);
     });
-    identify(i.identify);
-  };
-
-  const identify = (input: Record<string, unknown> & { csv: string }) => {
-    if (input.csv.trim() === '') {
-      study.byPath.csv?.setError(null);
-      setAlert(null);
-      runIdentify.cancel();
-      identState = { s: 'none' };
-      clearIdentification();
-      judgeNow();
-      return;
-    }
-    const from = sourceName(input.csv);
-    identState = { s: 'pending', from };
-    useButton.disabled = true;
-    judgeNow();
-    runIdentify(input as never).then((r) => {
-      if (r === SUPERSEDED) return;
-      study.byPath.csv?.setError(null);
-      setAlert(null);
-      identState = { s: 'ok', r, from };
-      if (shown?.from !== from) useMsg.textContent = '';
-      shown = { r, from };
-      showIdentification(r, from);
-      judgeNow();
-    }, (e) => {
-      const err = EngineError.of(e);
-      identState = { s: 'error', message: err.text, from };
-      refused(from, err.text);
-      showAtField(e, byPath, machine);
-      judgeNow();
-    });
+    measurement.identify(i.identify, sourceName(i.identify.csv));
   };
 
   // ---- drawing
@@ -357,7 +303,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       corrections.replaceChildren(el('p', { id: 'br-no-corrections' }, `No location error is found present in ${from}: nothing to enter.`));
     }
     stale(corrections, false);
-    useButton.disabled = false;
 
     const visibility = el('ul', { id: 'br-visibility' });
     for (const u of r.visibility.invisible) visibility.append(el('li', {}, `${u.name} cannot be seen by these tests: ${u.why}`));
@@ -425,10 +370,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   // ---- "Use these errors": the identified errors into the one machine model
   useButton.addEventListener('click', () => {
-    if (identState.s !== 'ok') return;
-    const r = identState.r;
+    const st = measurement.state;
+    if (st.s !== 'ok') return;
+    const r = st.r;
     const own = r.identification.estimates.filter((e) => !e.name.startsWith('offset_'));
-    useMsg.textContent = useFound(machine, schema, r.errors as Record<string, number>, own, identState.from, 'these tests');
+    useMsg.textContent = useFound(machine, schema, r.errors as Record<string, number>, own, st.from, 'these tests');
   });
 
   form.addEventListener('input', (e) => {
@@ -438,9 +384,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   machine.onChange(update);
   onUnitsChange(() => {
     if (lastSim) showSimulation(lastSim);
-    if (shown && identState.s === 'ok') showIdentification(shown.r, shown.from);
+    const shown = measurement.shown;
+    if (shown && measurement.state.s === 'ok') showIdentification(shown.r, shown.from);
     judgeNow();
   });
-  clearIdentification();
+  measurement.clear();
   update();
 }

@@ -21,8 +21,9 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, sourceText, type Source } from '../ui/identify';
-import { correctionsView, useFound } from '../ui/found';
-import { errorWords, judge, listWords, verdictBox, type Contributor } from '../ui/verdict';
+import { contributorsOf, correctionsView, useFound } from '../ui/found';
+import { measured } from '../ui/measured';
+import { errorWords, judge, listWords, verdictBox } from '../ui/verdict';
 
 export const probePanel: Panel = {
   id: 'probe',
@@ -99,7 +100,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     onTolerance: () => {
       judgeNow();
       // The bar plot's tolerance line.
-      if (shown && identState.s === 'ok' && verdict.tolerance() !== null) showIdentification(shown.r, shown.from);
+      const shown = measurement.shown;
+      if (shown && measurement.state.s === 'ok' && verdict.tolerance() !== null) showIdentification(shown.r, shown.from);
     },
   });
   // A measurement file that cannot be used is said here, at the top, where it cannot be missed.
@@ -163,15 +165,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     source = { name, at: new Date() };
     sourceCsv = plain(text);
   };
-  /** The identification: no file, on its way, done (the result shown), or refused (its reason). */
-  type IdentState =
-    | { s: 'none' }
-    | { s: 'pending'; from: Source }
-    | { s: 'ok'; r: ProbeIdentification; from: Source }
-    | { s: 'error'; message: string; from: Source };
-  let identState: IdentState = { s: 'none' };
-  /** The identification on screen (current or greyed), and what it came from. */
-  let shown: { r: ProbeIdentification; from: Source } | null = null;
   let lastDesign: ProbeDesign | null = null;
 
   const letters = () => {
@@ -199,14 +192,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   const judgeNow = () => {
     const tol = verdict.tolerance();
     if (tol === null) return verdict.invalid();
-    const st = identState;
-    if (st.s === 'none') {
-      return verdict.none('No verdict yet: load the measured sphere centres (choose or drop a file, paste it, or load the sample file). The poses to probe are designed below.');
-    }
-    if (st.s === 'pending') return verdict.pending(`Identifying the errors from ${st.from.name}…`);
-    if (st.s === 'error') {
-      return verdict.none(`No verdict: ${st.from.name} could not be used (${st.message}).${shown ? ' The results below are greyed: they belong to the file before it.' : ''}`);
-    }
+    const st = measurement.toJudge(verdict, 'No verdict yet: load the measured sphere centres (choose or drop a file, paste it, or load the sample file). The poses to probe are designed below.');
+    if (!st) return;
     const f = st.r;
     const { k, m } = letters();
     const t = show('errLength', tol);
@@ -226,17 +213,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       f.goodness.words,
     ];
     // Each error found, by its largest effect on a measured centre.
-    const effects = f.corrections.map((c) => [c, f.estimates.find((e) => e.name === c.name)?.effect ?? 0] as const);
-    const sum = effects.reduce((s, [, e]) => s + Math.abs(e), 0);
-    const contributors: Contributor[] = sum > 0
-      ? effects.map(([c, e]) => ({
-          name: c.name,
-          label: words.get(c.name)?.label,
-          title: words.get(c.name)?.title,
-          share: Math.abs(e) / sum,
-          amount: show(quantityOf(c.unit), c.value),
-        })).sort((a, b) => b.share - a.share)
-      : [];
+    const contributors = contributorsOf(f.corrections, f.estimates, words);
     // Errors entered on the machine that a sphere here cannot see at all.
     const invisible = lastDesign?.visibility.invisible.map((u) => u.name) ?? [];
     const entered = Object.entries(machine.current()?.errors ?? {}).filter(([name, v]) => typeof v === 'number' && v !== 0 && invisible.includes(name));
@@ -257,28 +234,22 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       verdict.invalid();
       stale(design, true);
       stale(svPlot.p, true);
-      greyIdentification();
       runDesign.cancel();
-      runIdentify.cancel();
-      if (identState.s === 'pending') identState = shown ? { s: 'ok', r: shown.r, from: shown.from } : { s: 'none' };
+      measurement.invalid();
       return;
     }
     runDesign(i.design as never).then((d) => {
       if (d === SUPERSEDED) return;
       lastDesign = d;
       showDesign(d);
-      if (identState.s === 'ok') judgeNow();
+      if (measurement.state.s === 'ok') judgeNow();
     }, (e) => {
       engineError(e, svPlot.p);
       stale(design, true, `Showing the last design; the engine refused these inputs: ${EngineError.of(e).text}`);
     });
-    identify(i.identify);
-  };
-
-  const setAlert = (text: string | null) => {
-    alert.textContent = text ?? '';
-    alert.hidden = !text;
-    if (text) alert.scrollIntoView({ block: 'nearest' });
+    const input = i.identify;
+    if (input.csv.trim() !== '' && plain(input.csv) !== sourceCsv) setSource('text typed or pasted in the field', input.csv);
+    measurement.identify(input as never, source);
   };
 
   /** Greys every output of the identification (it no longer answers the inputs), with `why`. */
@@ -286,11 +257,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     for (const box of [corrections, ident]) stale(box, true, why);
     for (const p of [centresPlot, componentsPlot]) stale(p.p, true, why);
     summary.classList.toggle('stale', summaryItems.size > 0);
-    useButton.disabled = true;
   };
   /** No measurement: the identification's outputs say how to give one. */
   const clearIdentification = () => {
-    shown = null;
     corrections.replaceChildren(el('p', { class: 'field-hint' }, 'The errors found, the numbers to enter in the control and the button that puts them into the machine above appear here once a measurement is loaded.'));
     ident.replaceChildren(el('p', { class: 'field-hint' }, 'Paste the measured centres, choose or drop a file, or load the sample file (' + SAMPLE_WORDS + ').'));
     for (const box of [corrections, ident]) stale(box, false);
@@ -299,49 +268,19 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     setShown(identPlots, false);
     for (const id of ['pb-sum-source', 'pb-sum-before', 'pb-sum-after', 'pb-sum-sphere', 'pb-sum-fit']) setSummary(id, '', null);
     summary.classList.remove('stale');
-    useButton.disabled = true;
   };
 
-  const identify = (input: Record<string, unknown> & { csv: string }) => {
-    if (input.csv.trim() === '') {
-      inputs.byPath.csv?.setError(null);
-      setAlert(null);
-      runIdentify.cancel();
-      identState = { s: 'none' };
-      clearIdentification();
-      judgeNow();
-      return;
-    }
-    if (plain(input.csv) !== sourceCsv) setSource('text typed or pasted in the field', input.csv);
-    const from = source;
-    identState = { s: 'pending', from };
-    useButton.disabled = true;
-    judgeNow();
-    runIdentify(input as never).then((r) => {
-      if (r === SUPERSEDED) return;
-      inputs.byPath.csv?.setError(null);
-      setAlert(null);
-      identState = { s: 'ok', r, from };
-      if (shown?.from !== from) useMsg.textContent = '';
-      shown = { r, from };
-      showIdentification(r, from);
-      judgeNow();
-    }, (e) => {
-      const err = EngineError.of(e);
-      identState = { s: 'error', message: err.text, from };
-      refused(from.name, err.text);
-      showAtField(e, inputs.byPath, machine);
-      judgeNow();
-    });
-  };
-
-  /** A file or text that cannot be used: said at the top, the last result greyed. */
-  const refused = (name: string, message: string) => {
-    message = /[.!?]$/.test(message) ? message : `${message}.`;
-    const last = shown ? ` The results below are greyed: they belong to ${shown.from.name}.` : '';
-    setAlert(`No identification from ${name}: ${message}${last}`);
-    greyIdentification(`Greyed: ${name} could not be used (${message.replace(/\.$/, '')}). This is the result of ${shown?.from.name ?? 'the file before it'}.`);
-  };
+  const measurement = measured(runIdentify, {
+    name: (from: Source) => from.name,
+    before: 'the file before it',
+    alert, useButton, useMsg,
+    grey: greyIdentification,
+    clear: clearIdentification,
+    show: (r, from) => showIdentification(r, from),
+    judge: () => judgeNow(),
+    fieldOk: () => inputs.byPath.csv?.setError(null),
+    fieldError: (e) => showAtField(e, inputs.byPath, machine),
+  });
 
   // ---- drawing
   const D = (mm: number) => toDisplay('errLength', mm);
@@ -368,7 +307,6 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       corrections.replaceChildren(el('p', { id: 'pb-no-corrections' }, `No location error of ${k} or ${m} is found present in ${from.name}: nothing to enter.`));
     }
     stale(corrections, false);
-    useButton.disabled = false;
 
     // The identification: every unknown, its interval and decision.
     const table = el('table', { class: 'ident-table', id: 'pb-ident-table' });
@@ -532,10 +470,11 @@ async function mount(root: HTMLElement, machine: MachineSection) {
 
   // ---- "Use these errors": the identified errors into the one machine model
   useButton.addEventListener('click', () => {
-    if (identState.s !== 'ok') return;
-    const f = identState.r;
+    const st = measurement.state;
+    if (st.s !== 'ok') return;
+    const f = st.r;
     const own = f.estimates.filter((e) => !e.name.startsWith('sphere_'));
-    useMsg.textContent = useFound(machine, schema, f.errors as Record<string, number>, own, identState.from.name, 'this measurement');
+    useMsg.textContent = useFound(machine, schema, f.errors as Record<string, number>, own, st.from.name, 'this measurement');
   });
 
   // ---- measurement files
@@ -582,18 +521,12 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     if (f.size > 1_000_000) {
       const message = `${f.name} is larger than 1 MB: not a file of measured sphere centres.`;
       fileMsg.textContent = message;
-      identState = { s: 'error', message, from: { name: f.name, at: new Date() } };
-      runIdentify.cancel();
-      refused(f.name, message);
-      judgeNow();
+      measurement.refuse({ name: f.name, at: new Date() }, message);
       return;
     }
     const got = await readOrRefuse(f, (message) => {
       fileMsg.textContent = message;
-      identState = { s: 'error', message, from: { name: f.name, at: new Date() } };
-      runIdentify.cancel();
-      refused(f.name, message);
-      judgeNow();
+      measurement.refuse({ name: f.name, at: new Date() }, message);
     }, 'a table of measured sphere centres');
     if (!got) return;
     setSource(f.name, got.text);
@@ -629,9 +562,10 @@ async function mount(root: HTMLElement, machine: MachineSection) {
   machine.onChange(update);
   onUnitsChange(() => {
     if (lastDesign) showDesign(lastDesign);
-    if (shown && identState.s === 'ok') showIdentification(shown.r, shown.from);
+    const shown = measurement.shown;
+    if (shown && measurement.state.s === 'ok') showIdentification(shown.r, shown.from);
     judgeNow();
   });
-  clearIdentification();
+  measurement.clear();
   update();
 }

@@ -6,7 +6,7 @@ import type { Correction, Estimate, Schema } from '@engine';
 import type { MachineSection } from '../machine/section';
 import { el } from './fields';
 import { show } from './units';
-import { listWords } from './verdict';
+import { listWords, type Contributor } from './verdict';
 
 const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 
@@ -49,4 +49,19 @@ export function useFound(machine: MachineSection, schema: Schema, found: Record<
     `${zero.length ? `; set to 0 (measured, not distinguishable from zero): ${listWords(zero)}` : ''}` +
     `${kept.length ? `; kept as they were (${by} cannot tell them apart): ${listWords(kept)}` : ''}. ` +
     'The volumetric map, the cubic test, the S-shape part and every other study now run on the machine as measured; the machine’s other values are unchanged.';
+}
+
+/** Each error found (a correction), by its largest effect (its estimate's `effect`) as a share of
+ *  their sum, largest first: the verdict's contributors. None when no error has an effect. */
+export function contributorsOf(corrections: Correction[], estimates: Estimate[], words: Map<string, { label: string; title: string }>): Contributor[] {
+  const effects = corrections.map((c) => [c, estimates.find((e) => e.name === c.name)?.effect ?? 0] as const);
+  const sum = effects.reduce((s, [, e]) => s + Math.abs(e), 0);
+  if (!(sum > 0)) return [];
+  return effects.map(([c, e]) => ({
+    name: c.name,
+    label: words.get(c.name)?.label,
+    title: words.get(c.name)?.title,
+    share: Math.abs(e) / sum,
+    amount: show(quantityOf(c.unit), c.value),
+  })).sort((a, b) => b.share - a.share);
 }
