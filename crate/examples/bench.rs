@@ -9,6 +9,8 @@ use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::sshape::overcut::ToolPath;
 use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
+use fiveaxis::toolpath::export::{ParsedToolpath, Reading};
+use fiveaxis::toolpath::ToolpathReadInput;
 use fiveaxis::volumetric;
 use serde_json::{json, Value};
 use std::time::Instant;
@@ -294,25 +296,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{{\"name\":\"toolpath: 10^6 points on the 12 types\",\"ms\":{ms:.3},\"check\":{check:.12e},\"evaluations\":{per:.3}}}"
     );
     // Reading: a 22,000-statement CLSF and a 16,000-block ISO program (target: under 0.5 s as
-    // wasm), checksums the count and the sum of the tips. As `toolpathParse` does: the options
-    // read from JSON (the machine built) on each call, the bytes read, the points flattened.
-    let read = |bytes: &[u8], options: &Value| -> fiveaxis::Result<(Vec<f64>, usize)> {
-        let o = fiveaxis::toolpath::ToolpathReadInput::read(options)?;
-        let format = o
-            .format
-            .format()
-            .ok_or_else(|| fiveaxis::Error::field("format", "bench: a format"))?;
-        let (p, _) =
-            fiveaxis::toolpath::read::read_bytes(bytes, format, Some(&o.machine), o.options())?;
-        let flat: Vec<f64> = p
-            .iter()
-            .flat_map(|q| [q.tip.x, q.tip.y, q.tip.z, q.axis.x, q.axis.y, q.axis.z])
-            .collect();
-        Ok((flat, p.len()))
+    // wasm), checksums the count and the sum of the tips. What `toolpathParse` does, natively:
+    // the options read from JSON (the machine built) on each call, the bytes fed to a
+    // `Reading`, `finish` (the points flattened, each point's line, angles and commands, the
+    // report). The wasm side then copies the result's series into typed arrays.
+    let read = |bytes: &[u8], options: &Value| -> fiveaxis::Result<ParsedToolpath> {
+        let mut r = Reading::new(ToolpathReadInput::read(options)?);
+        r.feed_bytes(bytes)?;
+        r.finish()
     };
-    let sum = |r: &fiveaxis::Result<(Vec<f64>, usize)>| {
-        r.as_ref().map_or(f64::NAN, |(flat, n)| {
-            *n as f64 + flat.chunks(6).map(|q| q[0] + q[1] + q[2]).sum::<f64>()
+    let sum = |r: &fiveaxis::Result<ParsedToolpath>| {
+        r.as_ref().map_or(f64::NAN, |p| {
+            p.count as f64
+                + p.path
+                    .points
+                    .chunks(6)
+                    .map(|q| q[0] + q[1] + q[2])
+                    .sum::<f64>()
         })
     };
     let cl = clsf(22_000);
