@@ -1,0 +1,170 @@
+//! The sphere test's design in the units its docs give (`probe::design`: each unknown scaled by
+//! a typical size, 10 µm or 10⁻⁴ rad, each centre coordinate by the probing noise), the poses it
+//! counts as reachable at the very edges of the travel, the first-order deviation of errors that
+//! are not fitted, and the two inputs checked as a whole (a travel that ends before it starts,
+//! pose lists of unequal length).
+//
+// Found by cargo-mutants (scope `probe`): `Unknown::typical` as 1 or −1, `/ noise` as `* noise`
+// in the scaled rows, the sensitivities' `* per` (per degree) as `+` or `/`, every comparison
+// and `&&` of `Study::reachable`, the non-fitted errors' share of `first_order`, and
+// `ProbeSimulateInput::check` as `Ok(())` changed no outcome of the tests before this file.
+// (`ProbeInput::check` as `Ok(())` changes none either: the model's build validates the machine
+// again, with the same message; listed as equivalent.)
+#![allow(clippy::unwrap_used)]
+mod probe_common;
+
+use fiveaxis::api::call;
+use fiveaxis::machine::TRAVEL_TOLERANCE;
+use nalgebra::DMatrix;
+use probe_common::{ac_trunnion, bc_table, machines, study, with_errors};
+use serde_json::{json, Value};
+
+/// The typical sizes the module docs of `probe::design` state: 10 µm, and 10⁻⁴ rad in degrees
+/// (the sensitivities of `probeSimulate` are per mm and per degree).
+const TYPICAL_MM: f64 = 0.01;
+const TYPICAL_DEG: f64 = 1e-4 * 180.0 / std::f64::consts::PI;
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn a_layouts_singular_values_are_its_centres_sensitivities_in_typical_errors_per_noise() {
+    for (name, machine) in machines() {
+        for noise in [0.001, 0.0025] {
+            let input = json!({ "machine": machine, "sphere": { "x": 150, "y": 20, "height": 80 }, "noise": noise });
+            let design = call("probeDesign", &input).unwrap();
+            for layout in ["simple", "designed"] {
+                let poses = design[layout]["poses"].as_array().unwrap();
+                let k: Vec<f64> = poses.iter().map(|p| p["k"].as_f64().unwrap()).collect();
+                let m: Vec<f64> = poses.iter().map(|p| p["m"].as_f64().unwrap()).collect();
+                let mut sim_input = input.clone();
+                sim_input["k"] = json!(k);
+                sim_input["m"] = json!(m);
+                let sim = call("probeSimulate", &sim_input).unwrap();
+                let sens = sim["sensitivities"].as_array().unwrap();
+                // The scaled matrix written out: 3 rows per pose, one column per unknown.
+                let s = DMatrix::from_fn(3 * k.len(), sens.len(), |r, c| {
+                    let typical = match sens[c]["per"].as_str().unwrap() {
+                        "deg" => TYPICAL_DEG,
+                        "mm" => TYPICAL_MM,
+                        other => panic!("per {other}"),
+                    };
+                    sens[c]["rows"][r / 3][r % 3].as_f64().unwrap() * typical / noise
+                });
+                let mut want: Vec<f64> = s.singular_values().iter().copied().collect();
+                want.sort_by(|a, b| b.total_cmp(a));
+                let got = numbers(&design[layout]["singularValues"]);
+                assert_eq!(got.len(), want.len(), "{name} {layout}");
+                // The designer works on the Gram matrix SᵀS: a singular value the poses do not
+                // see comes out as rounding of σ₁ (≈ 1e-8·σ₁), below the rank threshold (1e-6
+                // of σ₁) like the true 0; the others agree to rounding.
+                let unseen = 1e-6 * want[0];
+                for (g, w) in got.iter().zip(&want) {
+                    let same = if *w < unseen {
+                        g.abs() < unseen
+                    } else {
+                        (g - w).abs() <= 1e-9 * want[0]
+                    };
+                    assert!(same, "{name} {layout}, noise {noise}: {got:?} vs {want:?}");
+                }
+                assert!(want[0] > 1.0, "{name} {layout}: a real scale ({want:?})");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_pose_at_the_edge_of_the_travel_is_reachable_and_one_just_beyond_is_not() {
+    // K with a limited travel, M limited by its travel before the tilt limit (180°).
+    let mut machine = ac_trunnion();
+    machine["rotary"] =
+        json!({ "kFrom": -100, "kTo": 100, "kContinuous": false, "mFrom": -50, "mTo": 30 });
+    let s = study(json!({ "machine": machine, "maxTilt": 180 }));
+    let r = f64::to_radians;
+    let (inside, beyond) = (0.5 * TRAVEL_TOLERANCE, 4.0 * TRAVEL_TOLERANCE);
+    let (k0, m0) = (r(10.0), r(-10.0));
+    for (what, (k, m), edge) in [
+        ("K at its start", (r(-100.0) - inside, m0), true),
+        ("K before its start", (r(-100.0) - beyond, m0), false),
+        ("K at its end", (r(100.0) + inside, m0), true),
+        ("K past its end", (r(100.0) + beyond, m0), false),
+        ("M at its start", (k0, r(-50.0) - inside), true),
+        ("M before its start", (k0, r(-50.0) - beyond), false),
+        ("M at its end", (k0, r(30.0) + inside), true),
+        ("M past its end", (k0, r(30.0) + beyond), false),
+    ] {
+        assert_eq!(s.reachable(k, m).unwrap(), edge, "{what}");
+    }
+    // The tilt limit: M = 30° tilts the tool 30° from the table's normal.
+    let tilted = study(json!({ "machine": machine, "maxTilt": 29.9 }));
+    assert!(!tilted.reachable(k0, r(30.0)).unwrap());
+    assert!(tilted.reachable(k0, r(29.8)).unwrap());
+}
+
+#[test]
+fn the_first_order_deviation_counts_the_errors_that_are_not_fitted() {
+    // One error fitted, two more on the machine: the first-order deviation is the sum of all
+    // three, within the second-order terms of errors this small (≈ 1e-7 mm).
+    let machine = with_errors(
+        &bc_table(),
+        json!({ "E_X0B": 0.01, "E_Y0C": 0.02, "E_A0C": 0.002 }),
+    );
+    let sim = call(
+        "probeSimulate",
+        &json!({ "machine": machine, "sphere": { "x": 150, "y": 0, "height": 50 },
+            "parameters": ["E_X0B"], "fitSphere": false,
+            "k": [0, 45, 90, 200, 300], "m": [0, -30, 60, 20, -75] }),
+    )
+    .unwrap();
+    let mut largest = 0.0f64;
+    for p in sim["poses"].as_array().unwrap() {
+        let dev = numbers(&p["deviation"]);
+        let first = numbers(&p["firstOrder"]);
+        for a in 0..3 {
+            assert!(
+                (dev[a] - first[a]).abs() < 1e-5,
+                "{p}: first order {first:?} vs exact {dev:?}"
+            );
+            largest = largest.max(dev[a].abs());
+        }
+    }
+    assert!(largest > 0.01, "the errors move the centres ({largest} mm)");
+}
+
+#[test]
+fn a_travel_that_ends_before_it_starts_and_unequal_pose_lists_are_refused_by_name() {
+    let mut machine = bc_table();
+    machine["rotary"]["mFrom"] = json!(30);
+    machine["rotary"]["mTo"] = json!(10);
+    let bad = json!({ "machine": machine });
+    for export in ["probeDesign", "probeIdentify", "probeSimulate"] {
+        let mut input = bad.clone();
+        if export == "probeSimulate" {
+            input["k"] = json!([0]);
+            input["m"] = json!([0]);
+        }
+        if export == "probeIdentify" {
+            input["csv"] = json!("C;B;X;Y;Z\n0;0;150;0;50\n");
+        }
+        let e = call(export, &input).unwrap_err().to_string();
+        assert!(
+            e.starts_with("machine.rotary.mTo: must be above where the travel of B starts"),
+            "{export}: {e}"
+        );
+    }
+    let e = call(
+        "probeSimulate",
+        &json!({ "machine": bc_table(), "k": [0, 30], "m": [0] }),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("m: expected as many values as k (2), got 1"),
+        "{e}"
+    );
+}
