@@ -168,3 +168,32 @@ fn a_travel_that_ends_before_it_starts_and_unequal_pose_lists_are_refused_by_nam
         "{e}"
     );
 }
+
+// Found by cargo-mutants: the grid's edges (`lo / step − 1e-9`), the choice between a travel
+// shorter than a turn and one turn from 0 (`hi − lo < 2π − 1e-9`), and the repeats modulo a turn
+// changed no outcome of the tests before.
+#[test]
+fn the_candidates_are_every_multiple_of_the_step_in_the_travel_once_per_turn() {
+    // M from −45° to 30° (both ends on the 15° grid): 6 angles; the tilt limit 180° keeps all.
+    let with_k = |k_from: f64, k_to: f64, continuous: bool| {
+        let mut machine = ac_trunnion();
+        machine["rotary"] = json!({ "kFrom": k_from, "kTo": k_to, "kContinuous": continuous,
+            "mFrom": -45, "mTo": 30 });
+        let d = call(
+            "probeDesign",
+            &json!({ "machine": machine, "maxTilt": 180 }),
+        )
+        .unwrap();
+        d["candidates"].as_u64().unwrap()
+    };
+    // K within less than a turn: −90° … 90°, 13 angles.
+    assert_eq!(with_k(-100.0, 100.0, false), 13 * 6);
+    // K over exactly one turn, either way round: 24 angles, −180° and 180° (0° and 360°) being
+    // the same pose.
+    assert_eq!(with_k(-180.0, 180.0, false), 24 * 6);
+    assert_eq!(with_k(0.0, 360.0, false), 24 * 6);
+    // A continuous K: one turn.
+    assert_eq!(with_k(-360.0, 360.0, true), 24 * 6);
+    // Ends on the grid are kept: K from −90° to 90° exactly.
+    assert_eq!(with_k(-90.0, 90.0, false), 13 * 6);
+}
