@@ -197,3 +197,194 @@ fn the_candidates_are_every_multiple_of_the_step_in_the_travel_once_per_turn() {
     // Ends on the grid are kept: K from −90° to 90° exactly.
     assert_eq!(with_k(-90.0, 90.0, false), 13 * 6);
 }
+
+/// The designer's objective (module docs of `probe::design`): with `r` the rank all the
+/// candidates reach, a layout of rank `r` scores (r, σ_r), one of rank k < r scores
+/// (k, Σ ln σ_i over its k singular values); ranks relative to σ₁ at 1e-6.
+fn objective(sv: &[f64], r: usize) -> (usize, f64) {
+    let top = sv[0];
+    let k = sv
+        .iter()
+        .filter(|s| **s > 1e-6 * top && **s > 0.0)
+        .count()
+        .min(r);
+    if k >= r {
+        (r, sv[r - 1])
+    } else {
+        (k, sv[..k].iter().map(|s| s.ln()).sum())
+    }
+}
+
+/// The singular values, descending, of the scaled rows of `poses` (each a list of 3 rows).
+fn singular_values(rows: &[&Vec<[f64; 3]>], cols: usize) -> Vec<f64> {
+    let n = rows.len();
+    let s = DMatrix::from_fn(3 * n, cols, |r, c| rows[r / 3][c][r % 3]);
+    let mut sv: Vec<f64> = s.singular_values().iter().copied().collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    sv
+}
+
+// Found by cargo-mutants: the search's comparisons (`better`, `score`, `rank_of`) as their
+// neighbours changed no outcome of the tests before (the designed layout was only compared
+// with the simple one).
+#[test]
+fn no_single_swap_of_a_designed_pose_for_another_candidate_improves_the_design() {
+    let noise = 0.001;
+    // The rotary axes' errors and the three squarenesses: more than 4 poses can see (a layout
+    // of 4 falls short of the rank and is scored by its log-sum).
+    let more = json!([
+        "E_X0B", "E_Y0B", "E_Z0B", "E_A0B", "E_B0B", "E_C0B", "E_X0C", "E_Y0C", "E_Z0C", "E_A0C",
+        "E_B0C", "E_C0C", "E_C0Y", "E_A0Z", "E_B0Z"
+    ]);
+    for (name, machine, count, parameters) in [
+        ("B/C tilting table", bc_table(), 4, Value::Null),
+        ("B/C tilting table", bc_table(), 6, Value::Null),
+        ("A/C trunnion", ac_trunnion(), 5, Value::Null),
+        (
+            "B/C tilting table, squareness too",
+            bc_table(),
+            4,
+            more.clone(),
+        ),
+    ] {
+        let input = json!({ "machine": machine, "sphere": { "x": 120, "y": -40, "height": 60 },
+            "step": 90, "count": count, "noise": noise, "parameters": parameters });
+        let design = call("probeDesign", &input).unwrap();
+        // The candidates: the 90° grid within the travel and the tilt limit (90°), and the
+        // simple layout's poses.
+        let (m_from, m_to) = (
+            machine["rotary"]["mFrom"].as_f64().unwrap(),
+            machine["rotary"]["mTo"].as_f64().unwrap(),
+        );
+        let mut poses: Vec<(f64, f64)> = Vec::new();
+        for m in [-90.0, 0.0, 90.0] {
+            if m >= m_from && m <= m_to {
+                for k in [0.0, 90.0, 180.0, 270.0] {
+                    poses.push((k, m));
+                }
+            }
+        }
+        let pose_of = |p: &Value| (p["k"].as_f64().unwrap(), p["m"].as_f64().unwrap());
+        let same = |a: (f64, f64), b: (f64, f64)| {
+            (a.0 - b.0)
+                .rem_euclid(360.0)
+                .min((b.0 - a.0).rem_euclid(360.0))
+                < 1e-6
+                && (a.1 - b.1).abs() < 1e-6
+        };
+        for p in design["simple"]["poses"].as_array().unwrap() {
+            let q = pose_of(p);
+            if !poses.iter().any(|&c| same(c, q)) {
+                poses.push(q);
+            }
+        }
+        // Each candidate's scaled rows, from probeSimulate's sensitivities.
+        let mut sim_input = input.clone();
+        for key in ["step", "count"] {
+            sim_input.as_object_mut().unwrap().remove(key);
+        }
+        sim_input["k"] = json!(poses.iter().map(|p| p.0).collect::<Vec<_>>());
+        sim_input["m"] = json!(poses.iter().map(|p| p.1).collect::<Vec<_>>());
+        let sim = call("probeSimulate", &sim_input).unwrap();
+        let sens = sim["sensitivities"].as_array().unwrap();
+        let cols = sens.len();
+        let rows: Vec<Vec<[f64; 3]>> = (0..poses.len())
+            .map(|i| {
+                (0..cols)
+                    .map(|c| {
+                        let typical = if sens[c]["per"] == "deg" {
+                            TYPICAL_DEG
+                        } else {
+                            TYPICAL_MM
+                        };
+                        let v = numbers(&sens[c]["rows"][i]);
+                        [
+                            v[0] * typical / noise,
+                            v[1] * typical / noise,
+                            v[2] * typical / noise,
+                        ]
+                    })
+                    .collect()
+            })
+            .collect();
+        // Rows per pose as 3 rows of `cols`: transpose the per-unknown triples.
+        let pose_rows: Vec<Vec<[f64; 3]>> = rows;
+        let layout_sv = |idx: &[usize]| {
+            let sel: Vec<&Vec<[f64; 3]>> = idx.iter().map(|&i| &pose_rows[i]).collect();
+            singular_values(&sel, cols)
+        };
+        let all: Vec<usize> = (0..poses.len()).collect();
+        let sv_all = layout_sv(&all);
+        let r = sv_all.iter().filter(|s| **s > 1e-6 * sv_all[0]).count();
+        // The designed layout among the candidates.
+        let chosen: Vec<usize> = design["designed"]["poses"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                let q = pose_of(p);
+                poses
+                    .iter()
+                    .position(|&c| same(c, q))
+                    .unwrap_or_else(|| panic!("{name}: designed pose {q:?} is no candidate"))
+            })
+            .collect();
+        assert_eq!(chosen.len(), count, "{name}");
+        let here = objective(&layout_sv(&chosen), r);
+        let smallest = design["designed"]["smallest"].as_f64().unwrap();
+        if here.0 == r {
+            assert!(
+                (here.1 - smallest).abs() <= 1e-9 * sv_all[0],
+                "{name}: σ_r {here:?} vs {smallest}"
+            );
+        }
+        for slot in 0..count {
+            for c in 0..poses.len() {
+                if chosen.contains(&c) {
+                    continue;
+                }
+                let mut other = chosen.clone();
+                other[slot] = c;
+                let there = objective(&layout_sv(&other), r);
+                let improves = there.0 > here.0
+                    || (there.0 == here.0 && there.1 > here.1 + 1e-6 * here.1.abs().max(1e-12));
+                assert!(
+                    !improves,
+                    "{name}, {count} poses: {:?} in place of {:?} gives {there:?} > {here:?}",
+                    poses[c], poses[chosen[slot]]
+                );
+            }
+        }
+    }
+}
+
+// Found while testing the search's mutants: with only errors no pose can see, the design said
+// "rank 1" and "identifiable" from columns of the chain's rounding (1e-14 noise deviations).
+#[test]
+fn a_design_of_errors_no_pose_can_see_is_refused_by_name() {
+    // E_C0C on a B/C table with the sphere on the C axis (its default place, 0, 0): C's zero
+    // turns the sphere about its own centre.
+    let e = call(
+        "probeDesign",
+        &json!({ "machine": bc_table(), "parameters": ["E_C0C"], "fitSphere": false }),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("parameters: no pose within the travel and the tilt limit sees E_C0C"),
+        "{e}"
+    );
+    // Off the axis it is seen, and identifiable.
+    let d = call(
+        "probeDesign",
+        &json!({ "machine": bc_table(), "parameters": ["E_C0C"], "fitSphere": false,
+            "sphere": { "x": 100, "y": 0, "height": 50 } }),
+    )
+    .unwrap();
+    assert_eq!(d["visibility"]["identifiable"], json!(["E_C0C"]));
+    assert!(
+        d["designed"]["smallest"].as_f64().unwrap() > 1.0,
+        "{}",
+        d["designed"]
+    );
+}

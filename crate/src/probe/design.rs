@@ -419,7 +419,7 @@ pub fn design(study: &Study, own: &ProbeDesignInput) -> Result<ProbeDesign> {
         simple_idx.push(i);
     }
     let all_rows: Vec<&Vec<f64>> = cands.iter().flat_map(|c| c.rows.iter()).collect();
-    let all_fit = view(&all_rows, &names)?;
+    let all_fit = view(seen(&all_rows, &names)?, &names)?;
     let all_gram = gram_of(&cands.iter().collect::<Vec<_>>(), p);
     let r = rank_of(&singular_values(&all_gram));
     let visibility = visibility(study, &cands, &all_fit, r)?;
@@ -824,4 +824,20 @@ pub fn rows(study: &Study, k: f64, m: f64) -> Result<[Vec<f64>; 3]> {
 /// The sphere's centre as `[x, y, z]`, mm.
 pub fn centre_of(v: &Vector3<f64>) -> [f64; 3] {
     [v[0], v[1], v[2]]
+}
+
+/// `rows` (every candidate's), or the refusal when they are all zero: no pose sees any of the
+/// errors to identify (each is along or about an axis's own line through the sphere).
+fn seen<'a>(rows: &'a [&'a Vec<f64>], names: &[String]) -> Result<&'a [&'a Vec<f64>]> {
+    if rows.iter().any(|r| r.iter().any(|v| *v != 0.0)) {
+        Ok(rows)
+    } else {
+        Err(Error::field(
+            "parameters",
+            format!(
+                "no pose within the travel and the tilt limit sees {}: it moves the sphere's centre nowhere (an error along or about an axis's own line through the sphere); fit the sphere's position too, move the sphere off that line, or choose other errors",
+                names.join(", ")
+            ),
+        ))
+    }
 }

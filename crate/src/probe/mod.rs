@@ -378,7 +378,7 @@ impl Study {
             .map(|u| match u {
                 Unknown::Error(d) => {
                     let col = self.model.error_column(d)?;
-                    Ok(-(inv * jac[col].tip))
+                    Ok(effect(-(inv * jac[col].tip)))
                 }
                 Unknown::Sphere(i) => Ok(inv.column(*i).into_owned()),
             })
@@ -408,4 +408,20 @@ impl Study {
 pub fn sphere_position(machine: &Machine, place: &SpherePlace) -> Vector3<f64> {
     let [u, v, n] = machine.face_frame();
     u * place.x + v * place.y + n * place.height
+}
+
+/// Below this a sensitivity of the centre to an error is the chain's rounding, not an effect:
+/// mm per mm, or per rad (0.1 pm per rad; the rounding of a 1 m lever is about 1e-13 mm).
+const EFFECT_FLOOR: f64 = 1e-10;
+
+/// A sensitivity of the centre to an error, with the chain's rounding taken for what it is
+/// ([`EFFECT_FLOOR`]): zero. An error no pose can see (C's zero with the sphere on C's line)
+/// would otherwise keep a column of rounding, which the designer's and the fit's thresholds,
+/// relative to the largest column, take for an effect when it is the only column.
+fn effect(v: Vector3<f64>) -> Vector3<f64> {
+    if v.norm() < EFFECT_FLOOR {
+        Vector3::zeros()
+    } else {
+        v
+    }
 }
