@@ -388,3 +388,119 @@ fn a_design_of_errors_no_pose_can_see_is_refused_by_name() {
         d["designed"]
     );
 }
+
+// Found by cargo-mutants: the spread's divisions and products (`Spread::of`) and the "before"
+// residuals' sign changed no outcome of the tests before (they checked only that the spread
+// before is larger than after).
+#[test]
+fn the_wander_is_each_poses_distance_from_the_best_fixed_sphere_and_its_rms_per_coordinate() {
+    let sphere = [120.0, -30.0, 80.0];
+    let machine = bc_table();
+    let measured = with_errors(
+        &machine,
+        json!({ "E_X0C": 0.02, "E_A0B": 0.004, "E_Z0B": -0.01 }),
+    );
+    let poses: Vec<(f64, f64)> = vec![
+        (0.0, 0.0),
+        (90.0, 0.0),
+        (180.0, 0.0),
+        (270.0, 0.0),
+        (0.0, -60.0),
+        (0.0, 60.0),
+        (45.0, 30.0),
+        (225.0, -45.0),
+        (135.0, 75.0),
+    ];
+    let mut csv = String::from("pose,C_deg,B_deg,X_mm,Y_mm,Z_mm\n");
+    for (i, &(k, m)) in poses.iter().enumerate() {
+        let c = probe_common::centre(&measured, sphere, k.to_radians(), m.to_radians());
+        // A fixed pattern of ±1 µm on top, so that "after" is not zero.
+        let n = |a: usize| (((3 * i + a) * 7919) % 2001) as f64 * 1e-6 - 1e-3;
+        csv.push_str(&format!(
+            "{},{k},{m},{:.7},{:.7},{:.7}\n",
+            i + 1,
+            c[0] + n(0),
+            c[1] + n(1),
+            c[2] + n(2)
+        ));
+    }
+    let base = json!({ "machine": machine, "sphere": { "x": sphere[0], "y": sphere[1], "height": sphere[2] },
+        "parameters": ["E_X0B", "E_Z0B", "E_A0B", "E_X0C", "E_A0C"] });
+    let mut input = base.clone();
+    input["csv"] = json!(csv);
+    let r = call("probeIdentify", &input).unwrap();
+    let fitted = r["poses"].as_array().unwrap();
+    assert_eq!(fitted.len(), poses.len());
+    // The sphere's position's sensitivities at the same poses, from probeSimulate.
+    let mut sim_input = base.clone();
+    sim_input["k"] = json!(poses.iter().map(|p| p.0).collect::<Vec<_>>());
+    sim_input["m"] = json!(poses.iter().map(|p| p.1).collect::<Vec<_>>());
+    let sim = call("probeSimulate", &sim_input).unwrap();
+    let sphere_cols: Vec<&Value> = sim["sensitivities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["name"].as_str().unwrap().starts_with("sphere_"))
+        .collect();
+    assert_eq!(sphere_cols.len(), 3);
+    for (key, what) in [
+        ("before", "as measured, less the best fixed sphere"),
+        ("after", "after correction"),
+    ] {
+        let res: Vec<Vec<f64>> = fitted.iter().map(|p| numbers(&p[key])).collect();
+        // Spread: the rms of one coordinate over every pose, the largest 3-D distance.
+        let sum2: f64 = res.iter().flatten().map(|v| v * v).sum();
+        let sigma = (sum2 / (3 * res.len()) as f64).sqrt();
+        let max = res
+            .iter()
+            .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+            .fold(0.0, f64::max);
+        let got = &r[key];
+        assert!(
+            (got["sigma"].as_f64().unwrap() - sigma).abs() < 1e-12,
+            "{what}: {got} vs σ {sigma}"
+        );
+        assert!(
+            (got["max"].as_f64().unwrap() - max).abs() < 1e-12,
+            "{what}: {got} vs max {max}"
+        );
+        assert!(sigma > 1e-5, "{what}: a real spread ({sigma} mm)");
+        // Least squares: the residuals are square to what a shift of the sphere does.
+        for s in &sphere_cols {
+            let dot: f64 = (0..poses.len())
+                .map(|i| {
+                    (0..3)
+                        .map(|a| s["rows"][i][a].as_f64().unwrap() * res[i][a])
+                        .sum::<f64>()
+                })
+                .sum();
+            assert!(
+                dot.abs() < 1e-9,
+                "{what}: residuals · {} = {dot}",
+                s["name"]
+            );
+        }
+    }
+    // Before is the measured centres less the expected ones less one fixed shift of the sphere:
+    // the differences between poses of (measured − expected − before) are a shift's.
+    let shift = |p: &Value| -> Vec<f64> {
+        let (m, e, b) = (
+            numbers(&p["measured"]),
+            numbers(&p["expected"]),
+            numbers(&p["before"]),
+        );
+        (0..3).map(|a| m[a] - e[a] - b[a]).collect()
+    };
+    let at_home = shift(&fitted[0]);
+    assert!(
+        at_home.iter().any(|v| v.abs() > 1e-4),
+        "the errors shift the sphere: {at_home:?}"
+    );
+    // At C = 90°, B = 0 on a B/C table the sphere's shift is turned by C: its length is kept.
+    let at_90 = shift(&fitted[1]);
+    let len = |v: &[f64]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    assert!(
+        (len(&at_home) - len(&at_90)).abs() < 1e-9,
+        "{at_home:?} vs {at_90:?}"
+    );
+}
