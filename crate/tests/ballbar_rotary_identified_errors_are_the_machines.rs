@@ -8,16 +8,8 @@
 mod probe_common;
 
 use fiveaxis::api::call;
-use probe_common::{bc_table, with_errors};
+use probe_common::{bc_table, numbers, with_errors};
 use serde_json::{json, Value};
-
-fn series(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 #[test]
 fn the_errors_found_reproduce_the_measured_traces_when_put_into_the_machine() {
@@ -76,7 +68,10 @@ fn the_errors_found_reproduce_the_measured_traces_when_put_into_the_machine() {
         .iter()
         .zip(again["tests"].as_array().unwrap())
     {
-        for (x, y) in series(&a["deviation"]).iter().zip(series(&b["deviation"])) {
+        for (x, y) in numbers(&a["deviation"])
+            .iter()
+            .zip(numbers(&b["deviation"]))
+        {
             assert!((x - y).abs() < 1e-4, "{}: {x} vs {y}", a["name"]);
         }
     }

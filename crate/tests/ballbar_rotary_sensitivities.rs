@@ -6,16 +6,8 @@
 mod probe_common;
 
 use fiveaxis::api::call;
-use probe_common::{ac_trunnion, bc_table, head_table, with_errors};
+use probe_common::{ac_trunnion, bc_table, head_table, numbers, with_errors};
 use serde_json::{json, Value};
-
-fn series(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 /// The machines with the letters of their rotary axes.
 fn machines() -> Vec<(&'static str, Value, [char; 2])> {
@@ -78,9 +70,9 @@ fn every_sensitivity_matches_central_differences_of_the_exact_trace() {
                 let s = &t["sensitivities"][j];
                 assert_eq!(s["name"], p.as_str());
                 assert_eq!(s["per"], if angle { "deg" } else { "mm" });
-                let got = series(&s["values"]);
-                let up = series(&plus["tests"][ti]["deviation"]);
-                let down = series(&minus["tests"][ti]["deviation"]);
+                let got = numbers(&s["values"]);
+                let up = numbers(&plus["tests"][ti]["deviation"]);
+                let down = numbers(&minus["tests"][ti]["deviation"]);
                 for i in 0..got.len() {
                     let fd = (up[i] - down[i]) / (2.0 * h);
                     assert!(
@@ -122,7 +114,7 @@ fn an_error_declared_invisible_changes_no_trace() {
                     .as_array()
                     .unwrap()
                     .iter()
-                    .flat_map(|t| series(&t["deviation"]))
+                    .flat_map(|t| numbers(&t["deviation"]))
                     .fold(0.0f64, |a, b| a.max(b.abs()))
             };
             for u in v["invisible"].as_array().unwrap() {

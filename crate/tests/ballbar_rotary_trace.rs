@@ -16,7 +16,7 @@ mod probe_common;
 
 use fiveaxis::api::call;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
-use probe_common::{ac_trunnion, bc_table, head_table, with_errors};
+use probe_common::{ac_trunnion, bc_table, head_table, numbers, with_errors};
 use serde_json::{json, Value};
 
 const L: f64 = 100.0;
@@ -27,14 +27,6 @@ fn simulate(machine: &Value, tests: Value) -> Value {
         &json!({ "machine": machine, "tests": tests }),
     )
     .unwrap()
-}
-
-fn series(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 #[test]
@@ -61,8 +53,8 @@ fn an_offset_of_the_c_axis_line_gives_the_closed_form_once_per_turn() {
             );
             for (ti, tangential) in [(0, false), (1, true)] {
                 let t = &s["tests"][ti];
-                let angle = series(&t["angle"]);
-                let dev = series(&t["deviation"]);
+                let angle = numbers(&t["angle"]);
+                let dev = numbers(&t["deviation"]);
                 assert_eq!(angle.len(), 2 * 73);
                 let mut largest: f64 = 0.0;
                 for (a, d) in angle.iter().zip(&dev) {
@@ -209,8 +201,8 @@ fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
         let s = simulate(&m, tests.clone());
         let nominal = simulate(&machine, tests);
         for (ti, t) in s["tests"].as_array().unwrap().iter().enumerate() {
-            let p = Vector3::from_iterator(series(&t["ball"]));
-            let tool_w = Vector3::from_iterator(series(&t["toolBall"]));
+            let p = Vector3::from_iterator(numbers(&t["ball"]));
+            let tool_w = Vector3::from_iterator(numbers(&t["toolBall"]));
             assert!(((tool_w - p).norm() - L).abs() < 1e-12);
             let cmd: Vec<(char, String, Vec<f64>)> = t["commanded"]
                 .as_array()
@@ -220,13 +212,13 @@ fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
                     (
                         a["name"].as_str().unwrap().chars().next().unwrap(),
                         a["unit"].as_str().unwrap().to_string(),
-                        series(&a["values"]),
+                        numbers(&a["values"]),
                     )
                 })
                 .collect();
-            let dev = series(&t["deviation"]);
-            let tool = [0, 1, 2].map(|k| series(&t["tool"][k]));
-            let table = [0, 1, 2].map(|k| series(&t["table"][k]));
+            let dev = numbers(&t["deviation"]);
+            let tool = [0, 1, 2].map(|k| numbers(&t["tool"][k]));
+            let table = [0, 1, 2].map(|k| numbers(&t["table"][k]));
             for i in 0..dev.len() {
                 let q = |axis: char| -> f64 {
                     let (_, unit, v) = cmd.iter().find(|c| c.0 == axis).unwrap();
@@ -266,7 +258,7 @@ fn every_pose_matches_the_chain_composed_by_hand_on_three_machines() {
             // machine's bar stays at its length.
             let spread = t["spread"].as_f64().unwrap();
             assert!(spread > 1e-3, "{kind} test {ti}: {spread}");
-            let flat = series(&nominal["tests"][ti]["deviation"]);
+            let flat = numbers(&nominal["tests"][ti]["deviation"]);
             assert!(
                 flat.iter().all(|d| d.abs() < 1e-11),
                 "{kind} {ti}: {flat:?}"
@@ -303,7 +295,7 @@ fn the_first_order_change_is_within_the_second_order_of_the_exact_one() {
             ]),
         );
         for t in s["tests"].as_array().unwrap() {
-            let (dev, first) = (series(&t["deviation"]), series(&t["firstOrder"]));
+            let (dev, first) = (numbers(&t["deviation"]), numbers(&t["firstOrder"]));
             let big = dev.iter().fold(0.0f64, |a, b| a.max(b.abs()));
             assert!(big > 0.005, "{big}");
             for (a, b) in dev.iter().zip(&first) {

@@ -16,21 +16,13 @@ mod probe_common;
 use fiveaxis::api::call;
 use fiveaxis::machine::TRAVEL_TOLERANCE;
 use nalgebra::DMatrix;
-use probe_common::{ac_trunnion, bc_table, machines, study, with_errors};
+use probe_common::{ac_trunnion, bc_table, machines, numbers, study, with_errors};
 use serde_json::{json, Value};
 
 /// The typical sizes the module docs of `probe::design` state: 10 µm, and 10⁻⁴ rad in degrees
 /// (the sensitivities of `probeSimulate` are per mm and per degree).
 const TYPICAL_MM: f64 = 0.01;
 const TYPICAL_DEG: f64 = 1e-4 * 180.0 / std::f64::consts::PI;
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 #[test]
 fn a_layouts_singular_values_are_its_centres_sensitivities_in_typical_errors_per_noise() {

@@ -82,3 +82,12 @@ pub fn rot(axis: usize, a: f64) -> nalgebra::Matrix3<f64> {
         _ => nalgebra::Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
     }
 }
+
+/// A JSON list of numbers (an export's series or triple) as numbers.
+pub fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("not a list: {v}"))
+        .iter()
+        .map(|x| x.as_f64().unwrap_or_else(|| panic!("not a number: {x}")))
+        .collect()
+}
