@@ -21,7 +21,7 @@ import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
 import { clearPlot, sourceText, type Source } from '../ui/identify';
-import { contributorsOf, correctionsView, useFound } from '../ui/found';
+import { contributorsOf, correctionsView, quantityOf, useFound } from '../ui/found';
 import { measured } from '../ui/measured';
 import { errorWords, judge, listWords, verdictBox } from '../ui/verdict';
 
@@ -51,7 +51,6 @@ const DECISION: Record<string, string> = {
 
 /** "sphere_X" → "sphere position, X"; an error keeps its ISO name. */
 const paramName = (n: string) => (n.startsWith('sphere_') ? `sphere position, ${n.slice(7)}` : n);
-const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 /** Shows or hides `e` (and marks it `hidden` for tests and assistive technology): the page's
  *  boxes with a display of their own (`.plots`, `.file-row`, `dl.summary`) ignore the attribute. */
 const setShown = (e: HTMLElement, on: boolean) => {

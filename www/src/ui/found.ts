@@ -8,7 +8,8 @@ import { el } from './fields';
 import { show } from './units';
 import { listWords, type Contributor } from './verdict';
 
-const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
+/** The display quantity of an error in the engine's unit ("deg" or "mm"). */
+export const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 
 /** The table of corrections (`<prefix>-corrections-table`), in a box that scrolls on a phone, and
  *  the signs below it (`<prefix>-signs`). */
