@@ -20,8 +20,8 @@ import { download } from '../ui/export';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay, unitDef } from '../ui/units';
 import { engineErrors, panelShell, showAtField, type Panel } from './panel';
-import { clearPlot, sourceText, type Source } from '../ui/identify';
-import { contributorsOf, correctionsView, quantityOf, useFound } from '../ui/found';
+import { clearPlot, quantityOf, sourceText, type Source } from '../ui/identify';
+import { contributorsOf, correctionsView, useFound } from '../ui/found';
 import { measured } from '../ui/measured';
 import { errorWords, judge, listWords, verdictBox } from '../ui/verdict';
 

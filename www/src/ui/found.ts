@@ -5,11 +5,10 @@
 import type { Correction, Estimate, Schema } from '@engine';
 import type { MachineSection } from '../machine/section';
 import { el } from './fields';
+import { quantityOf } from './identify';
 import { show } from './units';
 import { listWords, type Contributor } from './verdict';
 
-/** The display quantity of an error in the engine's unit ("deg" or "mm"). */
-export const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 
 /** The table of corrections (`<prefix>-corrections-table`), in a box that scrolls on a phone, and
  *  the signs below it (`<prefix>-signs`). */

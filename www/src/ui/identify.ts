@@ -24,7 +24,8 @@ const VERDICT: Record<string, string> = {
   'not-identifiable': 'not identifiable alone',
 };
 
-const quantity = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
+/** The display quantity of an error in the engine's unit ("deg" or "mm"). */
+export const quantityOf = (unit: string) => (unit === 'deg' ? 'errAngle' : 'errLength');
 
 /** "From sample.csv (100 measurements), read at 16:31:02." */
 export function sourceText(s: Source, count: number, what: string): string {
@@ -46,7 +47,7 @@ export function identificationView(prefix: string, f: Identification, source: st
   table.append(el('thead'), el('tbody'));
   table.tHead!.append(head);
   for (const e of f.estimates) {
-    const q = quantity(e.unit);
+    const q = quantityOf(e.unit);
     const tr = el('tr');
     tr.dataset.name = e.name;
     tr.dataset.verdict = e.verdict;
@@ -74,7 +75,7 @@ export function identificationView(prefix: string, f: Identification, source: st
     }
     for (const c of g.combinations) {
       const lead = f.estimates.find((e) => e.name === c.terms[0][0]);
-      const q = quantity(lead?.unit ?? 'mm');
+      const q = quantityOf(lead?.unit ?? 'mm');
       const half = (c.interval[1] - c.interval[0]) / 2;
       groups.append(el('li', {}, `Group ${i + 1} (${members}): only this combination is measurable: ${labelled(c.text)} = ${show(q, c.value)} ± ${show(q, half, 2)} (${VERDICT[c.verdict]})`));
     }
