@@ -95,3 +95,25 @@ fn header_problems_are_named_on_the_header_line() {
     assert!(err("").starts_with("csv: the file is empty"));
     assert!(err("C_deg;A_deg;X_mm;Y_mm;Z_mm\n0;0;1;2;3\n").contains("1 pose measured"));
 }
+
+// Found by cargo-mutants: the reference pose found without its label (`||` as `&&`, `m == 0` as
+// `!=`) and the labels of a file without a label column (`len() + 1` as `- 1` or `* 1`) changed
+// no outcome of the tests before.
+#[test]
+fn a_first_pose_at_zero_is_the_reference_unlabelled_and_poses_are_numbered_from_one() {
+    let at_zero = read("C;A;X;Y;Z\n0;0;1;2;3\n30;0;1;2;3\n60;-30;1;2;3\n", LETTERS).unwrap();
+    assert_eq!(at_zero.reference, Some(0));
+    let labels: Vec<&str> = at_zero.poses.iter().map(|p| p.label.as_str()).collect();
+    assert_eq!(labels, ["1", "2", "3"]);
+    // K at zero but not M, or M but not K: no reference.
+    for text in [
+        "C;A;X;Y;Z\n0;30;1;2;3\n30;0;1;2;3\n",
+        "C;A;X;Y;Z\n30;0;1;2;3\n0;0;1;2;3\n",
+    ] {
+        assert_eq!(read(text, LETTERS).unwrap().reference, None, "{text}");
+    }
+    // Labelled REF anywhere on the first line's pose: the reference, whatever its angles.
+    let labelled = read("pose;C;A;X;Y;Z\nREF;30;10;1;2;3\nP2;0;0;1;2;3\n", LETTERS).unwrap();
+    assert_eq!(labelled.reference, Some(0));
+    assert_eq!(labelled.poses[1].label, "P2");
+}

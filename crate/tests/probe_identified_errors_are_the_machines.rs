@@ -96,3 +96,90 @@ fn simulate_reports_the_exact_deviation_and_its_first_order_form() {
     assert!(s.iter().any(|c| c["name"] == "E_B0C" && c["per"] == "deg"));
     assert_eq!(r["poses"][1]["k"].as_f64().unwrap(), 90.0);
 }
+
+// Found by cargo-mutants: the sphere found (`+=` as `-=` or `*=`), each estimate's group (its
+// name matched as `!=`) and each group's words (`== gi` as `!=`) changed no outcome of the tests
+// before.
+#[test]
+fn the_sphere_is_found_where_it_is_and_inseparable_unknowns_share_their_group_and_its_words() {
+    let stated = [120.0, -30.0, 80.0];
+    let truth = [120.04, -30.03, 80.02];
+    let machine = bc_table();
+    let measured = with_errors(&machine, json!({ "E_X0B": 0.015, "E_A0C": 0.003 }));
+    let poses = [
+        (0.0, 0.0),
+        (90.0, 0.0),
+        (180.0, 0.0),
+        (270.0, 0.0),
+        (0.0, -60.0),
+        (0.0, 60.0),
+        (45.0, 30.0),
+        (225.0, -45.0),
+        (135.0, 75.0),
+        (300.0, -20.0),
+    ];
+    let mut csv = String::from("C,B,X,Y,Z\n");
+    for &(k, m) in &poses {
+        let c = centre(&measured, truth, f64::to_radians(k), f64::to_radians(m));
+        csv.push_str(&format!("{k},{m},{:.8},{:.8},{:.8}\n", c[0], c[1], c[2]));
+    }
+    // C's zero is one of the unknowns: a turn of the sphere about C, which the sphere's fitted
+    // position takes too (probe_design_and_visibility.rs).
+    let r = call(
+        "probeIdentify",
+        &json!({ "machine": machine,
+        "sphere": { "x": stated[0], "y": stated[1], "height": stated[2] },
+        "parameters": ["E_X0B", "E_A0C", "E_C0C"], "csv": csv }),
+    )
+    .unwrap();
+    let found = r["sphere"].as_array().unwrap();
+    // The fitted shift absorbs C's zero only within the group: along C's line (Z) it is the
+    // sphere's alone, and its distance from C's line is kept by a turn.
+    let (x, y, z) = (
+        found[0].as_f64().unwrap(),
+        found[1].as_f64().unwrap(),
+        found[2].as_f64().unwrap(),
+    );
+    assert!((z - truth[2]).abs() < 1e-5, "{found:?}");
+    assert!(
+        (x.hypot(y) - truth[0].hypot(truth[1])).abs() < 1e-5,
+        "{found:?} vs {truth:?}"
+    );
+    assert!(
+        (z - stated[2]).abs() > 0.01,
+        "the sphere is not where it was stated"
+    );
+    let groups = r["groups"].as_array().unwrap();
+    assert!(!groups.is_empty(), "{r}");
+    let mut grouped = 0;
+    for e in r["estimates"].as_array().unwrap() {
+        if let Some(g) = e["group"].as_u64() {
+            let members = &groups[g as usize]["members"];
+            assert!(
+                members.as_array().unwrap().contains(&e["name"]),
+                "{e} not in {members}"
+            );
+            grouped += 1;
+        }
+    }
+    for (g, group) in groups.iter().enumerate() {
+        let members = group["members"].as_array().unwrap();
+        assert!(members.iter().any(|m| m == "E_C0C"), "{group}");
+        for m in members {
+            let e = r["estimates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|e| &e["name"] == m)
+                .unwrap();
+            assert_eq!(e["group"].as_u64(), Some(g as u64), "{e}");
+        }
+        // Its words are the combinations of its own members that the poses measure.
+        let words = group["words"].as_array().unwrap();
+        assert!(!words.is_empty(), "{group}");
+        for w in words {
+            assert!(w.as_str().unwrap().contains("E_C0C"), "{w}");
+        }
+    }
+    assert!(grouped >= 2, "{r}");
+}

@@ -418,9 +418,3 @@ pub fn identify_file(study: &Study, own: &ProbeIdentifyInput) -> Result<ProbeIde
     options.noise = options.noise.or(Some(study.noise));
     identify_centres(study, m, own.rtol, &options)
 }
-
-/// The exact centres of `poses` (rad) on the study's machine with its errors, mm: what the
-/// tests simulate measurements with.
-pub fn exact_centres(study: &Study, poses: &[(f64, f64)]) -> Result<Vec<Vector3<f64>>> {
-    poses.iter().map(|&(k, m)| study.measured(k, m)).collect()
-}
