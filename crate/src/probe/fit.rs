@@ -36,7 +36,7 @@ pub use crate::identify::correct::{enter, Correction};
 use crate::identify::{self, amount, DecisionInput, Judgement, Options, Param, Verdict};
 use crate::machine::errors::ErrorValues;
 use crate::schema::{DefaultValue, Kind, Quantity};
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 crate::inputs! {
