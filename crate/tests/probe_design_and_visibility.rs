@@ -144,6 +144,9 @@ fn every_error_declared_invisible_moves_no_centre_of_the_exact_chain() {
         );
         let s = study(json!({ "machine": machine }));
         let poses = design::candidate_poses(&s, 30f64.to_radians()).unwrap();
+        // 12 angles of K in a turn, and M at least at −30°, 0, 30°. (Found by cargo-mutants:
+        // a list of one pose passed this test.)
+        assert!(poses.len() >= 36, "{name}: {} candidate poses", poses.len());
         for u in &d.visibility.invisible {
             let def = fiveaxis::machine::errors::find(&u.name).unwrap();
             let size = 0.01; // mm or degrees

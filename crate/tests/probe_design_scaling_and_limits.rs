@@ -38,6 +38,8 @@ fn a_layouts_singular_values_are_its_centres_sensitivities_in_typical_errors_per
                 sim_input["k"] = json!(k);
                 sim_input["m"] = json!(m);
                 let sim = call("probeSimulate", &sim_input).unwrap();
+                // The sphere where it was placed (a vertical spindle: x, y, height are X, Y, Z).
+                assert_eq!(sim["sphere"], json!([150.0, 20.0, 80.0]), "{name}");
                 let sens = sim["sensitivities"].as_array().unwrap();
                 // The scaled matrix written out: 3 rows per pose, one column per unknown.
                 let s = DMatrix::from_fn(3 * k.len(), sens.len(), |r, c| {
@@ -495,4 +497,32 @@ fn the_wander_is_each_poses_distance_from_the_best_fixed_sphere_and_its_rms_per_
         (len(&at_home) - len(&at_90)).abs() < 1e-9,
         "{at_home:?} vs {at_90:?}"
     );
+}
+
+// Found by cargo-mutants: the numbers of the designed table (`num` as an empty text) changed no
+// outcome of the tests before.
+#[test]
+fn the_designed_table_filled_in_reads_back_as_the_designed_poses() {
+    let d = call(
+        "probeDesign",
+        &json!({ "machine": ac_trunnion(), "sphere": { "x": 80.5, "y": -12.25, "height": 60 } }),
+    )
+    .unwrap();
+    let csv = d["designed"]["csv"].as_str().unwrap();
+    assert!(csv.contains("sphere at 80.5, -12.25, 60 mm"), "{csv}");
+    let filled = csv.replace(",,,\n", ",1,2,3\n");
+    let m = fiveaxis::probe::measure::read(&filled, Some(['C', 'A'])).unwrap();
+    let poses = d["designed"]["poses"].as_array().unwrap();
+    assert_eq!(m.poses.len(), poses.len());
+    for (got, want) in m.poses.iter().zip(poses) {
+        assert!(
+            (got.k.to_degrees() - want["k"].as_f64().unwrap()).abs() < 1e-6,
+            "{want}"
+        );
+        assert!(
+            (got.m.to_degrees() - want["m"].as_f64().unwrap()).abs() < 1e-6,
+            "{want}"
+        );
+        assert_eq!(got.centre, [1.0, 2.0, 3.0]);
+    }
 }

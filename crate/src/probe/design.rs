@@ -815,12 +815,6 @@ pub fn candidate_poses(study: &Study, step: f64) -> Result<Vec<(f64, f64)>> {
         .collect())
 }
 
-/// The centres' sensitivities at `(k, m)` scaled as the designer scales them (3 rows), for
-/// tests and the page.
-pub fn rows(study: &Study, k: f64, m: f64) -> Result<[Vec<f64>; 3]> {
-    scaled_rows(study, k, m)
-}
-
 /// The sphere's centre as `[x, y, z]`, mm.
 pub fn centre_of(v: &Vector3<f64>) -> [f64; 3] {
     [v[0], v[1], v[2]]
