@@ -245,6 +245,10 @@ test('Probe and sphere: the sample on another machine is refused by its header, 
     await page.click('#pb-sample-machine');
     await page.waitForFunction(() => document.getElementById('m-type')?.value === 'CBZ');
     await page.waitForFunction(() => document.getElementById('pb-verdict')?.dataset.state === 'result');
+    // The machine's change and the file's text each start an identification: the first result
+    // can show for a moment before the second request; judge the page once it is idle.
+    await waitIdle(page);
+    await page.waitForFunction(() => document.getElementById('pb-verdict')?.dataset.state === 'result');
     assert.equal(await page.inputValue('#pb-csv'), SAMPLE.replace(/\r\n/g, '\n'));
     assert.match(await page.textContent('#pb-verdict-source'), /the sample file probe-sphere-measured\.csv/);
     assert.ok(await page.$eval('#pb-alert', (e) => e.hidden), 'the message goes with the file read');
