@@ -1,8 +1,11 @@
 //! A small cache of built models, per thread: the page calls an export again and again with the
 //! same machine (the defects, then an identification, then another identification), and a model
 //! (the chain, the poses along a path, the sensitivities) costs far more than the call's own
-//! work. Each cache keeps its last [`CAPACITY`] models, keyed by the text of the inputs the model
-//! depends on, the most recently used last.
+//! work. Each cache keeps its last [`CAPACITY`] models, keyed by (a copy of) the inputs the model
+//! depends on, the most recently used last. Keys compare with `==`: no text is written per call
+//! (a key written as text, floats and all, cost more than the identification it saved under
+//! WebAssembly). A key holding a NaN never matches, so its model is built each time; `-0.0`
+//! and `0.0` match, and build the same model.
 //!
 //! Per thread (`thread_local!`): WebAssembly runs one thread, and native callers on several
 //! threads each get their own, with no lock.
@@ -16,13 +19,13 @@ use std::thread::LocalKey;
 pub const CAPACITY: usize = 16;
 
 /// The models of one cache: (key, model), least recently used first.
-pub type Models<T> = RefCell<Vec<(String, Rc<T>)>>;
+pub type Models<K, T> = RefCell<Vec<(K, Rc<T>)>>;
 
 /// The model of `key` from `cache`, or `build()` kept under `key` (the least recently used
 /// model dropped when the cache is full). A failed build is not kept.
-pub fn get_or_build<T: 'static>(
-    cache: &'static LocalKey<Models<T>>,
-    key: String,
+pub fn get_or_build<K: PartialEq + 'static, T: 'static>(
+    cache: &'static LocalKey<Models<K, T>>,
+    key: K,
     build: impl FnOnce() -> Result<T>,
 ) -> Result<Rc<T>> {
     let hit = cache.with(|c| {
@@ -52,7 +55,7 @@ mod tests {
     use super::*;
 
     thread_local! {
-        static TEST: Models<usize> = const { RefCell::new(Vec::new()) };
+        static TEST: Models<String, usize> = const { RefCell::new(Vec::new()) };
     }
 
     #[test]

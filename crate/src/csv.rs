@@ -61,27 +61,27 @@ pub fn decimal(tok: &str, exponent: bool) -> Option<f64> {
     let b = tok.as_bytes();
     let neg = b.first() == Some(&b'-');
     let mut i = usize::from(matches!(b.first(), Some(b'+' | b'-')));
-    let (mut m, mut k, mut count) = (0u64, 0usize, 0usize);
-    let mut exact = true;
-    let mut point = false;
-    while i < b.len() {
-        match b[i] {
-            c @ b'0'..=b'9' => {
-                count += 1;
-                k += usize::from(point);
-                // 19 digits always fit (10¹⁹ − 1 < 2⁶⁴), so no overflow check: a checked
-                // multiply is a 128-bit multiply in WebAssembly, a call per digit.
-                if count <= 19 {
-                    m = m * 10 + u64::from(c - b'0');
-                } else {
-                    exact = false;
-                }
-            }
-            b'.' if !point => point = true,
-            _ => break,
-        }
+    // The integer part, then the decimals: no test per digit but the digit's own. More than 19
+    // digits may wrap `m` (10¹⁹ − 1 < 2⁶⁴ always fits): such a token is left to `str::parse`.
+    let mut m = 0u64;
+    let whole = i;
+    while let Some(c @ b'0'..=b'9') = b.get(i) {
+        m = m.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
         i += 1;
     }
+    let mut count = i - whole;
+    let mut k = 0;
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        let decimals = i;
+        while let Some(c @ b'0'..=b'9') = b.get(i) {
+            m = m.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+            i += 1;
+        }
+        k = i - decimals;
+        count += k;
+    }
+    let exact = count <= 19;
     if count == 0 {
         return None;
     }

@@ -27,7 +27,6 @@ pub use machine::*;
 pub use nonlinear::*;
 pub use toolpath::*;
 
-use fiveaxis::schema::join;
 use fiveaxis::Error;
 use js_sys::{Array, ArrayBuffer, Object, Reflect};
 use serde::Serialize;
@@ -52,40 +51,57 @@ const MAX_DEPTH: usize = 16;
 /// A JavaScript input value as JSON, with its path in every message: `undefined` and `null` are
 /// absent, numbers must be finite, typed arrays become lists.
 pub(crate) fn json(value: &JsValue) -> Result<Value, JsError> {
-    to_json(value, "", 0).map_err(js_error)
+    to_json(value, Path::Root, 0).map_err(js_error)
 }
 
-fn to_json(v: &JsValue, path: &str, depth: usize) -> Result<Value, Error> {
-    let here = || {
-        if path.is_empty() {
-            "input".to_string()
-        } else {
-            path.to_string()
+/// Where a value sits in the input (`machine.errors.E_X0B[2]`), written out only for a message:
+/// writing every key's and element's path as it is read cost more than reading the value.
+#[derive(Clone, Copy)]
+pub(crate) enum Path<'a> {
+    /// The input itself.
+    Root,
+    /// A key of an object.
+    Key(&'a Path<'a>, &'a str),
+    /// An element of a list.
+    Index(&'a Path<'a>, usize),
+}
+
+impl Display for Path<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Path::Root => f.write_str("input"),
+            Path::Key(Path::Root, k) => f.write_str(k),
+            Path::Key(up, k) => write!(f, "{up}.{k}"),
+            Path::Index(up, i) => write!(f, "{up}[{i}]"),
         }
-    };
+    }
+}
+
+fn to_json(v: &JsValue, path: Path, depth: usize) -> Result<Value, Error> {
+    let here = || path.to_string();
     if depth > MAX_DEPTH {
         return Err(Error::field(here(), "nested too deeply"));
-    }
-    if v.is_undefined() || v.is_null() {
-        return Ok(Value::Null);
-    }
-    if let Some(b) = v.as_bool() {
-        return Ok(Value::Bool(b));
     }
     if let Some(x) = v.as_f64() {
         return serde_json::Number::from_f64(x)
             .map(Value::Number)
             .ok_or_else(|| Error::field(here(), format!("must be a finite number, got {x}")));
     }
+    if v.is_undefined() || v.is_null() {
+        return Ok(Value::Null);
+    }
     if let Some(s) = v.as_string() {
         return Ok(Value::String(s));
+    }
+    if let Some(b) = v.as_bool() {
+        return Ok(Value::Bool(b));
     }
     if Array::is_array(v) || ArrayBuffer::is_view(v) {
         let a = Array::from(v);
         return a
             .iter()
             .enumerate()
-            .map(|(i, item)| to_json(&item, &format!("{}[{i}]", here()), depth + 1))
+            .map(|(i, item)| to_json(&item, Path::Index(&path, i), depth + 1))
             .collect::<Result<Vec<_>, _>>()
             .map(Value::Array);
     }
@@ -99,9 +115,11 @@ fn to_json(v: &JsValue, path: &str, depth: usize) -> Result<Value, Error> {
     let mut out = Map::new();
     for key in Object::keys(obj).iter() {
         let k = key.as_string().unwrap_or_default();
+        let at = Path::Key(&path, &k);
         let item =
-            Reflect::get(obj, &key).map_err(|_| Error::field(join(path, &k), "cannot be read"))?;
-        out.insert(k.clone(), to_json(&item, &join(path, &k), depth + 1)?);
+            Reflect::get(obj, &key).map_err(|_| Error::field(at.to_string(), "cannot be read"))?;
+        let value = to_json(&item, at, depth + 1)?;
+        out.insert(k, value);
     }
     Ok(Value::Object(out))
 }

@@ -4,7 +4,7 @@
 //! written here rather than declared in `fiveaxis::for_each_export!`. The reader is a class,
 //! fed piece by piece.
 
-use crate::{js_error, json, output, to_json};
+use crate::{js_error, json, output, to_json, Path};
 use fiveaxis::toolpath::export::{self, Part, PathInput, PathValue, Reading};
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
 use fiveaxis::Error;
@@ -19,7 +19,7 @@ fn part(v: &JsValue, key: &str) -> Result<Part, Error> {
     } else if let Some(a) = v.dyn_ref::<Uint8Array>() {
         Ok(Part::Uint8(a.to_vec()))
     } else {
-        to_json(v, key, 1).map(Part::Json)
+        to_json(v, Path::Key(&Path::Root, key), 1).map(Part::Json)
     }
 }
 

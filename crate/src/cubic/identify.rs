@@ -120,13 +120,24 @@ pub fn cached_layout(
     specs: &[(ZoneSpec, f64)],
     errors: &[&'static ErrorDef],
 ) -> Result<Rc<Vec<LayoutZone>>> {
+    /// What a layout depends on: the machine, the piece, the options, the zones, the errors.
+    type Key = (
+        Machine,
+        CubicPiece,
+        Options,
+        Vec<(ZoneSpec, f64)>,
+        Vec<&'static str>,
+    );
     thread_local! {
-        static LAYOUTS: Models<Vec<LayoutZone>> = const { RefCell::new(Vec::new()) };
+        static LAYOUTS: Models<Key, Vec<LayoutZone>> = const { RefCell::new(Vec::new()) };
     }
-    let names: Vec<&str> = errors.iter().map(|d| d.name).collect();
-    let key = format!(
-        "{}|{piece:?}|{options:?}|{specs:?}|{names:?}",
-        serde_json::to_string(machine).map_err(|e| Error::field("machine", e.to_string()))?
+    let names = errors.iter().map(|d| d.name).collect();
+    let key = (
+        machine.clone(),
+        piece.clone(),
+        *options,
+        specs.to_vec(),
+        names,
     );
     cache::get_or_build(&LAYOUTS, key, || {
         layout(machine, piece, options, specs, errors)

@@ -291,11 +291,16 @@ impl Design {
     /// kept in a small per-thread cache ([`crate::cache`]): what the exports use, as the page
     /// asks for the defects and identifications with the same machine.
     pub fn cached(case: &SShapeCase) -> Result<Rc<Self>> {
+        /// What a design depends on: the machine without its errors, the tool, the model.
+        type Key = (Machine, SShapeTool, SShapeModel);
         thread_local! {
-            static DESIGNS: Models<Design> = const { RefCell::new(Vec::new()) };
+            static DESIGNS: Models<Key, Design> = const { RefCell::new(Vec::new()) };
         }
-        let key = serde_json::to_string(&(&case.machine.without_errors(), &case.tool, &case.model))
-            .map_err(|e| Error::field("machine", e.to_string()))?;
+        let key = (
+            case.machine.without_errors(),
+            case.tool.clone(),
+            case.model.clone(),
+        );
         cache::get_or_build(&DESIGNS, key, || {
             Self::new(&case.machine, &case.tool, &case.model)
         })

@@ -294,7 +294,8 @@ impl Iso {
         // Refusals first.
         for t in &toks {
             let refuse = |msg: &str| Err(loc.err(t.at, msg.to_string()));
-            match (t.letter, g10(t.value)) {
+            let code = if matches!(t.letter, 'G' | 'M') { g10(t.value) } else { 0 };
+            match (t.letter, code) {
                 ('G', 160) => return refuse("G16 switches to polar coordinates (radius and angle); the calculator reads X Y Z: post the program in Cartesian coordinates"),
                 ('G', 510) | ('G', 511) => return refuse("the program scales or mirrors its coordinates (G51, G51.1); the calculator reads them unscaled: post the program without scaling or mirroring"),
                 ('G', 650) | ('G', 660) | ('G', 661) => return refuse("G65/G66 call a macro: the calculator reads one program as plain blocks; post it with the macro's moves written out"),
@@ -835,9 +836,11 @@ impl Iso {
     }
 }
 
-/// `G` or `M` code × 10, rounded (G43.4 → 434).
+/// `G` or `M` code × 10, rounded (G43.4 → 434). Ties to even: a code has one decimal, so
+/// `v × 10` is never halfway, and this rounding is one instruction in WebAssembly (`round`, ties
+/// away from zero, is a library call there, and this runs for every word of every block).
 fn g10(v: f64) -> i64 {
-    (v * 10.0).round() as i64
+    (v * 10.0).round_ties_even() as i64
 }
 
 /// "X, Y and Z" of axis indices.
