@@ -294,7 +294,11 @@ impl Iso {
         // Refusals first.
         for t in &toks {
             let refuse = |msg: &str| Err(loc.err(t.at, msg.to_string()));
-            let code = if matches!(t.letter, 'G' | 'M') { g10(t.value) } else { 0 };
+            let code = if matches!(t.letter, 'G' | 'M') {
+                g10(t.value)
+            } else {
+                0
+            };
             match (t.letter, code) {
                 ('G', 160) => return refuse("G16 switches to polar coordinates (radius and angle); the calculator reads X Y Z: post the program in Cartesian coordinates"),
                 ('G', 510) | ('G', 511) => return refuse("the program scales or mirrors its coordinates (G51, G51.1); the calculator reads them unscaled: post the program without scaling or mirroring"),
