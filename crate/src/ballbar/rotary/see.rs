@@ -28,6 +28,12 @@ use serde::Serialize;
 
 /// A column at or below this fraction of the largest (scaled) is no effect at all.
 const ZERO_COLUMN: f64 = 1e-9;
+/// A column whose every sensitivity is below this (mm of bar length per mm or per rad) is no
+/// effect at all, whatever the other columns: the chain's rounding (10⁻¹⁵ for C's zero with a
+/// radial bar). Without it, an error no test sees, chosen alone, kept its column of rounding,
+/// the largest and so not zero by [`ZERO_COLUMN`], and was called a group of which nothing is
+/// measured instead of an error the test cannot see.
+const EFFECT_FLOOR: f64 = 1e-10;
 
 /// One measured or simulated point of a test.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,7 +102,9 @@ pub fn system(study: &Study, points: &[Point]) -> Result<System> {
         .map(|j| a.column(j).norm() * typical(study.unknowns[j]))
         .collect();
     let largest = scaled.iter().fold(0.0f64, |x, y| x.max(*y));
-    let zero: Vec<bool> = scaled.iter().map(|s| *s <= ZERO_COLUMN * largest).collect();
+    let zero: Vec<bool> = (0..ne)
+        .map(|j| scaled[j] <= ZERO_COLUMN * largest || a.column(j).amax() < EFFECT_FLOOR)
+        .collect();
     for (j, z) in zero.iter().enumerate() {
         if *z {
             a.column_mut(j).fill(0.0);
