@@ -79,21 +79,13 @@ impl ApiInput for () {
     }
 }
 
-/// Calls `f` on `S`'s serializer with `values` as a `Float64Array` when the serializer is
-/// serde-wasm-bindgen's (feature `wasm` on wasm32), else as a sequence of numbers.
+/// The name a series is written under (`serialize_newtype_struct`): the binding's writer makes
+/// it a `Float64Array`; any other serializer (`serde_json`) writes the list of numbers.
+pub const SERIES: &str = "Float64Array";
+
+/// `values` as a series ([`SERIES`]).
 fn float64<S: Serializer>(values: &[f64], s: S) -> std::result::Result<S::Ok, S::Error> {
-    #[cfg(all(feature = "wasm", target_arch = "wasm32"))]
-    {
-        serde_wasm_bindgen::preserve::serialize(&js_sys::Float64Array::from(values), s)
-    }
-    #[cfg(not(all(feature = "wasm", target_arch = "wasm32")))]
-    {
-        let mut seq = s.serialize_seq(Some(values.len()))?;
-        for v in values {
-            seq.serialize_element(v)?;
-        }
-        seq.end()
-    }
+    s.serialize_newtype_struct(SERIES, values)
 }
 
 /// A long series of numbers (mm, or as documented): a `Float64Array` in JavaScript.

@@ -21,7 +21,10 @@
 
 mod machine;
 mod nonlinear;
+mod output;
 mod toolpath;
+
+pub use output::output;
 
 pub use machine::*;
 pub use nonlinear::*;
@@ -29,7 +32,6 @@ pub use toolpath::*;
 
 use fiveaxis::Error;
 use js_sys::{Array, ArrayBuffer, Object, Reflect};
-use serde::Serialize;
 use serde_json::{Map, Value};
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
@@ -141,11 +143,3 @@ macro_rules! wasm_exports {
 }
 
 fiveaxis::for_each_export!(wasm_exports);
-
-/// Writes a result object (`None` becomes `null`, maps become objects).
-pub(crate) fn output<T: Serialize>(value: &T) -> Result<JsValue, JsError> {
-    let ser = serde_wasm_bindgen::Serializer::new()
-        .serialize_missing_as_null(true)
-        .serialize_maps_as_objects(true);
-    value.serialize(&ser).map_err(js_error)
-}
