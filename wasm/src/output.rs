@@ -360,8 +360,9 @@ impl<'a> ser::Serializer for &'a mut Tape {
         self.name(variant);
         value.serialize(self)
     }
-    fn serialize_seq(self, _: Option<usize>) -> Result<Compound<'a>, Error> {
+    fn serialize_seq(self, len: Option<usize>) -> Result<Compound<'a>, Error> {
         if self.series {
+            self.nums.reserve(len.unwrap_or(0));
             let mut list = self.open(FLOAT64);
             list.close = Some(());
             return Ok(list);
