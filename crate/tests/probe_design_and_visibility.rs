@@ -258,3 +258,44 @@ fn the_nc_blocks_write_no_negative_zero() {
         assert!(!l.contains("-0.000 ") && !l.contains("-0.000)"), "{l}");
     }
 }
+
+#[test]
+fn with_the_sphere_fitted_two_sphere_positions_reach_the_errors_rank_plus_six() {
+    // Each sphere position is three unknowns of its own (its centre), seen fully at any pose (a
+    // shift of the sphere shifts every centre by itself): two positions add six to the rank of
+    // the errors they identify. So with errors all identifiable the second sphere's rank is
+    // their number + 6, and one error alone gives 7.
+    // (Found by cargo-mutants, scope `probe`: the stacked rows' width as ne × 6, or the second
+    // sphere's columns at ne − 3 instead of ne + 3, changed no test's outcome before.)
+    let mut checked = 0;
+    for (name, machine) in machines() {
+        for parameters in [
+            json!(["E_X0C"]),
+            json!(["E_X0C", "E_Y0C"]),
+            json!(["E_X0C", "E_Y0C", "E_A0C", "E_B0C"]),
+        ] {
+            let input = json!({ "machine": machine, "sphere": { "x": 150, "y": 20, "height": 80 },
+                "parameters": parameters, "step": 90 });
+            let d = fiveaxis::api::call("probeDesign", &input).unwrap();
+            let errors = parameters.as_array().unwrap().len();
+            let one = &d["visibility"];
+            if one["identifiable"].as_array().unwrap().len() < errors {
+                continue; // a group or an unseen error: the rank is not a count then
+            }
+            let second = &d["secondSphere"];
+            assert_eq!(
+                second["identifiable"].as_array().unwrap().len(),
+                errors,
+                "{name} {parameters}: {second}"
+            );
+            assert_eq!(
+                second["reachableRank"],
+                json!(errors + 6),
+                "{name} {parameters}"
+            );
+            checked += 1;
+        }
+    }
+    // One error alone and two are seen on every machine.
+    assert!(checked >= 6, "{checked}");
+}
