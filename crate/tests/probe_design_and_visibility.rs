@@ -299,3 +299,132 @@ fn with_the_sphere_fitted_two_sphere_positions_reach_the_errors_rank_plus_six() 
     // One error alone and two are seen on every machine.
     assert!(checked >= 6, "{checked}");
 }
+
+// Found by cargo-mutants (scope `probe`): the reasons given for invisible errors (a turn about
+// the sphere's own axis line, or any error whose effect vanishes), the condition number, the
+// simple layout as the design reports it, and a count of poses above the simple layout's
+// changed no test's outcome before. Each mutant was checked by hand to fail one of these.
+#[test]
+fn with_the_sphere_where_both_axis_lines_meet_each_axis_own_turn_is_said_to_be_one() {
+    // B/C table with no offsets: B's line (along Y) and C's (along Z) meet at the origin. A turn
+    // about a line through the sphere's centre moves no centre: the zeros of B and C are their
+    // own turns; the tilts of each axis (about lines through the same point) are invisible too,
+    // for the general reason.
+    let input =
+        json!({ "machine": bc_table(), "sphere": { "x": 0, "y": 0, "height": 0 }, "step": 90 });
+    let d = fiveaxis::api::call("probeDesign", &input).unwrap();
+    let why = |name: &str| -> String {
+        d["visibility"]["invisible"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|u| u["name"] == name)
+            .map(|u| u["why"].as_str().unwrap().to_string())
+            .unwrap_or_else(|| panic!("{name} not invisible: {}", d["visibility"]))
+    };
+    for (own, axis) in [("E_B0B", 'B'), ("E_C0C", 'C')] {
+        assert!(
+            why(own).starts_with(&format!(
+                "the sphere lies on the {axis} axis line at every pose"
+            )),
+            "{own}: {}",
+            why(own)
+        );
+    }
+    for other in ["E_A0B", "E_C0B", "E_A0C", "E_B0C"] {
+        assert!(
+            why(other).starts_with("its effect on every measured centre is zero"),
+            "{other}: {}",
+            why(other)
+        );
+    }
+}
+
+#[test]
+fn a_layouts_condition_is_its_largest_singular_value_over_the_rth_and_null_when_short() {
+    let r_of = |d: &Value| d["visibility"]["reachableRank"].as_u64().unwrap() as usize;
+    for (name, machine) in machines() {
+        let input = json!({ "machine": machine, "sphere": { "x": 150, "y": 20, "height": 80 }, "step": 90 });
+        let d = fiveaxis::api::call("probeDesign", &input).unwrap();
+        let r = r_of(&d);
+        for layout in ["simple", "designed"] {
+            let l = &d[layout];
+            let sv = probe_common::numbers(&l["singularValues"]);
+            assert_eq!(l["rank"].as_u64().unwrap() as usize, r, "{name} {layout}");
+            let want = sv[0] / sv[r - 1];
+            let got = l["condition"].as_f64().unwrap();
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "{name} {layout}: {got} vs {want}"
+            );
+            assert_eq!(
+                l["smallest"].as_f64().unwrap(),
+                sv[r - 1],
+                "{name} {layout}"
+            );
+        }
+    }
+    // Four poses (the fewest) cannot reach the rank of the rotary axes' errors and three
+    // squarenesses on a B/C table (as probe_design_scaling_and_limits.rs finds): no condition.
+    let more = json!([
+        "E_X0B", "E_Y0B", "E_Z0B", "E_A0B", "E_B0B", "E_C0B", "E_X0C", "E_Y0C", "E_Z0C", "E_A0C",
+        "E_B0C", "E_C0C", "E_C0Y", "E_A0Z", "E_B0Z"
+    ]);
+    let input = json!({ "machine": bc_table(), "sphere": { "x": 120, "y": -40, "height": 60 },
+        "step": 90, "count": 4, "parameters": more });
+    let d = fiveaxis::api::call("probeDesign", &input).unwrap();
+    assert!(
+        d["designed"]["rank"].as_u64().unwrap() < r_of(&d) as u64,
+        "{}",
+        d["designed"]["rank"]
+    );
+    assert_eq!(d["designed"]["condition"], Value::Null);
+}
+
+#[test]
+fn the_design_reports_the_simple_layout_and_as_many_poses_as_asked_beyond_it() {
+    for (name, machine) in machines() {
+        let s = study(json!({ "machine": machine }));
+        let simple: Vec<(f64, f64)> = design::simple_poses(&s)
+            .unwrap()
+            .iter()
+            .map(|&(k, m)| (deg(k), deg(m)))
+            .collect();
+        let input = json!({ "machine": machine, "step": 30 });
+        let d = fiveaxis::api::call("probeDesign", &input).unwrap();
+        let poses = |l: &Value| -> Vec<(f64, f64)> {
+            l["poses"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| {
+                    (
+                        (p["k"].as_f64().unwrap() * 1e6).round() / 1e6,
+                        (p["m"].as_f64().unwrap() * 1e6).round() / 1e6,
+                    )
+                })
+                .collect()
+        };
+        // The simple layout as simple_poses gives it (degrees in the export), in its order.
+        let mut got = poses(&d["simple"]);
+        let mut want = simple.clone();
+        assert_eq!(got.len(), want.len(), "{name}");
+        got.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(got, want, "{name}");
+        // On the 30° grid the simple poses are candidates already: none is added.
+        let grid = design::candidate_poses(&s, 30f64.to_radians())
+            .unwrap()
+            .len();
+        assert_eq!(d["candidates"].as_u64().unwrap() as usize, grid, "{name}");
+        // Two more poses than the simple layout: that many, all distinct.
+        let mut more = input.clone();
+        more["count"] = json!(simple.len() + 2);
+        let dm = fiveaxis::api::call("probeDesign", &more).unwrap();
+        let p = poses(&dm["designed"]);
+        assert_eq!(p.len(), simple.len() + 2, "{name}");
+        for (i, a) in p.iter().enumerate() {
+            assert!(p[..i].iter().all(|b| b != a), "{name}: {a:?} twice");
+        }
+    }
+}

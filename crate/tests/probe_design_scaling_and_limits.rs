@@ -368,6 +368,17 @@ fn a_design_of_errors_no_pose_can_see_is_refused_by_name() {
         e.starts_with("parameters: no pose within the travel and the tilt limit sees E_C0C"),
         "{e}"
     );
+    // A measurement of it cannot be identified either: refused at the file (the fit's own
+    // refusal, named for the input it comes from). (Found by cargo-mutants: the fit's error
+    // kept its own field name instead of the file's, and no test saw it.)
+    let e = call(
+        "probeIdentify",
+        &json!({ "machine": bc_table(), "parameters": ["E_C0C"], "fitSphere": false,
+            "csv": "C;B;X;Y;Z\n0;0;0;0;50\n90;0;0;0;50\n0;30;0;0;50\n" }),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("csv: no parameter has any effect"), "{e}");
     // Off the axis it is seen, and identifiable.
     let d = call(
         "probeDesign",
