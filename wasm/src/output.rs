@@ -175,7 +175,7 @@ impl Tape {
         Compound {
             at,
             len: 0,
-            close: None,
+            ends_series: false,
             tape: self,
         }
     }
@@ -235,7 +235,7 @@ struct Compound<'a> {
     at: usize,
     len: u32,
     /// A series' list: the tape's series mode is left at its end.
-    close: Option<()>,
+    ends_series: bool,
 }
 
 impl Compound<'_> {
@@ -251,7 +251,7 @@ impl Compound<'_> {
 
     fn end(self) -> Result<(), Error> {
         self.tape.ops[self.at] = self.len;
-        if self.close.is_some() {
+        if self.ends_series {
             self.tape.series = false;
         }
         Ok(())
@@ -355,7 +355,7 @@ impl<'a> ser::Serializer for &'a mut Tape {
         if self.series {
             self.nums.reserve(len.unwrap_or(0));
             let mut list = self.open(FLOAT64);
-            list.close = Some(());
+            list.ends_series = true;
             return Ok(list);
         }
         Ok(self.open(LIST))
