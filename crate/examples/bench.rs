@@ -7,7 +7,6 @@
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear::{self, Deviation, Move};
 use fiveaxis::rotary::{Pose, RotaryType};
-use fiveaxis::sshape::overcut::ToolPath;
 use fiveaxis::sshape::study::{self, SShapeCase, SShapeDefectsInput};
 use fiveaxis::toolpath::export::{ParsedToolpath, Reading};
 use fiveaxis::toolpath::ToolpathReadInput;
@@ -299,20 +298,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // wasm), checksums the count and the sum of the tips. What `toolpathParse` does, natively:
     // the options read from JSON (the machine built) on each call, the bytes fed to a
     // `Reading`, `finish` (the points flattened, each point's line, angles and commands, the
-    // report). The wasm side then copies the result's series into typed arrays.
-    let read = |bytes: &[u8], options: &Value| -> fiveaxis::Result<ParsedToolpath> {
+    // report), and the result written out as every declared export's is (`api::call`: JSON;
+    // the wasm side writes it into JavaScript objects and typed arrays).
+    let read = |bytes: &[u8], options: &Value| -> fiveaxis::Result<Value> {
         let mut r = Reading::new(ToolpathReadInput::read(options)?);
         r.feed_bytes(bytes)?;
-        r.finish()
+        let parsed: ParsedToolpath = r.finish()?;
+        serde_json::to_value(&parsed)
+            .map_err(|e| fiveaxis::Error::field("toolpathParse", e.to_string()))
     };
-    let sum = |r: &fiveaxis::Result<ParsedToolpath>| {
-        r.as_ref().map_or(f64::NAN, |p| {
-            p.count as f64
-                + p.path
-                    .points
-                    .chunks(6)
-                    .map(|q| q[0] + q[1] + q[2])
-                    .sum::<f64>()
+    let sum = |r: &fiveaxis::Result<Value>| {
+        let count = number(r, "/count");
+        let pts = r
+            .as_ref()
+            .ok()
+            .and_then(|v| v.pointer("/path/points"))
+            .and_then(Value::as_array);
+        pts.map_or(f64::NAN, |p| {
+            let v: Vec<f64> = p.iter().filter_map(Value::as_f64).collect();
+            count + v.chunks(6).map(|q| q[0] + q[1] + q[2]).sum::<f64>()
         })
     };
     let cl = clsf(22_000);
@@ -420,17 +424,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
     );
     // S-shape: the inputs of scripts/bench.mjs.
-    let tool = ToolPath::paper();
+    // The declared export on the same JSON as scripts/bench.mjs, result written out.
+    let overcut = json!({ "tool": { "rTool": 10, "lTool": 35 }, "nu": 261, "nv": 16 });
+    let exact_sum = |r: &fiveaxis::Result<Value>, i: usize| {
+        r.as_ref()
+            .ok()
+            .and_then(|v| v.pointer(&format!("/surfaces/{i}/exact")))
+            .and_then(Value::as_array)
+            .map_or(f64::NAN, |a| a.iter().filter_map(Value::as_f64).sum())
+    };
     report(
         "sshape: overcut maps of A and B (eq 6 + exact), 261 x 16",
         time(
             3,
-            || study::overcut(&tool, 261, 16),
-            |o| {
-                o.as_ref().map_or(f64::NAN, |o| {
-                    o.a.exact.iter().sum::<f64>() + o.b.exact.iter().sum::<f64>()
-                })
-            },
+            || fiveaxis::api::call("sshapeOvercut", &overcut),
+            |r| exact_sum(r, 0) + exact_sum(r, 1),
         ),
     );
     // A new design per run (the engine keeps designs in a cache, so each run uses another
