@@ -39,12 +39,14 @@ fi
 equivalents=mutants-equivalent.txt
 
 # A scope is a module of the engine, named by its path under crate/src: `chain` is
-# crate/src/chain.rs, `cubic` every file under crate/src/cubic/. The scopes are read from the
-# tree, so a new module is a scope without an edit here. (The binding, wasm/src, has no scope:
+# crate/src/chain.rs, `cubic` every file under crate/src/cubic/, `sshape/overcut`
+# crate/src/sshape/overcut.rs (a module inside a study: after an edit, run the file's module
+# again rather than the whole study). The scopes are read from the tree, so a new module is a
+# scope without an edit here. (The binding, wasm/src, has no scope:
 # it holds no mathematics, only the conversion of JavaScript values, which runs under
 # WebAssembly alone and is tested there: wasm/tests, tests/node.)
 files() {
-  [[ "$1" =~ ^[a-z_0-9]+$ ]] || return 1
+  [[ "$1" =~ ^[a-z_0-9]+(/[a-z_0-9]+)*$ ]] || return 1
   if [ -f "crate/src/$1.rs" ]; then echo "crate/src/$1.rs"
   elif [ -d "crate/src/$1" ]; then echo "crate/src/$1/**/*.rs"
   else return 1
@@ -66,9 +68,10 @@ slow() {
     *) return 1 ;;
   esac
 }
+# A nested scope (`sshape/overcut`) runs the tests of its study (`sshape_*`).
 quick() {
   printf -- '--lib'
-  for f in crate/tests/"$1"_*.rs; do
+  for f in crate/tests/"${1%%/*}"_*.rs; do
     [ -e "$f" ] || continue
     t=$(basename "$f" .rs)
     slow "$t" >/dev/null && continue
@@ -81,7 +84,7 @@ every() {
   for f in crate/tests/*.rs; do
     t=$(basename "$f" .rs)
     if scopes_of=$(slow "$t"); then
-      case " $scopes_of " in *" $1 "*) ;; *) continue ;; esac
+      case " $scopes_of " in *" ${1%%/*} "*) ;; *) continue ;; esac
     fi
     printf -- ' --test %s' "$t"
   done
@@ -120,7 +123,7 @@ jobs="${MUTANTS_JOBS:-1}"
 status=0
 summary=()
 for s in "${scopes[@]}"; do
-  out="mutants.out/$s"
+  out="mutants.out/${s//\//.}" # sshape/overcut → mutants.out/sshape.overcut
   say "scope $s: $(files "$s")"
   mkdir -p "$out"
   args=(--package fiveaxis --output "$out" -j "$jobs" --no-shuffle)

@@ -69,6 +69,18 @@ pub struct ToolPath {
     pub l_tool: f64,
 }
 
+/// Positions scanned by [`ToolPath::deviation`] in its window, before the golden section.
+const DEVIATION_SCAN: usize = 40;
+
+/// The tool at the scanned positions of a search window (see [`ToolPath::deviation_in`]).
+struct Scan {
+    lo: f64,
+    hi: f64,
+    step: f64,
+    /// `(u', tool at u')` for `u' = lo + i·step`, `i = 0 … n`.
+    at: Vec<(f64, ToolPoint)>,
+}
+
 /// One tool position.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ToolPoint {
@@ -162,17 +174,35 @@ impl ToolPath {
         hi: f64,
         scan: usize,
     ) -> (f64, f64) {
-        let f = |x: f64| self.clearance(&self.at(surface, x), p);
-        let step = (hi - lo) / scan as f64;
-        let mut best = (f64::INFINITY, lo);
-        for i in 0..=scan {
-            let x = lo + step * i as f64;
-            let y = f(x);
+        self.nearest(surface, p, &self.scan(surface, lo, hi, scan))
+    }
+
+    /// The tool at the `n + 1` equally spaced positions `lo + i·(hi − lo)/n` of a search
+    /// window: computed once for every surface point whose window it is (the points of one `u`).
+    fn scan(&self, surface: &Surface, lo: f64, hi: f64, n: usize) -> Scan {
+        let step = (hi - lo) / n as f64;
+        let at = (0..=n)
+            .map(|i| {
+                let x = lo + step * i as f64;
+                (x, self.at(surface, x))
+            })
+            .collect();
+        Scan { lo, hi, step, at }
+    }
+
+    /// [`Self::deviation_in`] over a scan already made: the smallest clearance of `p` at the
+    /// scanned positions, refined by golden section within a step of the best one.
+    fn nearest(&self, surface: &Surface, p: &Vector3<f64>, scan: &Scan) -> (f64, f64) {
+        let mut best = (f64::INFINITY, scan.lo);
+        for (x, t) in &scan.at {
+            let y = self.clearance(t, p);
             if y < best.0 {
-                best = (y, x);
+                best = (y, *x);
             }
         }
-        let (a, b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
+        let f = |x: f64| self.clearance(&self.at(surface, x), p);
+        let a = (best.1 - scan.step).max(scan.lo);
+        let b = (best.1 + scan.step).min(scan.hi);
         let x = crate::numeric::golden_max(|x| -f(x), a, b);
         let y = f(x);
         if y < best.0 {
@@ -181,11 +211,16 @@ impl ToolPath {
         best
     }
 
+    /// The search window of the surface points at `u`: `u ± GOUGE_WINDOW` within `[0, 1]`.
+    fn window(u: f64) -> (f64, f64) {
+        ((u - GOUGE_WINDOW).max(0.0), (u + GOUGE_WINDOW).min(1.0))
+    }
+
     /// The exact deviation at the surface point `(u, v)` (window of [`GOUGE_WINDOW`]), mm.
     pub fn deviation(&self, surface: &Surface, u: f64, v: f64) -> f64 {
-        let p = surface.point(u, v);
-        let (lo, hi) = ((u - GOUGE_WINDOW).max(0.0), (u + GOUGE_WINDOW).min(1.0));
-        self.deviation_in(surface, &p, lo, hi, 40).0
+        let (lo, hi) = Self::window(u);
+        self.deviation_in(surface, &surface.point(u, v), lo, hi, DEVIATION_SCAN)
+            .0
     }
 
     /// Section 3.2: the deviation (mm, negative = inwards) at `(u, v)` caused by a real tool
@@ -292,12 +327,15 @@ pub fn overcut_map(path: &ToolPath, surface: &Surface, nu: usize, nv: usize) -> 
     let mut exact = vec![0.0; nu * nv];
     for (iu, &uu) in u.iter().enumerate() {
         let t = path.at(surface, uu);
+        // Every point of this u searches the same window: the tool's positions scanned once.
+        let (lo, hi) = ToolPath::window(uu);
+        let scan = path.scan(surface, lo, hi, DEVIATION_SCAN);
         for (iv, &vv) in v.iter().enumerate() {
             let h = path.height(&t, vv);
             let k = iv * nu + iu;
             eq6_paper[k] = path.r_tool * (1.0 - path.sin_theta(&t, h, Basis::Paper));
             eq6[k] = path.r_tool * (1.0 - path.sin_theta(&t, h, Basis::Orthonormal));
-            exact[k] = path.deviation(surface, uu, vv);
+            exact[k] = path.nearest(surface, &surface.point(uu, vv), &scan).0;
         }
     }
     Ok(OvercutMap {
