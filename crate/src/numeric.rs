@@ -1,12 +1,17 @@
 //! Small numerical helpers shared by the studies.
 
-/// Maximises a unimodal `f` on `[a, b]` by golden-section search to 1e-13.
+/// Maximises a unimodal `f` on `[a, b]` by golden-section search to 1e-13: each step keeps
+/// `(√5 − 1)/2` of the bracket, so a bracket of width `w` takes `⌈ln(w/1e-13)/ln φ⌉` steps.
+/// At most [`GOLDEN_STEPS`]: where doubles lie further apart than 1e-13 (`|x| ≥ 512`) the
+/// bracket cannot shrink to it, and the search stops with the bracket as narrow as it gets.
 pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     let r = (5f64.sqrt() - 1.0) / 2.0;
     let mut c = b - r * (b - a);
     let mut d = a + r * (b - a);
     let (mut fc, mut fd) = (f(c), f(d));
-    while b - a > 1e-13 {
+    let mut steps = 0;
+    while b - a > 1e-13 && steps < GOLDEN_STEPS {
+        steps += 1;
         if fc > fd {
             b = d;
             d = c;
@@ -23,6 +28,9 @@ pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 
     }
     0.5 * (a + b)
 }
+
+/// The most steps of [`golden_max`]: enough for a bracket of 10¹⁰ (129 steps).
+const GOLDEN_STEPS: usize = 200;
 
 /// A nonlinear least-squares fit by [`levenberg_marquardt`].
 #[derive(Debug, Clone)]
@@ -182,4 +190,180 @@ pub(crate) fn levenberg_marquardt(
         sigma: s2.sqrt(),
         iterations,
     })
+}
+
+/// The helpers against closed forms (found by cargo-mutants, scope `numeric`: the module had no
+/// tests of its own; the studies' tests reach it only through their results).
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn golden_section_finds_the_maximum_of_unimodal_functions_to_1e_12() {
+        // A parabola with its top anywhere in the bracket, at the ends included.
+        for top in [-2.0, -1.3, 0.0, 0.37, 1.999_999, 2.0] {
+            let x = golden_max(|x| -(x - top) * (x - top), -2.0, 2.0);
+            assert!((x - top).abs() < 1e-12, "top {top}: {x}");
+        }
+        // An asymmetric one: x·e^(−x) is largest at x = 1.
+        let x = golden_max(|x| x * (-x).exp(), 0.0, 7.0);
+        assert!((x - 1.0).abs() < 1e-7, "{x}"); // flat top: f'' = −1/e, f to 1e-16
+                                                // Far from zero, where doubles lie 1.1e-13 apart: the bracket never gets under 1e-13,
+                                                // and the search still ends, as close as doubles allow.
+        let x = golden_max(|x| -(x - 1000.123_456).abs(), 1000.1, 1000.2);
+        assert!((x - 1000.123_456).abs() < 1e-12, "{x}");
+    }
+
+    #[test]
+    fn golden_section_takes_the_golden_ratio_s_number_of_evaluations() {
+        // Each step keeps 0.618… of the bracket: from 4 to 1e-13, ⌈ln(4e13)/ln φ⌉ = 66 steps,
+        // one evaluation each, after the first two.
+        let count = std::cell::Cell::new(0);
+        golden_max(
+            |x| {
+                count.set(count.get() + 1);
+                -x * x
+            },
+            -2.0,
+            2.0,
+        );
+        let phi = (1.0 + 5f64.sqrt()) / 2.0;
+        let steps = ((4.0 / 1e-13_f64).ln() / phi.ln()).ceil() as usize;
+        assert!(
+            (steps + 1..=steps + 3).contains(&count.get()),
+            "{} evaluations, {steps} steps expected",
+            count.get()
+        );
+    }
+
+    /// A straight line `y = a + b·t` fitted to `(t, y)` by the normal equations: `(a, b)`,
+    /// `s²` and the covariance `s²·(AᵀA)⁻¹` in closed form.
+    fn line(t: &[f64], y: &[f64]) -> ([f64; 2], f64, [f64; 4]) {
+        let n = t.len() as f64;
+        let (st, sy) = (t.iter().sum::<f64>(), y.iter().sum::<f64>());
+        let stt = t.iter().map(|v| v * v).sum::<f64>();
+        let sty = t.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+        let det = n * stt - st * st;
+        let b = (n * sty - st * sy) / det;
+        let a = (sy - b * st) / n;
+        let ss = t
+            .iter()
+            .zip(y)
+            .map(|(t, y)| (y - a - b * t).powi(2))
+            .sum::<f64>();
+        let s2 = ss / (n - 2.0);
+        (
+            [a, b],
+            s2,
+            [s2 * stt / det, -s2 * st / det, -s2 * st / det, s2 * n / det],
+        )
+    }
+
+    fn data() -> (Vec<f64>, Vec<f64>) {
+        let t: Vec<f64> = (0..12).map(|i| i as f64 * 0.5).collect();
+        // y = 2 − 0.7 t with a fixed ±0.05 scatter.
+        let y = t
+            .iter()
+            .enumerate()
+            .map(|(i, t)| 2.0 - 0.7 * t + 0.05 * [1.0, -1.0, 0.5, -0.3][i % 4])
+            .collect();
+        (t, y)
+    }
+
+    #[test]
+    fn least_squares_of_a_line_are_the_normal_equations() {
+        let (t, y) = data();
+        let model = |x: &[f64]| Ok(t.iter().zip(&y).map(|(t, y)| y - x[0] - x[1] * t).collect());
+        let fit = levenberg_marquardt(model, &[0.0, 0.0], &[1e-6, 1e-6], 50).unwrap();
+        let (x, s2, cov) = line(&t, &y);
+        for k in 0..2 {
+            assert!(
+                (fit.x[k] - x[k]).abs() < 1e-8,
+                "x[{k}] {} vs {}",
+                fit.x[k],
+                x[k]
+            );
+        }
+        assert!(
+            (fit.sigma - s2.sqrt()).abs() < 1e-9 * s2.sqrt(),
+            "{} {}",
+            fit.sigma,
+            s2.sqrt()
+        );
+        for k in 0..4 {
+            assert!(
+                (fit.covariance[k] - cov[k]).abs() < 1e-6 * cov[k].abs(),
+                "cov[{k}] {} vs {}",
+                fit.covariance[k],
+                cov[k]
+            );
+        }
+        // The residuals returned are those at the minimum.
+        for (i, r) in fit.residuals.iter().enumerate() {
+            assert!((r - (y[i] - x[0] - x[1] * t[i])).abs() < 1e-8);
+        }
+        assert!(
+            fit.iterations >= 1 && fit.iterations < 50,
+            "{}",
+            fit.iterations
+        );
+    }
+
+    #[test]
+    fn least_squares_reach_a_nonlinear_minimum_from_afar_and_stop_there() {
+        // y = a·e^(−b·t) exactly: the fit recovers (a, b) and a zero scatter.
+        let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
+        let y: Vec<f64> = t.iter().map(|t| 3.0 * (-0.8 * t).exp()).collect();
+        let model = |x: &[f64]| {
+            Ok(t.iter()
+                .zip(&y)
+                .map(|(t, y)| y - x[0] * (-x[1] * t).exp())
+                .collect())
+        };
+        let fit = levenberg_marquardt(model, &[1.0, 0.1], &[1e-7, 1e-7], 100).unwrap();
+        assert!(
+            (fit.x[0] - 3.0).abs() < 1e-7 && (fit.x[1] - 0.8).abs() < 1e-7,
+            "{:?}",
+            fit.x
+        );
+        assert!(fit.sigma < 1e-7, "{}", fit.sigma);
+        // One iteration is not enough from there.
+        assert_eq!(
+            levenberg_marquardt(model, &[1.0, 0.1], &[1e-7, 1e-7], 1).unwrap_err(),
+            LsqFailure::NoConvergence
+        );
+    }
+
+    #[test]
+    fn least_squares_refuse_what_the_data_cannot_determine() {
+        let (t, y) = data();
+        // Fewer data than parameters + 1.
+        let two = |x: &[f64]| Ok(vec![1.0 - x[0], 2.0 - x[1]]);
+        assert_eq!(
+            levenberg_marquardt(two, &[0.0, 0.0], &[1e-6; 2], 20).unwrap_err(),
+            LsqFailure::TooFewData
+        );
+        // A parameter the model ignores: that one is named.
+        let ignores = |x: &[f64]| Ok(t.iter().zip(&y).map(|(t, y)| y - x[0] - x[2] * t).collect());
+        assert_eq!(
+            levenberg_marquardt(ignores, &[0.0; 3], &[1e-6; 3], 50).unwrap_err(),
+            LsqFailure::Undetermined(1)
+        );
+        // Two parameters with the same effect (only their sum is seen): undetermined, the
+        // index one of the two.
+        let sum = |x: &[f64]| {
+            Ok(t.iter()
+                .zip(&y)
+                .map(|(t, y)| y - x[0] - x[1] - x[2] * t)
+                .collect())
+        };
+        let e = levenberg_marquardt(sum, &[0.0; 3], &[1e-6; 3], 50).unwrap_err();
+        assert!(matches!(e, LsqFailure::Undetermined(0 | 1)), "{e:?}");
+        // The model's own error is passed on.
+        let fails = |_: &[f64]| Err(crate::Error::field("model", "broken"));
+        assert_eq!(
+            levenberg_marquardt(fails, &[0.0], &[1e-6], 5).unwrap_err(),
+            LsqFailure::Model(crate::Error::field("model", "broken"))
+        );
+    }
 }
