@@ -210,8 +210,8 @@ mod tests {
         assert!((x - 1.0).abs() < 1e-7, "{x}"); // flat top: f'' = −1/e, f to 1e-16
                                                 // Far from zero, where doubles lie 1.1e-13 apart: the bracket never gets under 1e-13,
                                                 // and the search still ends, as close as doubles allow.
-        let x = golden_max(|x| -(x - 1000.123_456).abs(), 1000.1, 1000.2);
-        assert!((x - 1000.123_456).abs() < 1e-12, "{x}");
+        let x = golden_max(|x| -(x - 1_000.123_456).abs(), 1000.1, 1000.2);
+        assert!((x - 1_000.123_456).abs() < 1e-12, "{x}");
     }
 
     #[test]
@@ -276,13 +276,8 @@ mod tests {
         let model = |x: &[f64]| Ok(t.iter().zip(&y).map(|(t, y)| y - x[0] - x[1] * t).collect());
         let fit = levenberg_marquardt(model, &[0.0, 0.0], &[1e-6, 1e-6], 50).unwrap();
         let (x, s2, cov) = line(&t, &y);
-        for k in 0..2 {
-            assert!(
-                (fit.x[k] - x[k]).abs() < 1e-8,
-                "x[{k}] {} vs {}",
-                fit.x[k],
-                x[k]
-            );
+        for (got, want) in fit.x.iter().zip(x) {
+            assert!((got - want).abs() < 1e-8, "x {got} vs {want}");
         }
         assert!(
             (fit.sigma - s2.sqrt()).abs() < 1e-9 * s2.sqrt(),
@@ -290,12 +285,10 @@ mod tests {
             fit.sigma,
             s2.sqrt()
         );
-        for k in 0..4 {
+        for (got, want) in fit.covariance.iter().zip(cov) {
             assert!(
-                (fit.covariance[k] - cov[k]).abs() < 1e-6 * cov[k].abs(),
-                "cov[{k}] {} vs {}",
-                fit.covariance[k],
-                cov[k]
+                (got - want).abs() < 1e-6 * want.abs(),
+                "cov {got} vs {want}"
             );
         }
         // The residuals returned are those at the minimum.
