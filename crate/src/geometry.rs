@@ -155,10 +155,50 @@ mod tests {
     }
 
     #[test]
+    fn axes_have_their_index_letter_unit_and_third() {
+        let names = [(Axis::X, 0, 'X'), (Axis::Y, 1, 'Y'), (Axis::Z, 2, 'Z')];
+        for (axis, i, letter) in names {
+            assert_eq!(axis.index(), i);
+            assert_eq!(axis.letter(), letter);
+            let mut unit = Vector3::zeros();
+            unit[i] = 1.0;
+            assert_eq!(axis.unit(), unit);
+        }
+        // The third axis completes the pair, in either order: its unit is ± their cross product.
+        for a in Axis::ALL {
+            for b in Axis::ALL.into_iter().filter(|b| *b != a) {
+                let t = a.third(b);
+                assert!(t != a && t != b, "{a:?} {b:?} → {t:?}");
+                assert_eq!(a.unit().cross(&b.unit()).abs(), t.unit());
+            }
+        }
+    }
+
+    #[test]
+    fn angle_between_is_accurate_near_parallel_and_opposite() {
+        let x = Vector3::new(2.0, 0.0, 0.0);
+        for t in [1e-9, 1e-4, 0.5, 1.0, 2.0, std::f64::consts::PI - 1e-9] {
+            let v = Vector3::new(t.cos(), t.sin(), 0.0) * 3.0;
+            let got = angle_between(&x, &v);
+            assert!((got - t).abs() < 1e-15 * (1.0 + t) + 1e-24, "{t}: {got}");
+        }
+        assert_eq!(angle_between(&x, &(-x)), std::f64::consts::PI);
+        assert_eq!(angle_between(&x, &x), 0.0);
+    }
+
+    #[test]
     fn wrap_pi_range() {
         use std::f64::consts::PI;
         assert!((wrap_pi(3.0 * PI) - PI).abs() < 1e-12);
         assert!((wrap_pi(-PI) - PI).abs() < 1e-12);
         assert!((wrap_pi(0.5 - 4.0 * PI) - 0.5).abs() < 1e-12);
+        // (−π, π]: π stays, −π becomes π, angles just inside stay as they are.
+        assert_eq!(wrap_pi(PI), PI);
+        assert_eq!(wrap_pi(-PI), PI);
+        for a in [PI - 1e-12, -PI + 1e-12, 0.0, 1.0, -1.0] {
+            assert_eq!(wrap_pi(a), a);
+        }
+        assert!((wrap_pi(PI + 0.25) - (0.25 - PI)).abs() < 1e-15);
+        assert!((wrap_pi(-PI - 0.25) - (PI - 0.25)).abs() < 1e-15);
     }
 }
