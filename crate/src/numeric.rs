@@ -320,6 +320,19 @@ mod tests {
             fit.x
         );
         assert!(fit.sigma < 1e-7, "{}", fit.sigma);
+        // `max_iter` caps the iterations: as many as the fit took are enough, one fewer not.
+        let n = fit.iterations;
+        assert!(n > 2, "{n}");
+        assert_eq!(
+            levenberg_marquardt(model, &[1.0, 0.1], &[1e-7, 1e-7], n)
+                .unwrap()
+                .iterations,
+            n
+        );
+        assert_eq!(
+            levenberg_marquardt(model, &[1.0, 0.1], &[1e-7, 1e-7], n - 1).unwrap_err(),
+            LsqFailure::NoConvergence
+        );
         // One iteration is not enough from there.
         assert_eq!(
             levenberg_marquardt(model, &[1.0, 0.1], &[1e-7, 1e-7], 1).unwrap_err(),
