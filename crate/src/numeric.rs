@@ -410,6 +410,32 @@ mod tests {
     }
 
     #[test]
+    fn least_squares_do_not_depend_on_a_parameter_s_unit() {
+        // Marquardt's damping scales with diag(JᵀJ): the same fit with b in thousandths (and
+        // its difference step with it) takes the same iterations to the same minimum.
+        let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
+        let y: Vec<f64> = t.iter().map(|t| 3.0 * (-0.8 * t).exp()).collect();
+        let fit_in = |unit: f64| {
+            let model = |x: &[f64]| -> crate::Result<Vec<f64>> {
+                Ok(t.iter()
+                    .zip(&y)
+                    .map(|(t, y)| y - x[0] * (-x[1] * unit * t).exp())
+                    .collect())
+            };
+            levenberg_marquardt(model, &[1.0, 0.1 / unit], &[1e-7, 1e-7 / unit], 100).unwrap()
+        };
+        let (one, milli) = (fit_in(1.0), fit_in(1e-3));
+        assert_eq!(one.iterations, milli.iterations);
+        assert!(
+            (milli.x[1] * 1e-3 - one.x[1]).abs() < 1e-9,
+            "{:?} {:?}",
+            one.x,
+            milli.x
+        );
+        assert!((milli.x[0] - one.x[0]).abs() < 1e-9);
+    }
+
+    #[test]
     fn least_squares_refuse_what_the_data_cannot_determine() {
         let (t, y) = data();
         // Fewer data than parameters + 1.
