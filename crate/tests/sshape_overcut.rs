@@ -175,6 +175,28 @@ fn the_exact_search_window_holds_the_nearest_tool_position() {
     }
 }
 
+/// `deviation(u, v)` is the search of `u' ∈ [u − GOUGE_WINDOW, u + GOUGE_WINDOW] ∩ [0, 1]` with
+/// 40 scan steps, as documented: the same number, bit for bit, as that search asked directly
+/// (found by cargo-mutants: a window of the whole path gave the same value within the test
+/// above's 1e-10, and nothing asked for the window itself).
+#[test]
+fn the_exact_deviation_searches_the_documented_window() {
+    use fiveaxis::sshape::overcut::GOUGE_WINDOW;
+    let part = Part::standard().unwrap();
+    let path = ToolPath::paper();
+    for id in SurfaceId::BOTH {
+        let s = part.surface(id);
+        for u in [0.0, 0.01, 0.3046, 0.5, 0.99, 1.0] {
+            for v in [0.0, 0.5, 1.0] {
+                let p = s.point(u, v);
+                let (lo, hi) = ((u - GOUGE_WINDOW).max(0.0), (u + GOUGE_WINDOW).min(1.0));
+                let direct = path.deviation_in(s, &p, lo, hi, 40).0;
+                assert_eq!(path.deviation(s, u, v), direct, "u {u} v {v}");
+            }
+        }
+    }
+}
+
 #[test]
 fn overcut_maxima_eq6_and_exact_against_the_papers_0_0387_and_0_0125_mm() {
     let part = Part::standard().unwrap();
