@@ -42,9 +42,9 @@ equivalents=mutants-equivalent.txt
 # crate/src/chain.rs, `cubic` every file under crate/src/cubic/, `sshape/overcut`
 # crate/src/sshape/overcut.rs (a module inside a study: after an edit, run the file's module
 # again rather than the whole study). The scopes are read from the tree, so a new module is a
-# scope without an edit here. (The binding, wasm/src, has no scope:
-# it holds no mathematics, only the conversion of JavaScript values, which runs under
-# WebAssembly alone and is tested there: wasm/tests, tests/node.)
+# scope without an edit here. (The binding, wasm/src, has no scope: it holds no mathematics,
+# only the conversion of JavaScript values, which runs under WebAssembly alone and is tested
+# there: wasm/tests, tests/node.)
 files() {
   [[ "$1" =~ ^[a-z_0-9]+(/[a-z_0-9]+)*$ ]] || return 1
   if [ -f "crate/src/$1.rs" ]; then echo "crate/src/$1.rs"
