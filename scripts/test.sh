@@ -41,7 +41,7 @@ cargo clippy --workspace --all-targets -q -- -D warnings
 cargo clippy --workspace --target wasm32-unknown-unknown -q -- -D warnings
 
 step "native engine tests"
-cargo test --workspace --release -q
+cargo test --workspace --profile test-opt -q
 
 step "wasm tests in headless Node (wasm-bindgen-test)"
 wasm-pack test --node wasm --test 'wasm_*'
