@@ -8,7 +8,6 @@
 # What it may install (and how):
 #   - the wasm32-unknown-unknown target       (rustup)
 #   - wasm-bindgen-cli at the exact version of wasm-bindgen in Cargo.lock (cargo install)
-#   - wasm-pack                                (cargo install --locked)
 #   - wasm-opt comes from the npm package binaryen (node_modules/.bin, on PATH in npm scripts):
 #     Debian's binaryen 108 corrupts the externref table that wasm-bindgen 0.2.130 emits.
 #   - chromium, with --test                    (Debian package chromium)
@@ -49,13 +48,10 @@ if [ "$have_bindgen" != "$bindgen_version" ]; then
   cargo_install wasm-bindgen-cli --version "=$bindgen_version" --force
 fi
 
-# 3. wasm-pack (its own downloads of wasm-bindgen and wasm-opt are not used: both are on PATH).
-if ! command -v wasm-pack >/dev/null; then
-  say "installing wasm-pack; this takes a few minutes"
-  cargo_install wasm-pack
-fi
+# (No wasm-pack: scripts/build-wasm.sh runs cargo, wasm-bindgen and wasm-opt itself, and the
+# wasm tests run under cargo test with wasm-bindgen's test runner. Installing it took minutes.)
 
-# 4. Debian packages: for the tests, chromium and Ghostscript.
+# 3. Debian packages: for the tests, chromium and Ghostscript.
 apt_pkgs=()
 if [ "$want_browser" = 1 ] && [ ! -x /usr/bin/chromium ]; then apt_pkgs+=(chromium); fi
 if [ "$want_browser" = 1 ] && ! command -v gs >/dev/null; then apt_pkgs+=(ghostscript); fi
@@ -67,7 +63,7 @@ if [ "${#apt_pkgs[@]}" -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${apt_pkgs[@]}" >/dev/null
 fi
 
-# 5. npm packages, when node_modules is missing or older than the lock file.
+# 4. npm packages, when node_modules is missing or older than the lock file.
 if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   say "installing npm packages (npm ci)"
   npm ci --no-audit --no-fund

@@ -2,7 +2,8 @@
 # `npm test`: every test there is, in order of speed. Installs what is missing first.
 #   1. lint: rustfmt and clippy (native and wasm32)
 #   2. native engine tests (cargo test)
-#   3. the exported API as WebAssembly in headless Node (wasm-bindgen-test via wasm-pack)
+#   3. the exported API as WebAssembly in headless Node (wasm-bindgen-test: cargo test for
+#      wasm32 with wasm-bindgen's test runner)
 #   4. build the page (engine to wasm, TypeScript check, Vite)
 #   5. Node tests of the built JS API, and browser end-to-end tests in Debian's Chromium (one
 #      Chromium for all of them, three test files at a time: tests/run.mjs)
@@ -44,7 +45,8 @@ step "native engine tests"
 cargo test --workspace --profile test-opt -q
 
 step "wasm tests in headless Node (wasm-bindgen-test)"
-wasm-pack test --node wasm --test 'wasm_*'
+WASM_BINDGEN_TEST_ONLY_NODE=1 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
+  cargo test --target wasm32-unknown-unknown -p fiveaxis-wasm --test 'wasm_*'
 
 step "build the page"
 npm run --silent build
