@@ -46,7 +46,7 @@ cargo test --workspace --profile test-opt -q
 
 step "wasm tests in headless Node (wasm-bindgen-test)"
 WASM_BINDGEN_TEST_ONLY_NODE=1 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
-  cargo test --target wasm32-unknown-unknown -p fiveaxis-wasm --test 'wasm_*'
+  cargo test --profile test-opt --target wasm32-unknown-unknown -p fiveaxis-wasm --test 'wasm_*'
 
 step "build the page"
 npm run --silent build
