@@ -123,8 +123,8 @@ function preloadEngine(): Plugin {
 }
 
 // The page lives in www/, static assets (presets, sample data) in public/, the engine package
-// that scripts/build-wasm.sh builds in wasm/pkg/. `npm run build` writes a self-contained static folder
-// dist/ that any static file server can host (relative paths, no server-side code).
+// that scripts/build-wasm.sh builds in wasm/pkg/. `npm run build` writes a self-contained static
+// folder dist/ that any static file server can host (relative paths, no server-side code).
 export default defineConfig({
   root: 'www',
   base: './',

@@ -54,7 +54,6 @@ async function settle(page, scope) {
   return drawCounts(page, scope);
 }
 
-const message = (page, id) => page.$eval(`#${id}`, (e) => e.closest('.field')?.querySelector('.field-msg')?.textContent ?? '');
 /** The numeric fields shown in `scope`. */
 const numericFields = (page, scope) =>
   page.$$eval(`${scope} input[data-number]`, (es) => es.filter((e) => !e.closest('[hidden]')).map((e) => e.id));

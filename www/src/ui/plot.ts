@@ -242,8 +242,8 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
     modeBarButtonsToRemove: ['select2d', 'lasso2d'],
     // The 3D views (WebGL) at the screen's own pixel ratio, antialiased by the browser, instead of
     // Plotly's fixed 2: on a screen of ratio 1 that is a quarter of the pixels to shade at every
-    // redraw (on a software renderer, as in the headless test browser, the largest part of the
-    // page's work), and on a phone of ratio 3 the views are as sharp as the screen.
+    // redraw (on a software renderer, as in the headless test browser, WebGL was about a quarter
+    // of the browser's work), and on a phone of ratio 3 the views are as sharp as the screen.
     plotGlPixelRatio: Math.min(4, Math.max(1, window.devicePixelRatio || 1)),
   };
   el.setAttribute('role', 'figure');
