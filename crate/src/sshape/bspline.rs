@@ -26,6 +26,16 @@ use nalgebra::Vector3;
 /// Largest degree supported (the S-shape uses 3).
 pub const MAX_DEGREE: usize = 5;
 
+/// `num/den`, or 0 where `den` is 0 (the recursion's convention for a zero-length knot span).
+#[inline(always)]
+fn ratio(num: f64, den: f64) -> f64 {
+    if den == 0.0 {
+        0.0
+    } else {
+        num / den
+    }
+}
+
 /// A B-spline curve in 3D (mm).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BSpline {
@@ -175,7 +185,6 @@ impl BSpline {
         // levels[d][j]: N_(s−p+j, d) for j in p−d ..= p (others zero).
         let mut levels = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
         levels[0][p] = 1.0;
-        let ratio = |num: f64, den: f64| if den == 0.0 { 0.0 } else { num / den };
         for d in 1..=p {
             for j in (p - d)..=p {
                 let i = s + j - p; // global index
@@ -187,7 +196,17 @@ impl BSpline {
             }
         }
         // Derivative of N_(i,d) from the degree d−1 values `lower` (entry j ↔ N_(s−p+j, d−1)).
-        let derive = |d: usize, lower: &[f64; MAX_DEGREE + 1], j: usize| -> f64 {
+        // A function always inlined rather than a closure: called 3(p + 1) times a point, a
+        // call each costs more than its arithmetic, under WebAssembly most.
+        #[inline(always)]
+        fn derive(
+            t: &[f64],
+            s: usize,
+            p: usize,
+            d: usize,
+            lower: &[f64; MAX_DEGREE + 1],
+            j: usize,
+        ) -> f64 {
             let i = s + j - p;
             let a = ratio(lower[j], t[i + d] - t[i]);
             let b = if j < p {
@@ -196,7 +215,7 @@ impl BSpline {
                 0.0
             };
             d as f64 * (a - b)
-        };
+        }
         let mut n = [0.0; MAX_DEGREE + 1];
         let mut d1 = [0.0; MAX_DEGREE + 1];
         let mut d2 = [0.0; MAX_DEGREE + 1];
@@ -204,13 +223,17 @@ impl BSpline {
         let mut d1_lower = [0.0; MAX_DEGREE + 1];
         if p >= 2 {
             for (j, d) in d1_lower.iter_mut().enumerate().take(p + 1) {
-                *d = derive(p - 1, &levels[p - 2], j);
+                *d = derive(t, s, p, p - 1, &levels[p - 2], j);
             }
         }
         for j in 0..=p {
             n[j] = levels[p][j];
-            d1[j] = derive(p, &levels[p - 1], j);
-            d2[j] = if p >= 2 { derive(p, &d1_lower, j) } else { 0.0 };
+            d1[j] = derive(t, s, p, p, &levels[p - 1], j);
+            d2[j] = if p >= 2 {
+                derive(t, s, p, p, &d1_lower, j)
+            } else {
+                0.0
+            };
         }
         (n, d1, d2)
     }
