@@ -349,3 +349,74 @@ fn bad_traces_name_their_line() {
     .to_string();
     assert!(e.starts_with("radius: give the ball-bar's length"), "{e}");
 }
+
+/// The radius and the feed are 0 (read from the file's header) or at least 1 mm and 1 mm/min:
+/// a value between is refused with the field's name, 0 and 1 are accepted.
+// Found by cargo-mutants: `BallbarInput::check`'s bounds (and the whole check) were untested
+// natively (the page's field validation tests them through the schema's limits only).
+#[test]
+fn radius_and_feed_are_zero_or_at_least_one() {
+    let csv = trace(Faults::default(), 0.0, 1);
+    for field in ["radius", "feed"] {
+        for (v, accepted) in [
+            (0.0, true),
+            (0.5, false),
+            (0.999, false),
+            (1.0, true),
+            (50.0, true),
+        ] {
+            let got = BallbarInput::read(&json!({ "csv": csv, field: v }));
+            match got {
+                Ok(_) => assert!(accepted, "{field} = {v} accepted"),
+                Err(e) => {
+                    assert!(!accepted, "{field} = {v} refused: {e}");
+                    assert!(e.to_string().starts_with(&format!("{field}: ")), "{e}");
+                    assert!(e.to_string().contains("at least 1"), "{e}");
+                }
+            }
+        }
+    }
+}
+
+/// A trace sampled on the reversal points themselves (every whole degree: 0°, 90°, 180° and
+/// 270° included). At a reversal the axis stands still between its two directions, so the
+/// lost motion is split: no offset there (the model's `sgn` is 0 at the reversal). The
+/// backlash is recovered as from a trace between the reversals, to second order in `b/R`.
+// Found by cargo-mutants: the model's `sgn` tested against 0 at exactly the reversal (`==`
+// instead of `<` 1e-12: sin 0 = 0 then counts as a direction, and sin 180° = 1.2e-16 too).
+#[test]
+fn backlash_sampled_on_the_reversals() {
+    let (bu, bv) = (0.01, 0.006);
+    let mut csv = format!("# radius: {R} mm\nangle (deg); deviation (mm); direction\n");
+    for (d, name) in [(1.0, "ccw"), (-1.0, "cw")] {
+        for k in 0..360 {
+            let th = (k as f64).to_radians();
+            // Direction of travel of u (−d·sin θ) and v (d·cos θ), 0 at their reversals by
+            // construction (k = 0, 180 for u; 90, 270 for v), not by the rounding of sin, cos.
+            let su = if k % 180 == 0 {
+                0.0
+            } else {
+                -d * th.sin().signum()
+            };
+            let sv = if k % 180 == 90 {
+                0.0
+            } else {
+                d * th.cos().signum()
+            };
+            let (u, v) = (R * th.cos() - 0.5 * bu * su, R * th.sin() - 0.5 * bv * sv);
+            csv.push_str(&format!("{k}; {}; {name}\n", u.hypot(v) - R));
+        }
+    }
+    let d = run(&csv).diagnostics;
+    // Second-order terms: (b/2)²/R ≈ 2.5e-7 mm.
+    assert!(
+        (value(&d.backlash_u) - bu).abs() < 2e-6,
+        "{:?}",
+        d.backlash_u
+    );
+    assert!(
+        (value(&d.backlash_v) - bv).abs() < 2e-6,
+        "{:?}",
+        d.backlash_v
+    );
+}
