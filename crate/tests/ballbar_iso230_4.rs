@@ -420,3 +420,86 @@ fn backlash_sampled_on_the_reversals() {
         d.backlash_v
     );
 }
+
+/// The radius and the feed given as inputs override the file's `# radius:` and `# feed:`
+/// lines; the file's feed is checked only when it is the one used.
+// Found by cargo-mutants: which of the two values wins was untested (`>` as `<`, `==` as `!=`).
+#[test]
+fn the_inputs_radius_and_feed_override_the_files() {
+    let f = Faults {
+        squareness: 50e-6,
+        lag: 0.002,
+        ..Default::default()
+    };
+    let csv = trace(f, 0.0, 3);
+    let from_file = run(&csv);
+    assert_eq!((from_file.radius, from_file.feed), (R, Some(FEED)));
+    let given = |extra: serde_json::Value| {
+        let mut input = json!({ "csv": csv });
+        for (k, v) in extra.as_object().unwrap() {
+            input[k] = v.clone();
+        }
+        BallbarInput::read(&input).and_then(|i| evaluate(&i))
+    };
+    let b = given(json!({ "radius": 2.0 * R, "feed": 2.0 * FEED })).unwrap();
+    assert_eq!((b.radius, b.feed), (2.0 * R, Some(2.0 * FEED)));
+    // The same sin 2θ coefficient read on twice the radius: half the squareness (µm/m); the
+    // servo mismatch τ = 2c/(R·ω) with ω = F/R: the feed doubled, half the lag.
+    let sq = |b: &Ballbar| value(&b.diagnostics.squareness);
+    let servo = |b: &Ballbar| value(&b.diagnostics.servo_mismatch);
+    assert!(
+        (sq(&b) - sq(&from_file) / 2.0).abs() < 1e-9,
+        "{} {}",
+        sq(&b),
+        sq(&from_file)
+    );
+    assert!(
+        (servo(&b) - servo(&from_file) / 2.0).abs() < 1e-9,
+        "{} {}",
+        servo(&b),
+        servo(&from_file)
+    );
+
+    // A file whose feed is out of range: refused when it is used, ignored when the input gives
+    // the feed.
+    let slow = csv.replace("# feed: 1000 mm/min", "# feed: 0.5 mm/min");
+    assert_ne!(slow, csv);
+    let e = evaluate(&BallbarInput::read(&json!({ "csv": slow })).unwrap()).unwrap_err();
+    assert!(
+        e.to_string().starts_with("csv: the file's feed must be"),
+        "{e}"
+    );
+    let b = evaluate(&BallbarInput::read(&json!({ "csv": slow, "feed": FEED })).unwrap()).unwrap();
+    assert_eq!(b.feed, Some(FEED));
+}
+
+/// A trace run one way only (CCW or CW): its own G, no G of the other direction, and no
+/// hysteresis (it needs both).
+// Found by cargo-mutants: `both` directions tested as CW twice.
+#[test]
+fn one_direction_has_no_hysteresis() {
+    let csv = trace(
+        Faults {
+            backlash: [0.004, 0.0],
+            ..Default::default()
+        },
+        0.0,
+        4,
+    );
+    for (keep, other) in [("ccw", "cw"), ("cw", "ccw")] {
+        let one: String = csv
+            .lines()
+            .filter(|l| !l.ends_with(&format!("; {other}")))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let b = run(&one);
+        assert_eq!(b.h, None, "{keep} only");
+        let (mine, theirs) = if keep == "ccw" {
+            (b.g_ccw, b.g_cw)
+        } else {
+            (b.g_cw, b.g_ccw)
+        };
+        assert_eq!(theirs, None, "{keep} only");
+        assert_eq!(mine, Some(b.g), "{keep} only: G is its own");
+    }
+}
