@@ -503,3 +503,80 @@ fn one_direction_has_no_hysteresis() {
         assert_eq!(mine, Some(b.g), "{keep} only: G is its own");
     }
 }
+
+/// The 95 % intervals have the width of the closed form: on a whole circle sampled evenly both
+/// ways, the `cos θ` and `cos 2θ` columns are orthogonal to every other column of the model, so
+/// each coefficient's standard error is `σ·√(2/720)`, and the half width `t₀.₉₇₅·se` (t ≈ 1.963
+/// at 704 degrees of freedom), times the diagnostic's scale: 1 for the centre, `2/R·10⁶` for
+/// the scale mismatch in ppm. Within 10 % (the residuals' σ estimated from 720 points).
+// Found by cargo-mutants: `t·se·|scale|` with `+` or `/` in place of `*` gave intervals that
+// still covered the truth (too wide), so the coverage test alone passed.
+#[test]
+fn interval_widths_follow_the_closed_form() {
+    let sigma = 0.0005;
+    let f = Faults {
+        centre: [0.004, -0.003],
+        scale: [12e-6, -5e-6],
+        ..Default::default()
+    };
+    let d = run(&trace(f, sigma, 11)).diagnostics;
+    let se = sigma * (2.0f64 / 720.0).sqrt();
+    for (name, fitted, scale) in [
+        ("centre u", &d.centre_u, 1.0),
+        ("centre v", &d.centre_v, 1.0),
+        ("scale mismatch", &d.scale_mismatch, 2.0 / R * 1e6),
+    ] {
+        let want = 1.963 * se * scale;
+        let got = fitted.half_width.unwrap();
+        assert!(
+            (got / want - 1.0).abs() < 0.1,
+            "{name}: half width {got}, closed form {want}"
+        );
+    }
+}
+
+/// G, G per direction and H do not depend on where the circle is or on its radius: the
+/// least-squares circle is removed first. The trace of `g_and_h_known_by_construction` with a
+/// radius offset and a centre offset added gives the same values.
+// Found by cargo-mutants: the circle's removal with `+` in place of `−` went unseen on traces
+// whose least-squares circle is the nominal one.
+#[test]
+fn g_and_h_do_not_depend_on_the_circles_place() {
+    let (a, c) = (0.004, 0.003);
+    let (r0, eu, ev) = (0.02, 0.011, -0.007);
+    let csv = |c: f64| {
+        let mut csv = String::from("# radius: 150 mm\nangle (deg); ccw (mm); cw (mm)\n");
+        for k in 0..720 {
+            let th = (k as f64 * 0.5).to_radians();
+            let w = a * (3.0 * th).cos() + r0 + eu * th.cos() + ev * th.sin();
+            let (ccw, cw) = (w + c / 2.0, w - c / 2.0);
+            csv.push_str(&format!("{}; {ccw}; {cw}\n", k as f64 * 0.5));
+        }
+        csv
+    };
+    let b = run(&csv(c));
+    assert!((b.g_ccw.unwrap() - 2.0 * a).abs() < 1e-9, "{:?}", b.g_ccw);
+    assert!((b.g_cw.unwrap() - 2.0 * a).abs() < 1e-9, "{:?}", b.g_cw);
+    assert!((b.g - (2.0 * a + c)).abs() < 1e-9, "{}", b.g);
+    assert!((b.h.unwrap() - c).abs() < 1e-9, "{:?}", b.h);
+    assert!((value(&b.diagnostics.centre_u) - eu).abs() < 1e-9);
+    assert!((value(&b.diagnostics.centre_v) - ev).abs() < 1e-9);
+    // The deviations shown are those about that circle: the offsets gone, point by point.
+    for (i, (th, dev)) in b.angle.iter().zip(&b.deviation).enumerate() {
+        let want = a * (3.0 * th.to_radians()).cos() + b.direction[i] * c / 2.0;
+        assert!(
+            (dev - want).abs() < 1e-9,
+            "point {i} at {th}°: {dev}, want {want}"
+        );
+    }
+    // Without the split between the directions the model holds the trace exactly: the fitted
+    // curve shown is the cyclic error alone, about the same circle.
+    let b = run(&csv(0.0));
+    for (i, (th, fit)) in b.angle.iter().zip(&b.fitted).enumerate() {
+        let want = a * (3.0 * th.to_radians()).cos();
+        assert!(
+            (fit - want).abs() < 1e-9,
+            "point {i} at {th}°: fitted {fit}, want {want}"
+        );
+    }
+}
