@@ -673,3 +673,32 @@ fn a_spike_at_each_reversal_and_direction() {
         }
     }
 }
+
+/// H when the two directions are sampled at different angles: the CW trace is interpolated at
+/// the CCW trace's angles, across 0° = 360° too. `f(θ) = a·cos 3θ + b·sin 2θ` (not even in θ, so
+/// that the wrap's two sides differ); CCW `f + c/2` and CW `f − c/2` every half degree, one of
+/// them a quarter degree later (the CCW trace then begins before the CW trace's first angle,
+/// or ends after its last): H = c to within linear interpolation's error, `(Δθ)²/8·max|f''|`
+/// ≈ 0.5 nm for a half-degree step.
+// Found by cargo-mutants: the interpolation (and its wrap at 0°) was untested: the CW and CCW
+// traces of the other tests share their angles.
+#[test]
+fn hysteresis_between_sampled_angles() {
+    let (a, b, c) = (0.004, 0.003, 0.003);
+    for (ccw_start, cw_start) in [(0.0, 0.25), (0.25, 0.0)] {
+        let mut csv = String::from("# radius: 150 mm\nangle (deg); deviation (mm); direction\n");
+        for (d, name, start) in [(1.0, "ccw", ccw_start), (-1.0, "cw", cw_start)] {
+            for k in 0..720 {
+                let deg = start + k as f64 * 0.5;
+                let th = f64::to_radians(deg);
+                let r = a * (3.0 * th).cos() + b * (2.0 * th).sin() + d * c / 2.0;
+                csv.push_str(&format!("{deg}; {r}; {name}\n"));
+            }
+        }
+        let h = run(&csv).h.unwrap();
+        assert!(
+            (h - c).abs() < 1e-6,
+            "CCW from {ccw_start}°, CW from {cw_start}°: H {h}, want {c}"
+        );
+    }
+}
