@@ -702,3 +702,64 @@ fn hysteresis_between_sampled_angles() {
         );
     }
 }
+
+/// The header's units of the radius and the feed (mm or inches; mm/min, m/min or mm/s), and
+/// a value that is not a number named with its line.
+// Found by cargo-mutants: only `mm` and `mm/min` were read in tests, and the line of a bad
+// value was not checked.
+#[test]
+fn header_units_of_radius_and_feed() {
+    let good = trace(Faults::default(), 0.0, 1);
+    for (from, to, radius, feed) in [
+        ("# radius: 100 mm", "# radius: 4 in", 101.6, FEED),
+        ("# radius: 100 mm", "# radius: 4 inch", 101.6, FEED),
+        ("# feed: 1000 mm/min", "# feed: 1.5 m/min", R, 1500.0),
+        ("# feed: 1000 mm/min", "# feed: 20 mm/s", R, 1200.0),
+    ] {
+        let b = run(&good.replace(from, to));
+        assert!(
+            (b.radius - radius).abs() < 1e-12,
+            "{to}: radius {}",
+            b.radius
+        );
+        assert!(
+            (b.feed.unwrap() - feed).abs() < 1e-9,
+            "{to}: feed {:?}",
+            b.feed
+        );
+    }
+    let e = evaluate(
+        &BallbarInput::read(&json!({ "csv": good.replace("# feed: 1000", "# feed: fast") }))
+            .unwrap(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("csv: line 2: the feed is not a number"),
+        "{e}"
+    );
+}
+
+/// A deviation column per direction with a unit the reader does not know: the message names
+/// the column's direction.
+// Found by cargo-mutants: the CCW/CW word of the message was untested.
+#[test]
+fn an_unknown_unit_names_the_directions_column() {
+    let mut csv = String::from("# radius: 100 mm\nangle (deg); ccw (mm); cw (mm)\n");
+    for k in 0..360 {
+        csv.push_str(&format!("{k}; 0.001; -0.001\n"));
+    }
+    for (from, to, word) in [
+        ("ccw (mm)", "ccw (furlongs)", "CCW deviation"),
+        ("; cw (mm)", "; cw (furlongs)", "CW deviation"),
+    ] {
+        let bad = csv.replacen(from, to, 1);
+        let e = evaluate(&BallbarInput::read(&json!({ "csv": bad })).unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("give the unit of the {word} in the header")),
+            "{to}: {e}"
+        );
+    }
+}

@@ -62,8 +62,6 @@ pub struct TracePoint {
 pub struct TraceFile {
     /// The points in file order.
     pub points: Vec<TracePoint>,
-    /// The file gives a direction (a direction column, or ccw and cw columns).
-    pub has_direction: bool,
     /// The tests named in the `test` column, in order of first appearance (empty without one).
     pub tests: Vec<String>,
     /// Columns the reader does not use, as the header spells them.
@@ -318,7 +316,6 @@ pub fn read_points(text: &str, rules: Rules) -> Result<TraceFile> {
         .collect();
     let mut file = TraceFile {
         points: Vec::new(),
-        has_direction: dir.is_some() || devs.len() == 2,
         tests: Vec::new(),
         ignored,
         radius,
