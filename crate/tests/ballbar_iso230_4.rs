@@ -57,7 +57,12 @@ fn trace(f: Faults, noise: f64, seed: u64) -> String {
 }
 
 fn run(csv: &str) -> Ballbar {
-    evaluate(&BallbarInput::read(&json!({ "csv": csv })).unwrap()).unwrap()
+    evaluate_input(json!({ "csv": csv })).unwrap()
+}
+
+/// The export on a JSON input: read (and checked), then evaluated.
+fn evaluate_input(input: serde_json::Value) -> Result<Ballbar, fiveaxis::Error> {
+    BallbarInput::read(&input).and_then(|i| evaluate(&i))
 }
 
 fn value(f: &fiveaxis::ballbar::Fitted) -> f64 {
@@ -254,7 +259,7 @@ fn verdict_against_a_tolerance_of_g() {
     );
     let g = run(&csv).g;
     let judge = |t: f64| {
-        evaluate(&BallbarInput::read(&json!({ "csv": csv, "tolerance": t })).unwrap())
+        evaluate_input(json!({ "csv": csv, "tolerance": t }))
             .unwrap()
             .pass
     };
@@ -337,7 +342,7 @@ fn bad_traces_name_their_line() {
         ),
     ];
     for (text, want) in cases {
-        let e = evaluate(&BallbarInput::read(&json!({ "csv": text })).unwrap())
+        let e = evaluate_input(json!({ "csv": text }))
             .unwrap_err()
             .to_string();
         assert!(e.starts_with(want), "got: {e}\nwant: {want}");
@@ -434,14 +439,7 @@ fn the_inputs_radius_and_feed_override_the_files() {
     let csv = trace(f, 0.0, 3);
     let from_file = run(&csv);
     assert_eq!((from_file.radius, from_file.feed), (R, Some(FEED)));
-    let given = |extra: serde_json::Value| {
-        let mut input = json!({ "csv": csv });
-        for (k, v) in extra.as_object().unwrap() {
-            input[k] = v.clone();
-        }
-        BallbarInput::read(&input).and_then(|i| evaluate(&i))
-    };
-    let b = given(json!({ "radius": 2.0 * R, "feed": 2.0 * FEED })).unwrap();
+    let b = evaluate_input(json!({ "csv": csv, "radius": 2.0 * R, "feed": 2.0 * FEED })).unwrap();
     assert_eq!((b.radius, b.feed), (2.0 * R, Some(2.0 * FEED)));
     // The same sin 2θ coefficient read on twice the radius: half the squareness (µm/m); the
     // servo mismatch τ = 2c/(R·ω) with ω = F/R: the feed doubled, half the lag.
@@ -464,12 +462,12 @@ fn the_inputs_radius_and_feed_override_the_files() {
     // the feed.
     let slow = csv.replace("# feed: 1000 mm/min", "# feed: 0.5 mm/min");
     assert_ne!(slow, csv);
-    let e = evaluate(&BallbarInput::read(&json!({ "csv": slow })).unwrap()).unwrap_err();
+    let e = evaluate_input(json!({ "csv": slow })).unwrap_err();
     assert!(
         e.to_string().starts_with("csv: the file's feed must be"),
         "{e}"
     );
-    let b = evaluate(&BallbarInput::read(&json!({ "csv": slow, "feed": FEED })).unwrap()).unwrap();
+    let b = evaluate_input(json!({ "csv": slow, "feed": FEED })).unwrap();
     assert_eq!(b.feed, Some(FEED));
 }
 
@@ -754,7 +752,7 @@ fn an_unknown_unit_names_the_directions_column() {
         ("; cw (mm)", "; cw (furlongs)", "CW deviation"),
     ] {
         let bad = csv.replacen(from, to, 1);
-        let e = evaluate(&BallbarInput::read(&json!({ "csv": bad })).unwrap())
+        let e = evaluate_input(json!({ "csv": bad }))
             .unwrap_err()
             .to_string();
         assert!(
