@@ -33,8 +33,8 @@ command -v node >/dev/null || { echo "[setup] node not found: install Node.js 20
 
 # The downloads and unpacking (Debian packages, npm packages) run in the background while
 # cargo compiles wasm-bindgen-cli: one waits on the network and the disk, the other on the
-# processors, so side by side they take about as long as the compile alone (on a fresh
-# machine, a minute or more saved). Each writes to its own log, shown when it has finished.
+# processors. (Measured once, on a slow day: setup 254 s against 213–269 s run one after the
+# other; no saving shown yet.) Each writes to its own log, shown when it has finished.
 bg=()
 background() { # name, command…
   local log
