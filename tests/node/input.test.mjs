@@ -64,4 +64,7 @@ test('keys and texts outside ASCII arrive whole, and so do the keys and texts af
   assert.match(refusal({ machine: { errors: { E_X0B: 0.001, E_Y0B: '𝜀Ω' } } }), /^machine\.errors\.E_Y0B: expected a number of mm, got "𝜀Ω"/);
   // A text of two-unit characters, then a key and a text read after it.
   assert.match(refusal({ model: '𝜀𝜀Ω', tool: 'xyz' }), /^tool: expected an object, got "xyz"/);
+  // A lone half of a surrogate pair is no character: it arrives as U+FFFD, as the browser's
+  // TextEncoder writes it (the WHATWG Encoding standard), and the text around it whole.
+  assert.match(refusal({ tool: 'a\uD800b€' }), /^tool: expected an object, got "a\uFFFDb€"/);
 });

@@ -31,7 +31,7 @@ pub use nonlinear::*;
 pub use toolpath::*;
 
 use fiveaxis::Error;
-use js_sys::{Array, ArrayBuffer, Object, Reflect};
+use js_sys::{Array, JsString, Object, Reflect};
 use serde_json::{Map, Value};
 use std::fmt::Display;
 use wasm_bindgen::prelude::*;
@@ -79,51 +79,88 @@ impl Display for Path<'_> {
     }
 }
 
+// What `to_json` reads a value as, in one crossing (five type tests before), and a text copied
+// into WebAssembly's memory by the JavaScript engine's own UTF-8 encoder: wasm-bindgen's
+// `as_string` copies an ASCII text character by character in JavaScript, 7.6 µs for the 2.3 kB
+// S-shape sample against 0.3 µs. The S-shape identification, alternating with the build before
+// in one Node process: 2–3 % less (best of 600 batches of 10, 2.14 → 2.08 and 1.82 → 1.76 ms).
+#[wasm_bindgen(inline_js = r#"
+const fiveaxisEncoder = new TextEncoder();
+export function fiveaxisKind(v) {
+  switch (typeof v) {
+    case 'number': return 0;
+    case 'undefined': return 1;
+    case 'string': return 2;
+    case 'boolean': return 3;
+    case 'object':
+      if (v === null) return 1;
+      return Array.isArray(v) || ArrayBuffer.isView(v) ? 4 : 5;
+    default: return 6;
+  }
+}
+export function fiveaxisEncodeInto(text, into) {
+  return fiveaxisEncoder.encodeInto(text, into).written;
+}
+"#)]
+extern "C" {
+    /// 0 a number, 1 `undefined` or `null`, 2 a text, 3 a boolean, 4 a list (an array or a
+    /// typed array), 5 an object, 6 anything else (a function, a symbol, a big integer).
+    #[wasm_bindgen(js_name = fiveaxisKind)]
+    fn kind(v: &JsValue) -> u8;
+    /// Writes `text` as UTF-8 at the start of `into` (a lone surrogate as U+FFFD); the bytes
+    /// written.
+    #[wasm_bindgen(js_name = fiveaxisEncodeInto)]
+    fn encode_into(text: &JsString, into: &mut [u8]) -> usize;
+}
+
+/// A JavaScript text as a Rust string (at most three UTF-8 bytes per UTF-16 unit).
+pub(crate) fn text(s: &JsString) -> String {
+    let mut bytes = vec![0; 3 * s.length() as usize];
+    let written = encode_into(s, &mut bytes);
+    bytes.truncate(written);
+    // The encoder writes well-formed UTF-8; the lossy reading never replaces anything.
+    String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
 fn to_json(v: &JsValue, path: Path, depth: usize) -> Result<Value, Error> {
     let here = || path.to_string();
     if depth > MAX_DEPTH {
         return Err(Error::field(here(), "nested too deeply"));
     }
+    // A number first: the most frequent, read in one crossing.
     if let Some(x) = v.as_f64() {
         return serde_json::Number::from_f64(x)
             .map(Value::Number)
             .ok_or_else(|| Error::field(here(), format!("must be a finite number, got {x}")));
     }
-    if v.is_undefined() || v.is_null() {
-        return Ok(Value::Null);
-    }
-    if let Some(s) = v.as_string() {
-        return Ok(Value::String(s));
-    }
-    if let Some(b) = v.as_bool() {
-        return Ok(Value::Bool(b));
-    }
-    if Array::is_array(v) || ArrayBuffer::is_view(v) {
-        let a = Array::from(v);
-        return a
+    match kind(v) {
+        1 => Ok(Value::Null),
+        2 => Ok(Value::String(text(v.unchecked_ref()))),
+        3 => Ok(Value::Bool(v.is_truthy())),
+        4 => Array::from(v)
             .iter()
             .enumerate()
             .map(|(i, item)| to_json(&item, Path::Index(&path, i), depth + 1))
             .collect::<Result<Vec<_>, _>>()
-            .map(Value::Array);
-    }
-    if v.is_function() || v.is_symbol() || v.is_bigint() || !v.is_object() {
-        return Err(Error::field(
+            .map(Value::Array),
+        5 => {
+            let obj: &Object = v.unchecked_ref();
+            let mut out = Map::new();
+            for key in Object::keys(obj).iter() {
+                let k = key.as_string().unwrap_or_default();
+                let at = Path::Key(&path, &k);
+                let item = Reflect::get(obj, &key)
+                    .map_err(|_| Error::field(at.to_string(), "cannot be read"))?;
+                let value = to_json(&item, at, depth + 1)?;
+                out.insert(k, value);
+            }
+            Ok(Value::Object(out))
+        }
+        _ => Err(Error::field(
             here(),
             "expected a number, a text, a list or an object",
-        ));
+        )),
     }
-    let obj: &Object = v.unchecked_ref();
-    let mut out = Map::new();
-    for key in Object::keys(obj).iter() {
-        let k = key.as_string().unwrap_or_default();
-        let at = Path::Key(&path, &k);
-        let item =
-            Reflect::get(obj, &key).map_err(|_| Error::field(at.to_string(), "cannot be read"))?;
-        let value = to_json(&item, at, depth + 1)?;
-        out.insert(k, value);
-    }
-    Ok(Value::Object(out))
 }
 
 /// Writes one `#[wasm_bindgen]` function per export declared in `fiveaxis::for_each_export!`:
@@ -143,3 +180,11 @@ macro_rules! wasm_exports {
 }
 
 fiveaxis::for_each_export!(wasm_exports);
+
+/// The allocator under WebAssembly: talc instead of Rust's default dlmalloc. The engine
+/// allocates often (a CSV's cells, the words of a result): the S-shape identification, run in
+/// batches of 10 alternating with the dlmalloc build in one Node process (600 batches each),
+/// took 5 % less (best 1.94 → 1.83 ms, median 4.03 → 3.82 ms).
+#[cfg(all(not(target_feature = "atomics"), target_family = "wasm"))]
+#[global_allocator]
+static TALC: talc::wasm::WasmDynamicTalc = talc::wasm::new_wasm_dynamic_allocator();

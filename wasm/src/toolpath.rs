@@ -8,7 +8,7 @@ use crate::{js_error, json, output, to_json, Path};
 use fiveaxis::toolpath::export::{self, Part, PathInput, PathValue, Reading};
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
 use fiveaxis::Error;
-use js_sys::{Float64Array, Object, Reflect, Uint8Array};
+use js_sys::{Float64Array, JsString, Object, Reflect, Uint8Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
@@ -144,8 +144,8 @@ impl ToolpathReader {
     fn piece(&mut self, text: &JsValue, what: &str) -> Result<u32, JsError> {
         let r = if let Some(bytes) = text.dyn_ref::<Uint8Array>() {
             self.0.feed_bytes(&bytes.to_vec())
-        } else if let Some(s) = text.as_string() {
-            self.0.feed(&s)
+        } else if let Some(s) = text.dyn_ref::<JsString>() {
+            self.0.feed(&crate::text(s))
         } else {
             Err(Error::field(
                 "text",
