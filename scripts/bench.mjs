@@ -1,10 +1,13 @@
 // `npm run bench`: times the engine's heavy kernels natively (crate/examples/bench.rs, release
 // build) and as WebAssembly in Node (the release package wasm/pkg) on the same inputs, and
 // prints both times and their ratio (and, for the nonlinear maxima, the orientation evaluations
-// per move, counted natively). Rounds alternate native and wasm, each round a process of its
-// own on each side (BENCH_ROUNDS, default 3); each kernel's best time over the rounds is kept.
-import { execFileSync } from 'node:child_process';
+// per move, counted natively). Each kernel is timed natively, then as wasm, seconds apart, in
+// rounds of new processes (runRound; BENCH_ROUNDS, default 3); the best time over the rounds is
+// kept on each side.
+import { execFileSync, spawn } from 'node:child_process';
+import { once } from 'node:events';
 import { readFileSync } from 'node:fs';
+import { createInterface } from 'node:readline';
 import { fileURLToPath } from 'node:url';
 import * as fa from '../wasm/pkg/fiveaxis.js';
 
@@ -37,21 +40,42 @@ function shortMoves(n) {
   return out;
 }
 
+/** How long each kernel runs untimed, then timed, at least (milliseconds; `time`), both sides. */
+const SETTLE_MS = 1000;
+/** In a round driven by the parent process (below): the lines it sends on stdin. */
+const stepped = Boolean(process.env.BENCH_WASM_ROUND);
+const words = stepped ? createInterface({ input: process.stdin })[Symbol.asyncIterator]() : null;
+/** In a driven round, says which kernel is next (`ready <name>`) and waits for the word to go. */
+async function step(name) {
+  if (!stepped) return;
+  console.log(`ready ${name}`);
+  await words.next();
+}
+
 /**
- * Best of `repeat` runs after one untimed run: the steady state, as natively. (Node compiles
- * WebAssembly first with a fast baseline compiler and optimises hot functions while they run;
- * a short kernel timed cold measures the compiler, 2-6x slower than its steady state.)
+ * Best of at least `repeat` timed runs and at least `ms` of them, after at least `warmRuns`
+ * untimed runs and at least `ms` of them (`ms` 0: exactly `warmRuns`, then exactly `repeat`). The steady state, as natively
+ * (crate/examples/bench.rs times the same way). Node runs WebAssembly first as baseline code and
+ * compiles the hot functions again, optimised, in the background: a short kernel timed cold
+ * measures the compiler (the S-shape identification ×100, 20 ms, took 40-60 ms a run for its
+ * first 4-8 runs, then 17-21 ms). And the machine has slow spells of a fraction of a second to
+ * seconds (the same identification at 17 ms, then 25-76 ms for a few runs, with nothing else
+ * running): three runs of a short kernel could all fall in one.
  */
-function time(repeat, f, check) {
-  f();
+async function time(name, repeat, f, check, { ms = SETTLE_MS, warmRuns = 1 } = {}) {
+  await step(name);
+  const warm = performance.now();
+  for (let i = 0; i < warmRuns || performance.now() - warm < ms; i++) f();
   let best = Infinity;
   let sum = 0;
-  for (let i = 0; i < repeat; i++) {
+  const timed = performance.now();
+  for (let i = 0; i < repeat || performance.now() - timed < ms; i++) {
     const t = performance.now();
     const r = f();
     best = Math.min(best, performance.now() - t);
     sum = check(r);
   }
+  if (stepped) console.log(JSON.stringify({ name, ms: best, check: sum }));
   return { ms: best, check: sum };
 }
 const total = (a) => a.reduce((s, v) => s + v, 0);
@@ -77,98 +101,15 @@ function probeInput() {
 /** Same as probe_check in crate/examples/bench.rs. */
 const probeCheck = (r) => r.estimates.reduce((s, e) => s + (e.value ?? 0), 0) + r.after.sigma;
 
-/** One round of the WebAssembly timings, by kernel. */
-// A new pivot per eq 14 run, over all rounds (the engine caches designs): round r starts after
-// the 4 (r − 1) pivots of the rounds before, as crate/examples/bench.rs does.
-let ssRun = 4 * (Number(process.env.BENCH_ROUND ?? 1) - 1);
-function runWasm() {
+/** One round of the WebAssembly timings, by kernel (a process of its own: runRound). */
+async function runWasm() {
   const wasm = {};
-  const mv = moves(1_000_000);
-  wasm['nonlinear: exact max of 10^6 moves'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
-  const short = shortMoves(1_000_000);
-  wasm['nonlinear: exact max of 10^6 short moves (< 5°)'] = time(3, () => fa.nonlinearMaxErrors('CAZ', 1, short), total);
-  wasm['nonlinear: 361x361 increment grid'] = time(
-    3,
-    () => fa.nonlinearGrid({ machine: { type: 'CAZ' }, length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
-    (g) => total(g.max),
-  );
-
-  // Volumetric: the same machine, errors and error motions as crate/examples/bench.rs.
-  const tanLim = preset('C/A double turntable on an X table (Tan & Lim)');
-  tanLim.errors = { E_C0Y: 0.001, E_B0Z: -0.0008, E_Y0A: 0.005 };
-  tanLim.motions = {
-    E_XX: { poly: [0, 1e-5, 2e-9] },
-    E_BX: { position: [-400, -200, 0, 200, 400], value: [-0.0003, 0.0001, 0, 0.0002, -0.0001] },
-    E_YY: { poly: [0.001, -8e-6] },
-    E_AY: 0.0002,
-    E_ZZ: { poly: [0, 5e-6] },
-    E_XZ: { position: [-300, 0, 300], value: [0.002, 0, 0.003] },
-    E_XC: { position: [0, 90, 180, 270, 360], value: [0, 0.002, 0, -0.002, 0] },
-    E_CC: 0.001,
-    E_ZA: 0.003,
+  /** Times one kernel (`time`) and keeps its result under its name. */
+  const timed = async (name, repeat, f, check, how) => {
+    wasm[name] = await time(name, repeat, f, check, how);
   };
-  wasm['volumetric: 10^6 poses exact (1001 x 1001 plane) + budget'] = time(
-    3,
-    () => fa.volumetricMap({ machine: tanLim, region: { plane: 'XY', uFrom: -300, uTo: 300, vFrom: -200, vTo: 200, at: 50, k: 30, m: -20, steps: 1001 } }),
-    (m) => total(m.norm),
-  );
-
-  // Li et al.'s Table 5 in ISO names (E = −ε of the paper), on their machine's preset.
-  const li = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
-  li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
-  wasm['cubic: height map 961x961 (Table 5)'] = time(3, () => fa.cubicHeightMap({ machine: li, nx: 961, ny: 961 }), (m) => total(m.height));
-  // S-shape: the same inputs as crate/examples/bench.rs.
-  const chanal = (pivot) => {
-    const m = preset('B swivel head, C rotary table, Y under the table');
-    m.geometry.pivotLength = pivot;
-    m.errors = { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI };
-    return m;
-  };
-  wasm['sshape: overcut maps of A and B (eq 6 + exact), 261 x 16'] = time(
-    3,
-    () => fa.sshapeOvercut({ tool: { rTool: 10, lTool: 35 }, nu: 261, nv: 16 }),
-    (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
-  );
-  wasm['sshape: eq 14 model (IK along both paths) + defects'] = time(
-    3,
-    () => fa.sshapeDefects({ machine: chanal(399.889 + 0.001 * ++ssRun) }),
-    (d) => total(d.total),
-  );
-  const ssCsv = readFileSync(new URL('../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
-  const paper = ['E_C0Y', 'E_A0Z', 'E_B0Z', 'E_A0C', 'E_B0C', 'E_X0B', 'E_A0B', 'E_C0B'];
-  fa.sshapeDefects({ machine: chanal(399.889) }); // builds the model once, as the page does
-  const ssInput = { machine: chanal(399.889), csv: ssCsv, parameters: paper }; // as bench.rs: one input
-  wasm['sshape: identification of the 100-point sample (parse + SVD fit), 100 times'] = time(
-    3,
-    () => {
-      let fit;
-      for (let i = 0; i < 100; i++) fit = fa.sshapeIdentify(ssInput);
-      return fit;
-    },
-    (f) => f.rms,
-  );
-
-  wasm['reversal: default test with and without friction (2 simulations)'] = time(3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
-  // The cubic test designer and the identification of its export (same inputs as bench.rs: the
-  // preset as it is, without Table 5's errors).
-  const liPreset = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
-  let designedCsv = '';
-  wasm['cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)'] = time(3, () => fa.cubicDesign({ machine: liPreset, secondSetup: 100 }), (d) => {
-    designedCsv = d.designed.csv;
-    return d.designed.smallest;
-  });
-  const filledCsv = designedCsv.replace(/,,,\n/g, ',1,0.00001,-0.00001\n');
-  const cubicInput = { machine: liPreset, csv: filledCsv, decision: { noise: 0.001 } }; // as bench.rs: one input
-  wasm['cubic: identification of 18 measured zones, 100 times'] = time(
-    3,
-    () => {
-      let r;
-      for (let i = 0; i < 100; i++) r = fa.cubicIdentify(cubicInput);
-      return r;
-    },
-    (r) => r.rms,
-  );
-
+  // In the order of crate/examples/bench.rs, so that a driven round times each kernel natively,
+  // then as wasm, seconds apart.
   // Reading: the same texts as crate/examples/bench.rs (clsf, iso), target under 0.5 s as wasm.
   function clsf(n) {
     let s = 'TOOL PATH/BENCH,TOOL,T1\nMSYS/0.0000,0.0000,0.0000,1.0000000,0.0000000,0.0000000,0.0000000,1.0000000,0.0000000\n';
@@ -199,47 +140,171 @@ function runWasm() {
   };
   // The file's bytes, as the page's worker passes them (the engine decodes them).
   const cl = new TextEncoder().encode(clsf(22_000));
-  wasm['toolpath read: CLSF, 22000 statements'] = time(10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
+  await timed('toolpath read: CLSF, 22000 statements', 10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
   const ncBytes = new TextEncoder().encode(iso(16_000));
-  wasm['toolpath read: ISO program, 16000 blocks'] = time(10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
+  await timed('toolpath read: ISO program, 16000 blocks', 10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
+  // Volumetric: the same machine, errors and error motions as crate/examples/bench.rs.
+  const tanLim = preset('C/A double turntable on an X table (Tan & Lim)');
+  tanLim.errors = { E_C0Y: 0.001, E_B0Z: -0.0008, E_Y0A: 0.005 };
+  tanLim.motions = {
+    E_XX: { poly: [0, 1e-5, 2e-9] },
+    E_BX: { position: [-400, -200, 0, 200, 400], value: [-0.0003, 0.0001, 0, 0.0002, -0.0001] },
+    E_YY: { poly: [0.001, -8e-6] },
+    E_AY: 0.0002,
+    E_ZZ: { poly: [0, 5e-6] },
+    E_XZ: { position: [-300, 0, 300], value: [0.002, 0, 0.003] },
+    E_XC: { position: [0, 90, 180, 270, 360], value: [0, 0.002, 0, -0.002, 0] },
+    E_CC: 0.001,
+    E_ZA: 0.003,
+  };
+  await timed('volumetric: 10^6 poses exact (1001 x 1001 plane) + budget',
+    3,
+    () => fa.volumetricMap({ machine: tanLim, region: { plane: 'XY', uFrom: -300, uTo: 300, vFrom: -200, vTo: 200, at: 50, k: 30, m: -20, steps: 1001 } }),
+    (m) => total(m.norm),
+  );
+
+  const mv = moves(1_000_000);
+  await timed('nonlinear: exact max of 10^6 moves', 3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
+  const short = shortMoves(1_000_000);
+  await timed('nonlinear: exact max of 10^6 short moves (< 5°)', 3, () => fa.nonlinearMaxErrors('CAZ', 1, short), total);
+  await timed('nonlinear: 361x361 increment grid',
+    3,
+    () => fa.nonlinearGrid({ machine: { type: 'CAZ' }, length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
+    (g) => total(g.max),
+  );
+
+  // Li et al.'s Table 5 in ISO names (E = −ε of the paper), on their machine's preset.
+  const li = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+  li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
+  await timed('cubic: height map 961x961 (Table 5)', 3, () => fa.cubicHeightMap({ machine: li, nx: 961, ny: 961 }), (m) => total(m.height));
+  // S-shape: the same inputs as crate/examples/bench.rs.
+  const chanal = (pivot) => {
+    const m = preset('B swivel head, C rotary table, Y under the table');
+    m.geometry.pivotLength = pivot;
+    m.errors = { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI };
+    return m;
+  };
+  await timed('sshape: overcut maps of A and B (eq 6 + exact), 261 x 16',
+    3,
+    () => fa.sshapeOvercut({ tool: { rTool: 10, lTool: 35 }, nu: 261, nv: 16 }),
+    (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
+  );
+  // A new pivot per run (the engine keeps designs in a cache): a count of runs, not a time, the
+  // same as natively, so that the last run's pivot, and so its result, is the same.
+  let ssRun = 0;
+  await timed('sshape: eq 14 model (IK along both paths) + defects',
+    10,
+    () => fa.sshapeDefects({ machine: chanal(399.889 + 0.001 * ++ssRun) }),
+    (d) => total(d.total),
+    { ms: 0, warmRuns: 30 },
+  );
+  const ssCsv = readFileSync(new URL('../public/samples/sshape-measured.csv', import.meta.url), 'utf8');
+  const paper = ['E_C0Y', 'E_A0Z', 'E_B0Z', 'E_A0C', 'E_B0C', 'E_X0B', 'E_A0B', 'E_C0B'];
+  fa.sshapeDefects({ machine: chanal(399.889) }); // builds the model once, as the page does
+  const ssInput = { machine: chanal(399.889), csv: ssCsv, parameters: paper }; // as bench.rs: one input
+  await timed('sshape: identification of the 100-point sample (parse + SVD fit), 100 times',
+    3,
+    () => {
+      let fit;
+      for (let i = 0; i < 100; i++) fit = fa.sshapeIdentify(ssInput);
+      return fit;
+    },
+    (f) => f.rms,
+  );
+
+  await timed('reversal: default test with and without friction (2 simulations)', 3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
+  // The cubic test designer and the identification of its export (same inputs as bench.rs: the
+  // preset as it is, without Table 5's errors).
+  const liPreset = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
+  let designedCsv = '';
+  await timed('cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)', 3, () => fa.cubicDesign({ machine: liPreset, secondSetup: 100 }), (d) => {
+    designedCsv = d.designed.csv;
+    return d.designed.smallest;
+  });
+  const filledCsv = designedCsv.replace(/,,,\n/g, ',1,0.00001,-0.00001\n');
+  const cubicInput = { machine: liPreset, csv: filledCsv, decision: { noise: 0.001 } }; // as bench.rs: one input
+  await timed('cubic: identification of 18 measured zones, 100 times',
+    3,
+    () => {
+      let r;
+      for (let i = 0; i < 100; i++) r = fa.cubicIdentify(cubicInput);
+      return r;
+    },
+    (r) => r.rms,
+  );
+
   // The sphere test: 200 probed poses identified (same JSON as crate/examples/bench.rs).
   const probe = probeInput();
-  wasm['probe: identification of 200 probed poses (probeIdentify)'] = time(5, () => fa.probeIdentify(probe), probeCheck);
+  await timed('probe: identification of 200 probed poses (probeIdentify)', 5, () => fa.probeIdentify(probe), probeCheck);
   return wasm;
 }
 
 // A round of the wasm timings, asked for by the parent process below: its results as JSON lines.
-if (process.env.BENCH_WASM_ROUND) {
-  for (const [name, r] of Object.entries(runWasm())) console.log(JSON.stringify({ name, ...r }));
+if (stepped) {
+  await runWasm();
   process.exit(0);
 }
 
-/** Timings by kernel from a process's JSON lines. */
-const byName = (out) => Object.fromEntries(out.trim().split('\n').map((l) => JSON.parse(l)).map((r) => [r.name, r]));
-
-/** One round of the native timings (crate/examples/bench.rs), by kernel. */
-function runNative(round) {
-  const env = { ...process.env, BENCH_ROUND: String(round) }; // its eq 14 pivots, as runWasm's
-  return byName(execFileSync('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, encoding: 'utf8', env }));
-}
+/** The next line a child process writes (null at its end). */
+const lineReader = (stream) => {
+  const lines = createInterface({ input: stream })[Symbol.asyncIterator]();
+  return async () => {
+    const next = await lines.next();
+    return next.done ? null : next.value;
+  };
+};
 
 /**
- * One round of the wasm timings, in a Node process of its own, as each native round is: a Node
- * process can stay slower than another for its whole life (the S-shape identification ×100 at
- * 18–19 ms in one, 27–33 ms in the next, minutes apart on the same quiet machine), so that
- * rounds run in one process shared its luck.
+ * One round: the native benchmark (crate/examples/bench.rs) and the wasm one (this file, in a
+ * Node process of its own) started side by side, each stopping before every kernel (`ready`)
+ * until told to go. Each kernel is timed natively, then as wasm, while the other side waits:
+ * the two timings of a kernel are seconds apart, and nothing else of the benchmark runs during
+ * either. (The machine has slow spells of minutes: the native S-shape identification ×100 took
+ * 10.4–11.8 ms, then 18.5–20 ms a few minutes later, a plain arithmetic loop the same all along.
+ * Timed a whole suite apart, one side could fall in a spell and the other not.) A kernel only
+ * one side has (the native toolpath ranking: its wasm side is timed in Chromium below) is timed
+ * alone. Each round's processes are new: a process can also stay slower than the next.
  */
-function runWasmRound(round) {
-  const env = { ...process.env, BENCH_ROUND: String(round), BENCH_WASM_ROUND: '1' };
-  return byName(execFileSync(process.execPath, [fileURLToPath(import.meta.url)], { cwd: root, encoding: 'utf8', env }));
+async function runRound(round) {
+  const env = process.env;
+  const start = (cmd, args, more) => {
+    const child = spawn(cmd, args, { cwd: root, env: { ...env, ...more }, stdio: ['pipe', 'pipe', 'inherit'] });
+    return { child, line: lineReader(child.stdout), go: () => child.stdin.write('go\n') };
+  };
+  const nat = start('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { BENCH_STEP: '1' });
+  const was = start(process.execPath, [fileURLToPath(import.meta.url)], { BENCH_WASM_ROUND: '1' });
+  const n = {};
+  const w = {};
+  let natReady = await nat.line();
+  let wasReady = await was.line();
+  while (natReady === 'ready') {
+    nat.go();
+    const r = JSON.parse(await nat.line());
+    n[r.name] = r;
+    natReady = await nat.line(); // the next kernel's inputs made before the wasm side runs
+    if (wasReady === `ready ${r.name}`) {
+      was.go();
+      const rw = JSON.parse(await was.line());
+      w[rw.name] = rw;
+      wasReady = await was.line();
+    }
+  }
+  if (natReady !== null || wasReady !== null) {
+    throw new Error(`bench: the two sides' kernels differ in name or order (native: ${natReady}, wasm: ${wasReady})`);
+  }
+  for (const { child } of [nat, was]) {
+    child.stdin.end();
+    if (child.exitCode === null) await once(child, 'exit');
+    if (child.exitCode !== 0) throw new Error(`bench: ${child.spawnfile} exited with ${child.exitCode}`);
+  }
+  return [n, w];
 }
 
 /** The faster of two timings of a kernel. */
 const faster = (a, b) => (!a ? b : !b ? a : b.ms < a.ms ? b : a);
 const sameCheck = (w, n) => Boolean(w && n) && Math.abs(w.check - n.check) <= 1e-9 * Math.max(1, Math.abs(n.check));
 
-// Native and wasm in alternate rounds, the best of each kept: the machine is shared, and a
-// load that comes and goes would otherwise fall on one side only (BENCH_ROUNDS, default 3).
+// Rounds of both sides (runRound), the best of each kept (BENCH_ROUNDS, default 3).
 const ROUNDS = Number(process.env.BENCH_ROUNDS ?? 3);
 const native = {};
 const wasm = {};
@@ -247,9 +312,8 @@ const agree = {}; // native and wasm gave the same result in every round
 console.error('building the native benchmark (cargo build --release --example bench) ...');
 execFileSync('cargo', ['build', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, stdio: 'inherit' });
 for (let round = 1; round <= ROUNDS; round++) {
-  console.error(`round ${round} of ${ROUNDS}: native, then wasm ...`);
-  const n = runNative(round);
-  const w = runWasmRound(round);
+  console.error(`round ${round} of ${ROUNDS}: each kernel native, then wasm ...`);
+  const [n, w] = await runRound(round);
   for (const k of Object.keys(n)) {
     native[k] = faster(native[k], n[k]);
     wasm[k] = faster(wasm[k], w[k]);

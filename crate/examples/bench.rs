@@ -2,7 +2,8 @@
 //! same kernels as WebAssembly in Node on the same inputs and prints the ratio).
 //! Prints one JSON object per line: `{"name": ..., "ms": ..., "check": ...}`, for the nonlinear
 //! maxima also `"evaluations"`: orientation evaluations per move (native only, from
-//! `Deviation::peak_counted`).
+//! `Deviation::peak_counted`). With `BENCH_STEP` set, waits for a line on stdin before each
+//! kernel (`step`): scripts/bench.mjs alternates the native and wasm timings kernel by kernel.
 
 use fiveaxis::cubic::{self, CubicGrid, CubicInput};
 use fiveaxis::nonlinear::{self, Deviation, Move};
@@ -162,17 +163,52 @@ pub fn iso(n: usize) -> String {
     s
 }
 
-/// Best of `repeat` runs, milliseconds, and the last result's checksum.
-fn time<T>(repeat: usize, mut f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
-    // One untimed run first, as the WebAssembly side does (scripts/bench.mjs).
-    f();
+/// In a round driven by scripts/bench.mjs (`BENCH_STEP` set), says `ready` and waits for a line
+/// on stdin before each kernel: the driver times each kernel natively, then as WebAssembly,
+/// while the other side waits.
+fn step() {
+    if std::env::var_os("BENCH_STEP").is_some() {
+        println!("ready");
+        let mut line = String::new();
+        // The driver's word, or the end of its input: either way, go on.
+        let _ = std::io::stdin().read_line(&mut line);
+    }
+}
+
+/// Best of at least `repeat` timed runs and at least a second of them, milliseconds, and the last
+/// result's checksum, after untimed runs for a second (at least one): as scripts/bench.mjs times
+/// the WebAssembly side (there, hot code is optimised while it runs, and the machine's slow
+/// spells last up to seconds).
+fn time<T>(repeat: usize, f: impl FnMut() -> T, check: impl Fn(&T) -> f64) -> (f64, f64) {
+    time_for(1.0, 1, repeat, f, check)
+}
+
+/// [`time`] with at least `secs` and at least `warm_runs` untimed runs, then at least `secs` and
+/// at least `repeat` timed (`secs` 0: exactly `warm_runs`, then exactly `repeat`).
+fn time_for<T>(
+    secs: f64,
+    warm_runs: usize,
+    repeat: usize,
+    mut f: impl FnMut() -> T,
+    check: impl Fn(&T) -> f64,
+) -> (f64, f64) {
+    step();
+    let warm = Instant::now();
+    let mut i = 0;
+    while i < warm_runs || warm.elapsed().as_secs_f64() < secs {
+        f();
+        i += 1;
+    }
     let mut best = f64::INFINITY;
     let mut sum = 0.0;
-    for _ in 0..repeat {
+    let timed = Instant::now();
+    let mut i = 0;
+    while i < repeat || timed.elapsed().as_secs_f64() < secs {
         let t = Instant::now();
         let r = f();
         best = best.min(t.elapsed().as_secs_f64() * 1e3);
         sum = check(&r);
+        i += 1;
     }
     (best, sum)
 }
@@ -450,17 +486,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         m["errors"] = json!({ "E_X0B": 0.0294, "E_A0B": 3.2419e-4f64.to_degrees() });
         m
     };
-    // Round r of scripts/bench.mjs (BENCH_ROUND) starts after the pivots of rounds 1 … r − 1,
-    // as the wasm side does (1 untimed + 3 timed runs per round).
-    let round: usize = std::env::var("BENCH_ROUND")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(1);
-    let mut run = 4 * round.saturating_sub(1);
+    // A count of runs, not a time, as scripts/bench.mjs: the last run's pivot, and so its
+    // result, is the same on both sides.
+    let mut run = 0;
     report(
         "sshape: eq 14 model (IK along both paths) + defects",
-        time(
-            3,
+        time_for(
+            0.0,
+            30,
+            10,
             || {
                 run += 1;
                 let (c, own) = SShapeCase::read_with::<SShapeDefectsInput>(
