@@ -54,8 +54,8 @@ async function step(name) {
 
 /**
  * Best of at least `repeat` timed runs and at least `ms` of them, after at least `warmRuns`
- * untimed runs and at least `ms` of them (`ms` 0: exactly `warmRuns`, then exactly `repeat`). The steady state, as natively
- * (crate/examples/bench.rs times the same way). Node runs WebAssembly first as baseline code and
+ * untimed runs and at least `ms` of them (`ms` 0: exactly `warmRuns`, then exactly `repeat`).
+ * The steady state, as natively (crate/examples/bench.rs times the same way). Node runs WebAssembly first as baseline code and
  * compiles the hot functions again, optimised, in the background: a short kernel timed cold
  * measures the compiler (the S-shape identification ×100, 20 ms, took 40-60 ms a run for its
  * first 4-8 runs, then 17-21 ms). And the machine has slow spells of a fraction of a second to
