@@ -45,19 +45,18 @@ const SETTLE_MS = 1000;
 /** In a round driven by the parent process (below): the lines it sends on stdin. */
 const stepped = Boolean(process.env.BENCH_WASM_ROUND);
 const words = stepped ? createInterface({ input: process.stdin })[Symbol.asyncIterator]() : null;
-/** In a driven round, says which kernel is next (`ready <name>`) and waits for the word to go. */
+/** Says which kernel is next (`ready <name>`) and waits for the driver's word to go. */
 async function step(name) {
-  if (!stepped) return;
   console.log(`ready ${name}`);
-  await words.next();
+  if ((await words.next()).done) process.exit(1); // the driver has gone: stop
 }
 
 /**
  * Best of at least `repeat` timed runs and at least `ms` of them, after at least `warmRuns`
  * untimed runs and at least `ms` of them (`ms` 0: exactly `warmRuns`, then exactly `repeat`).
- * The steady state, as natively (crate/examples/bench.rs times the same way). Node runs WebAssembly first as baseline code and
- * compiles the hot functions again, optimised, in the background: a short kernel timed cold
- * measures the compiler (the S-shape identification ×100, 20 ms, took 40-60 ms a run for its
+ * The steady state, as natively (crate/examples/bench.rs times the same way). Node runs
+ * WebAssembly first as baseline code and compiles the hot functions again, optimised, in the
+ * background: a short kernel timed cold measures the compiler (the S-shape identification ×100, 20 ms, took 40-60 ms a run for its
  * first 4-8 runs, then 17-21 ms). And the machine has slow spells of a fraction of a second to
  * seconds (the same identification at 17 ms, then 25-76 ms for a few runs, with nothing else
  * running): three runs of a short kernel could all fall in one.
@@ -75,8 +74,7 @@ async function time(name, repeat, f, check, { ms = SETTLE_MS, warmRuns = 1 } = {
     best = Math.min(best, performance.now() - t);
     sum = check(r);
   }
-  if (stepped) console.log(JSON.stringify({ name, ms: best, check: sum }));
-  return { ms: best, check: sum };
+  console.log(JSON.stringify({ name, ms: best, check: sum }));
 }
 const total = (a) => a.reduce((s, v) => s + v, 0);
 
@@ -101,13 +99,8 @@ function probeInput() {
 /** Same as probe_check in crate/examples/bench.rs. */
 const probeCheck = (r) => r.estimates.reduce((s, e) => s + (e.value ?? 0), 0) + r.after.sigma;
 
-/** One round of the WebAssembly timings, by kernel (a process of its own: runRound). */
+/** One round of the WebAssembly timings, kernel by kernel as the driver says (runRound). */
 async function runWasm() {
-  const wasm = {};
-  /** Times one kernel (`time`) and keeps its result under its name. */
-  const timed = async (name, repeat, f, check, how) => {
-    wasm[name] = await time(name, repeat, f, check, how);
-  };
   // In the order of crate/examples/bench.rs, so that a driven round times each kernel natively,
   // then as wasm, seconds apart.
   // Reading: the same texts as crate/examples/bench.rs (clsf, iso), target under 0.5 s as wasm.
@@ -140,9 +133,9 @@ async function runWasm() {
   };
   // The file's bytes, as the page's worker passes them (the engine decodes them).
   const cl = new TextEncoder().encode(clsf(22_000));
-  await timed('toolpath read: CLSF, 22000 statements', 10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
+  await time('toolpath read: CLSF, 22000 statements', 10, () => fa.toolpathParse(cl, { format: 'apt' }), readSum);
   const ncBytes = new TextEncoder().encode(iso(16_000));
-  await timed('toolpath read: ISO program, 16000 blocks', 10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
+  await time('toolpath read: ISO program, 16000 blocks', 10, () => fa.toolpathParse(ncBytes, { format: 'nc', machine: preset('A/C trunnion table') }), readSum);
   // Volumetric: the same machine, errors and error motions as crate/examples/bench.rs.
   const tanLim = preset('C/A double turntable on an X table (Tan & Lim)');
   tanLim.errors = { E_C0Y: 0.001, E_B0Z: -0.0008, E_Y0A: 0.005 };
@@ -157,17 +150,17 @@ async function runWasm() {
     E_CC: 0.001,
     E_ZA: 0.003,
   };
-  await timed('volumetric: 10^6 poses exact (1001 x 1001 plane) + budget',
+  await time('volumetric: 10^6 poses exact (1001 x 1001 plane) + budget',
     3,
     () => fa.volumetricMap({ machine: tanLim, region: { plane: 'XY', uFrom: -300, uTo: 300, vFrom: -200, vTo: 200, at: 50, k: 30, m: -20, steps: 1001 } }),
     (m) => total(m.norm),
   );
 
   const mv = moves(1_000_000);
-  await timed('nonlinear: exact max of 10^6 moves', 3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
+  await time('nonlinear: exact max of 10^6 moves', 3, () => fa.nonlinearMaxErrors('CAZ', 1, mv), total);
   const short = shortMoves(1_000_000);
-  await timed('nonlinear: exact max of 10^6 short moves (< 5°)', 3, () => fa.nonlinearMaxErrors('CAZ', 1, short), total);
-  await timed('nonlinear: 361x361 increment grid',
+  await time('nonlinear: exact max of 10^6 short moves (< 5°)', 3, () => fa.nonlinearMaxErrors('CAZ', 1, short), total);
+  await time('nonlinear: 361x361 increment grid',
     3,
     () => fa.nonlinearGrid({ machine: { type: 'CAZ' }, length: 1, thetaM: 10, dK: { from: -90, to: 90 }, dM: { from: -90, to: 90 }, nx: 361, ny: 361 }),
     (g) => total(g.max),
@@ -176,7 +169,7 @@ async function runWasm() {
   // Li et al.'s Table 5 in ISO names (E = −ε of the paper), on their machine's preset.
   const li = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
   li.errors = { E_X0B: -0.0146, E_Y0B: 0.0089, E_Z0B: 0.0142, E_A0B: 0.0023, E_B0B: -0.0029, E_C0B: 0.00002, E_A0C: 0.00017, E_X0C: -0.0094 };
-  await timed('cubic: height map 961x961 (Table 5)', 3, () => fa.cubicHeightMap({ machine: li, nx: 961, ny: 961 }), (m) => total(m.height));
+  await time('cubic: height map 961x961 (Table 5)', 3, () => fa.cubicHeightMap({ machine: li, nx: 961, ny: 961 }), (m) => total(m.height));
   // S-shape: the same inputs as crate/examples/bench.rs.
   const chanal = (pivot) => {
     const m = preset('B swivel head, C rotary table, Y under the table');
@@ -184,7 +177,7 @@ async function runWasm() {
     m.errors = { E_X0B: 0.0294, E_A0B: (3.2419e-4 * 180) / Math.PI };
     return m;
   };
-  await timed('sshape: overcut maps of A and B (eq 6 + exact), 261 x 16',
+  await time('sshape: overcut maps of A and B (eq 6 + exact), 261 x 16',
     3,
     () => fa.sshapeOvercut({ tool: { rTool: 10, lTool: 35 }, nu: 261, nv: 16 }),
     (o) => total(o.surfaces[0].exact) + total(o.surfaces[1].exact),
@@ -192,7 +185,7 @@ async function runWasm() {
   // A new pivot per run (the engine keeps designs in a cache): a count of runs, not a time, the
   // same as natively, so that the last run's pivot, and so its result, is the same.
   let ssRun = 0;
-  await timed('sshape: eq 14 model (IK along both paths) + defects',
+  await time('sshape: eq 14 model (IK along both paths) + defects',
     10,
     () => fa.sshapeDefects({ machine: chanal(399.889 + 0.001 * ++ssRun) }),
     (d) => total(d.total),
@@ -202,7 +195,7 @@ async function runWasm() {
   const paper = ['E_C0Y', 'E_A0Z', 'E_B0Z', 'E_A0C', 'E_B0C', 'E_X0B', 'E_A0B', 'E_C0B'];
   fa.sshapeDefects({ machine: chanal(399.889) }); // builds the model once, as the page does
   const ssInput = { machine: chanal(399.889), csv: ssCsv, parameters: paper }; // as bench.rs: one input
-  await timed('sshape: identification of the 100-point sample (parse + SVD fit), 100 times',
+  await time('sshape: identification of the 100-point sample (parse + SVD fit), 100 times',
     3,
     () => {
       let fit;
@@ -212,18 +205,18 @@ async function runWasm() {
     (f) => f.rms,
   );
 
-  await timed('reversal: default test with and without friction (2 simulations)', 3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
+  await time('reversal: default test with and without friction (2 simulations)', 3, () => fa.reversalSimulate({}), (r) => total(r.deviation));
   // The cubic test designer and the identification of its export (same inputs as bench.rs: the
   // preset as it is, without Table 5's errors).
   const liPreset = preset('B/C tilting table, vertical spindle (Li et al. 2021)');
   let designedCsv = '';
-  await timed('cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)', 3, () => fa.cubicDesign({ machine: liPreset, secondSetup: 100 }), (d) => {
+  await time('cubic: test designer, B/C table, 2 set-ups (1098 candidate zones)', 3, () => fa.cubicDesign({ machine: liPreset, secondSetup: 100 }), (d) => {
     designedCsv = d.designed.csv;
     return d.designed.smallest;
   });
   const filledCsv = designedCsv.replace(/,,,\n/g, ',1,0.00001,-0.00001\n');
   const cubicInput = { machine: liPreset, csv: filledCsv, decision: { noise: 0.001 } }; // as bench.rs: one input
-  await timed('cubic: identification of 18 measured zones, 100 times',
+  await time('cubic: identification of 18 measured zones, 100 times',
     3,
     () => {
       let r;
@@ -235,13 +228,15 @@ async function runWasm() {
 
   // The sphere test: 200 probed poses identified (same JSON as crate/examples/bench.rs).
   const probe = probeInput();
-  await timed('probe: identification of 200 probed poses (probeIdentify)', 5, () => fa.probeIdentify(probe), probeCheck);
-  return wasm;
+  await time('probe: identification of 200 probed poses (probeIdentify)', 5, () => fa.probeIdentify(probe), probeCheck);
 }
 
-// A round of the wasm timings, asked for by the parent process below: its results as JSON lines.
+// A round of the wasm timings, driven by the parent process below (runRound). After the last
+// kernel the process ends once its output is written (the parent reads that end as the wasm
+// side's last line), without running the parent's part below.
 if (stepped) {
   await runWasm();
+  await new Promise((written) => process.stdout.write('', written));
   process.exit(0);
 }
 
@@ -265,37 +260,50 @@ const lineReader = (stream) => {
  * one side has (the native toolpath ranking: its wasm side is timed in Chromium below) is timed
  * alone. Each round's processes are new: a process can also stay slower than the next.
  */
-async function runRound(round) {
-  const env = process.env;
+async function runRound() {
   const start = (cmd, args, more) => {
-    const child = spawn(cmd, args, { cwd: root, env: { ...env, ...more }, stdio: ['pipe', 'pipe', 'inherit'] });
-    return { child, line: lineReader(child.stdout), go: () => child.stdin.write('go\n') };
+    const child = spawn(cmd, args, { cwd: root, env: { ...process.env, ...more }, stdio: ['pipe', 'pipe', 'inherit'] });
+    const exited = once(child, 'exit');
+    const next = lineReader(child.stdout);
+    /** The next line; at the child's end (it died, or the kernels differ), an error that says so. */
+    const line = async (what) => {
+      const l = await next();
+      if (l !== null) return l;
+      await exited;
+      throw new Error(`bench: ${cmd === 'cargo' ? 'the native benchmark' : 'the wasm benchmark'} ended (exit ${child.exitCode}) where ${what} was expected`);
+    };
+    return { child, exited, next, line, go: () => child.stdin.write('go\n') };
   };
   const nat = start('cargo', ['run', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { BENCH_STEP: '1' });
   const was = start(process.execPath, [fileURLToPath(import.meta.url)], { BENCH_WASM_ROUND: '1' });
   const n = {};
   const w = {};
-  let natReady = await nat.line();
-  let wasReady = await was.line();
-  while (natReady === 'ready') {
-    nat.go();
-    const r = JSON.parse(await nat.line());
-    n[r.name] = r;
-    natReady = await nat.line(); // the next kernel's inputs made before the wasm side runs
-    if (wasReady === `ready ${r.name}`) {
-      was.go();
-      const rw = JSON.parse(await was.line());
-      w[rw.name] = rw;
-      wasReady = await was.line();
+  try {
+    let natReady = await nat.next();
+    let wasReady = await was.line('its first kernel');
+    while (natReady === 'ready') {
+      nat.go();
+      const r = JSON.parse(await nat.line('a result'));
+      n[r.name] = r;
+      natReady = await nat.next(); // the next kernel's inputs made before the wasm side runs
+      if (wasReady === `ready ${r.name}`) {
+        was.go();
+        const rw = JSON.parse(await was.line(`the result of ${r.name}`));
+        w[rw.name] = rw;
+        wasReady = await was.next();
+      }
     }
-  }
-  if (natReady !== null || wasReady !== null) {
-    throw new Error(`bench: the two sides' kernels differ in name or order (native: ${natReady}, wasm: ${wasReady})`);
-  }
-  for (const { child } of [nat, was]) {
-    child.stdin.end();
-    if (child.exitCode === null) await once(child, 'exit');
-    if (child.exitCode !== 0) throw new Error(`bench: ${child.spawnfile} exited with ${child.exitCode}`);
+    if (natReady !== null || wasReady !== null) {
+      throw new Error(`bench: the two sides' kernels differ in name or order (native: ${natReady}, wasm: ${wasReady})`);
+    }
+    for (const side of [nat, was]) {
+      side.child.stdin.end();
+      await side.exited;
+      if (side.child.exitCode !== 0) throw new Error(`bench: ${side.child.spawnfile} exited with ${side.child.exitCode}`);
+    }
+  } finally {
+    // On an error, neither side is left running (the end of its input stops each side).
+    for (const { child } of [nat, was]) if (child.exitCode === null && child.signalCode === null) child.kill();
   }
   return [n, w];
 }
@@ -313,7 +321,7 @@ console.error('building the native benchmark (cargo build --release --example be
 execFileSync('cargo', ['build', '--release', '-q', '-p', 'fiveaxis', '--example', 'bench'], { cwd: root, stdio: 'inherit' });
 for (let round = 1; round <= ROUNDS; round++) {
   console.error(`round ${round} of ${ROUNDS}: each kernel native, then wasm ...`);
-  const [n, w] = await runRound(round);
+  const [n, w] = await runRound();
   for (const k of Object.keys(n)) {
     native[k] = faster(native[k], n[k]);
     wasm[k] = faster(wasm[k], w[k]);

@@ -44,8 +44,16 @@ page_log=$(mktemp)
 page_start=$(date +%s)
 CARGO_TARGET_DIR="$PWD/target/page" setsid npm run --silent build >"$page_log" 2>&1 &
 page_pid=$!
-# On the way out (a failed step), the build is stopped with everything it started.
-trap 'rc=$?; kill -- -"$page_pid" 2>/dev/null || true; finish "$rc"' EXIT
+# On the way out of a failed step, the build is stopped with everything it started (and waited
+# for, so that nothing writes to target/page or wasm/pkg after this script).
+stop_page() {
+  if [ -n "$page_pid" ]; then
+    kill -- -"$page_pid" 2>/dev/null || true
+    wait "$page_pid" 2>/dev/null || true
+  fi
+  rm -f "$page_log"
+}
+trap 'rc=$?; stop_page; finish "$rc"' EXIT
 
 step "lint (rustfmt, clippy native and wasm32)"
 cargo fmt --all -- --check
@@ -60,7 +68,10 @@ WASM_BINDGEN_TEST_ONLY_NODE=1 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bi
   cargo test --profile test-opt --target wasm32-unknown-unknown -p fiveaxis-wasm --test 'wasm_*'
 
 step "build the page (the rest of it: started with the lint)"
-if wait "$page_pid"; then
+page_ok=0
+wait "$page_pid" || page_ok=$?
+page_pid=
+if [ "$page_ok" = 0 ]; then
   sed 's/^/  /' "$page_log"
   printf '  (the build took %d s from its start beside the lint)\n' $(($(date +%s) - page_start))
 else

@@ -170,8 +170,10 @@ fn step() {
     if std::env::var_os("BENCH_STEP").is_some() {
         println!("ready");
         let mut line = String::new();
-        // The driver's word, or the end of its input: either way, go on.
-        let _ = std::io::stdin().read_line(&mut line);
+        // The end of the driver's input (or an unreadable one): the driver has gone, stop.
+        if !matches!(std::io::stdin().read_line(&mut line), Ok(n) if n > 0) {
+            std::process::exit(1);
+        }
     }
 }
 
