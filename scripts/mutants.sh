@@ -53,44 +53,31 @@ files() {
   fi
 }
 # Two passes per scope. The first runs every mutant against the scope's own tests: the unit tests
-# (`--lib`) and the test binaries named for the scope's module, crate/tests/<scope>_*.rs (the
-# test files mirror crate/src: chain_model.rs tests chain.rs, machine_travel.rs machine/ …), so
-# a new test file joins its scope by its name. The second (`--re`, by name from the ledger) runs
-# the first pass's survivors again, except those listed as equivalent, against every test
-# binary of the crate: a mutant survives only when no test kills it.
-# Slow binaries (`slow` below) run only in the second pass, and only of the scopes whose code
-# they reach: reversal_fit (≈ 30 s) for reversal, ballbar_rotary_identify_monte_carlo (≈ 10 s,
-# of a mutant's 15) for ballbar, nonlinear_fast_peak and nonlinear_paper (≈ 7 s and 5 s: the
-# rotary-axis types and the chain) for nonlinear, rotary and chain.
-slow() {
-  case "$1" in
-    reversal_fit) echo "reversal" ;;
-    ballbar_rotary_identify_monte_carlo) echo "ballbar" ;;
-    nonlinear_fast_peak | nonlinear_paper) echo "nonlinear rotary chain" ;;
-    *) return 1 ;;
-  esac
-}
-# A nested scope (`sshape/overcut`) runs the tests of its study (`sshape_*`).
+# of its module and the integration tests named for it (the engine's one test binary,
+# crate/tests/engine.rs, mirrors crate/src: crate/tests/chain/model.rs tests chain.rs as
+# `chain::model::…`, crate/tests/machine/travel.rs machine/ as `machine::travel::…`), chosen by
+# libtest's name filter `<scope>::`, so a new test file joins its scope by where it is. The
+# second (`--re`, by name from the ledger) runs the first pass's survivors again, except those
+# listed as equivalent, against every test of the crate: a mutant survives only when no test
+# kills it.
+# Slow test files (`slow` below) run only in the second pass, and only for the scopes whose code
+# they reach: reversal::fit (≈ 30 s) for reversal, ballbar::rotary_identify_monte_carlo (≈ 10 s,
+# of a mutant's 15) for ballbar, nonlinear::fast_peak and nonlinear::paper (≈ 7 s and 5 s: the
+# rotary-axis types and the chain) for nonlinear, rotary and chain. (No unit test of crate/src
+# has these names.)
+slow_files="reversal::fit=reversal ballbar::rotary_identify_monte_carlo=ballbar nonlinear::fast_peak=nonlinear,rotary,chain nonlinear::paper=nonlinear,rotary,chain"
+# The test binary's arguments for each pass, one per line: name filters and `--skip`s. A nested
+# scope (`sshape/overcut`) runs the tests of its study (`sshape::`).
 quick() {
-  printf -- '--lib'
-  for f in crate/tests/"${1%%/*}"_*.rs; do
-    [ -e "$f" ] || continue
-    t=$(basename "$f" .rs)
-    slow "$t" >/dev/null && continue
-    printf -- ' --test %s' "$t"
-  done
-  echo
+  local f
+  echo "${1%%/*}::"
+  for f in $slow_files; do printf -- '--skip\n%s::\n' "${f%%=*}"; done
 }
 every() {
-  printf -- '--lib'
-  for f in crate/tests/*.rs; do
-    t=$(basename "$f" .rs)
-    if scopes_of=$(slow "$t"); then
-      case " $scopes_of " in *" ${1%%/*} "*) ;; *) continue ;; esac
-    fi
-    printf -- ' --test %s' "$t"
+  local f
+  for f in $slow_files; do
+    case ",${f#*=}," in *",${1%%/*},"*) ;; *) printf -- '--skip\n%s::\n' "${f%%=*}" ;; esac
   done
-  echo
 }
 # cargo-mutants options naming mutants of the ledger exactly: `regexes --exclude-re done`
 # leaves out the settled ones, `regexes --re survivors` selects the unexplained survivors.
@@ -100,7 +87,7 @@ regexes() {
   done
 }
 # Every module of crate/src but the crate's root (lib.rs) and the edge's declarations (api.rs:
-# a macro's list, tested by crate/tests/api_call.rs and the wasm and Node suites).
+# a macro's list, tested by crate/tests/api/call.rs and the wasm and Node suites).
 all_scopes=$(for f in crate/src/*; do n=$(basename "$f" .rs); case "$n" in lib | api) ;; *) printf '%s ' "$n" ;; esac; done)
 scopes=()
 extra=()
@@ -142,9 +129,10 @@ for s in "${scopes[@]}"; do
   fi
   failed=0
   for pass in quick every; do
-    read -r -a tb <<<"$($pass "$s")"
-    targs=()
-    for t in "${tb[@]}"; do targs+=("--cargo-arg=$t"); done
+    # The unit tests and the engine's test binary (not the doctests, nor the binding's tests),
+    # with the pass's filters after cargo's `--`.
+    targs=(--cargo-arg=--lib --cargo-arg=--test --cargo-arg=engine --cargo-test-arg=--)
+    while IFS= read -r a; do [ -n "$a" ] && targs+=("--cargo-test-arg=$a"); done < <($pass "$s")
     more=("${resumed[@]}")
     if [ $pass = every ]; then
       mapfile -t more < <(regexes --re survivors)

@@ -65,7 +65,7 @@ cargo test --workspace --profile test-opt -q
 
 step "wasm tests in headless Node (wasm-bindgen-test)"
 WASM_BINDGEN_TEST_ONLY_NODE=1 CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
-  cargo test --profile test-opt --target wasm32-unknown-unknown -p fiveaxis-wasm --test 'wasm_*'
+  cargo test --profile test-opt --target wasm32-unknown-unknown -p fiveaxis-wasm --test wasm
 
 step "build the page (the rest of it: started with the lint)"
 page_ok=0

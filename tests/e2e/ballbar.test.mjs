@@ -5,7 +5,7 @@
 // trace at the µm per division its title states; a tolerance gives the verdict; a bad file names
 // its line at the field and greys the last result; screenshots at 1366 × 768 and 390 × 844.
 // "Use the squareness in the machine" enters the sample's squareness as E_C0Y with the sign the
-// chain gives (crate/tests/ballbar_to_machine.rs: E_C0Y = −α, α = 30 µm/m here, Y leaning
+// chain gives (crate/tests/ballbar/to_machine.rs: E_C0Y = −α, α = 30 µm/m here, Y leaning
 // towards +X), keeps the machine's other values and errors, and changes the volumetric map to
 // what E_C0Y alone makes: Δx = −E_C0Y·Y.
 import { test } from 'node:test';
@@ -215,7 +215,7 @@ test('Ball-bar panel: the squareness into the machine, the volumetric map after 
     await page.waitForFunction(() => /2 errors entered/.test(document.getElementById('machine-summary')?.textContent ?? ''));
 
     // On a cross table (Y on the bed carrying X) E_C0Y turns X with Y: the message says that the
-    // model cannot hold this squareness (crate/tests/ballbar_to_machine.rs shows the round circle).
+    // model cannot hold this squareness (crate/tests/ballbar/to_machine.rs shows the round circle).
     await page.selectOption('#m-linear', 'table-xy');
     await page.click(button);
     await page.waitForFunction(() => /Y carries X \(a cross table\)/.test(document.getElementById('bb-machine-msg')?.textContent ?? ''));

@@ -17,7 +17,7 @@ test('toolpath panel: a sample ranked, plotted, refined and exported; a bad file
     // It opens with the impeller sample.
     await page.waitForFunction(() => /751 points \(APT/.test(document.getElementById('tp-file-msg')?.textContent ?? ''));
     // The dome passes 0.3° beside the vertical: the four types whose K turns about Z flip
-    // twice (see crate/tests/toolpath_compare.rs for why), ABX and ACX cannot start.
+    // twice (see crate/tests/toolpath/compare.rs for why), ABX and ACX cannot start.
     // The dome sample, dropped on the file box as a user's file.
     const domeText = readFileSync(new URL('../../public/samples/dome-past-the-pole.csv', import.meta.url), 'utf8');
     const domeFile = await page.evaluateHandle((text) => {

@@ -17,7 +17,7 @@
 //! * `ZX`: `E_B0Z = +α` (a positive `E_B0Z` leans Z towards `+X` as it moves up; here `u = Z`).
 //!
 //! These signs are checked through the kinematic chain, not only argued:
-//! `crate/tests/ballbar_to_machine.rs` builds machines with each error, commands a circle of its
+//! `crate/tests/ballbar/to_machine.rs` builds machines with each error, commands a circle of its
 //! plane, takes the tool's distance from the pivot through the chain and evaluates that trace.
 //!
 //! The machine model holds the angle of one axis line, whichever side of the machine it is on;

@@ -31,7 +31,7 @@
 //!   largest `|A_kj·x̂_j|` over the measurements (mm): below the tolerance it is "present, but
 //!   smaller than the tolerance".
 //! * **Interval**: `x̂ ± t_{ν, (1+level)/2}·se` (95 % by default), each covering the truth at
-//!   its stated rate (Monte-Carlo test `crate/tests/identify_monte_carlo.rs`).
+//!   its stated rate (Monte-Carlo test `crate/tests/identify/monte_carlo.rs`).
 //! * **Goodness of fit**: with the stated measurement noise `σ₀`, `‖d − A·x̂‖²/σ₀²` follows χ²
 //!   with `m − r` degrees of freedom when the errors explain the measurement; a p-value below 1 %
 //!   says they do not (a set-up error, a thermal drift, or an error the model lacks), and the

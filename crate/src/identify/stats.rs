@@ -10,7 +10,7 @@
 //! * The regularized upper incomplete gamma `Q(a, x)` by its series below `x < a + 1` and its
 //!   continued fraction above. χ² upper tail with k degrees of freedom: `Q(k/2, x/2)`.
 //!
-//! Checked against closed forms in `crate/tests/identify_stats.rs`: t with 1 and 2 degrees of
+//! Checked against closed forms in `crate/tests/identify/stats.rs`: t with 1 and 2 degrees of
 //! freedom (`1 − 2·atan|t|/π`, `1 − |t|/√(t² + 2)`), χ² with 2 (`e^(−x/2)`), and the normal limit.
 
 use std::f64::consts::PI;

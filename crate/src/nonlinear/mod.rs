@@ -71,7 +71,7 @@
 //! Otherwise (the test fails, near the pole for instance, or coincident or opposite ends) the
 //! dense method answers. Both fast paths agree with it to rounding: `δ` to 1e-12 relative or
 //! ~1e-15 absolute (the rounding of `g` itself: an ulp of the angles, the dot product), `u` to
-//! 1e-9 where the maximum is well defined (tests/nonlinear_fast_peak.rs). Short moves (under 5°)
+//! 1e-9 where the maximum is well defined (crate/tests/nonlinear/fast_peak.rs). Short moves (under 5°)
 //! take 2 to 5 evaluations on average instead of about 30 (examples/bench.rs); the dense
 //! fallback is left mostly to moves whose `g''` changes sign, e.g. a Group I tool crossing the
 //! plane perpendicular to K (θm = ±90°) with both axes moving, where `|g|` has two maxima.

@@ -21,7 +21,7 @@
 //! `vocabulary` is plain data ([`Quantity`], [`Field`], [`Kind`], [`Choice`]); `read` and
 //! `describe` sit on it. The schema names no study and not the machine: a kind only a module
 //! above knows (the machine's errors and error motions) is a [`Kind::Custom`] carrying that
-//! module's reader (`crate/tests/module_graph.rs` checks the module graph).
+//! module's reader (`crate/tests/lib/module_graph.rs` checks the module graph).
 
 mod describe;
 mod read;

@@ -15,7 +15,7 @@
 //! `L0 = 499.889 mm` below the B axis, every axis through the origin at zero. X, Y, Z, B follow
 //! ISO 841 and **C turns the table by +C** (reversed): that is what the paper's
 //! `tan C = −R·y_p/R·x_p` implies, found by matching every entry of the Appendix A Jacobian
-//! (`crate/tests/sshape_machine.rs`). Its 8 errors `E_C0Y, E_A0Z, E_B0Z, E_A0C, E_B0C, E_X0B,
+//! (`crate/tests/sshape/machine.rs`). Its 8 errors `E_C0Y, E_A0Z, E_B0Z, E_A0C, E_B0C, E_X0B,
 //! E_A0B, E_C0B` are the machine's location errors of the same names and signs (`D_i` of eq 11 is
 //! the chain's `D(l_i)` to first order); eq 12 has no workpiece set-up transform (eq 14's
 //! reference subtraction plays that role).

@@ -18,9 +18,9 @@
 //!
 //! The model is **first order** in the errors (the sensitivities at the nominal commanded
 //! pose), the traces it is fitted to are what the machine does exactly: for errors of 10 µm and
-//! 0.003° the remainder is below 0.1 µm (crate/tests/ballbar_rotary_trace.rs), far below a
+//! 0.003° the remainder is below 0.1 µm (crate/tests/ballbar/rotary_trace.rs), far below a
 //! ball-bar's resolution; the values found, put into the machine, reproduce the traces through
-//! the exact chain (crate/tests/ballbar_rotary_identified_errors_are_the_machines.rs).
+//! the exact chain (crate/tests/ballbar/rotary_identified_errors_are_the_machines.rs).
 //!
 //! # What is reported
 //! The shared identification in API units ([`crate::identify::Identification`]); what the

@@ -62,7 +62,7 @@
 //! line lies `e` off along X (`E_X0C = e`), and a radial bar at the ball's table angle `φ`
 //! (its angle about C in the workpiece frame), the table ball sits at `R_Z(−C)·p + e·x̂` while
 //! the tool ball is at `R_Z(−C)·t`: `ΔL = √(L² − 2·L·e·cos(φ − C) + e²) − L ≈ −e·cos(C − φ)`,
-//! once per turn, shortest at `C = φ` (crate/tests/ballbar_rotary_trace.rs).
+//! once per turn, shortest at `C = φ` (crate/tests/ballbar/rotary_trace.rs).
 //!
 //! # What a test cannot see ([`see`])
 //! The bar measures one length: a turn about the moving axis's own line (its zero, `E_C0C`)

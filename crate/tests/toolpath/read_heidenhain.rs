@@ -1,0 +1,613 @@
+//! The Heidenhain conversational reader (`fiveaxis::toolpath::read::heidenhain`), construct by
+//! construct, on programs written from the HEIDENHAIN manuals: TNC 620 Conversational
+//! Programming User's Manual 10/2017 (BEGIN PGM p.154; PLANE p.540; PLANE VECTOR p.548: "base
+//! vector … normal vector"); iTNC 530 User's Manual 340 422 (CR p.239: "R+ … up to 180°";
+//! PLANE SPATIAL pp.456–460: "first around the A axis, then B, and then C", all three angles
+//! required; FUNCTION TCPM p.457); iTNC 530 DIN/ISO (M128 p.290); TNC 620 DIN/ISO (PLANE EULER:
+//! precession about Z, nutation about the new X, rotation about the new Z, p.322); TNC 410
+//! (C with DR+ counter-clockwise, DR− clockwise, p.79); TNC 426/430 (CP IPA with IZ, p.153);
+//! TNC 320 (L p.128). Expected points are computed by hand in the comments.
+
+#![allow(clippy::unwrap_used)]
+use crate::common;
+
+use common::toolpath::{at, caz, caz_head, chords, close_vec, error, note, read_all, skipped};
+use fiveaxis::toolpath::read::{Format, LengthUnit, Motion, NoteKind};
+use nalgebra::Vector3;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+const H: Format = Format::Heidenhain;
+
+/// The program `blocks` between `BEGIN PGM T MM` and `END PGM T MM`, numbered from 0.
+fn program(blocks: &[&str]) -> String {
+    let mut s = String::from("0 BEGIN PGM T MM\n");
+    for (i, b) in blocks.iter().enumerate() {
+        s.push_str(&format!("{} {b}\n", i + 1));
+    }
+    s.push_str(&format!("{} END PGM T MM\n", blocks.len() + 1));
+    s
+}
+
+#[test]
+fn l_blocks_with_fmax_f_incremental_and_signed_words() {
+    let m = caz_head();
+    let text = program(&[
+        "BLK FORM 0.1 Z X+0 Y+0 Z-20",
+        "BLK FORM 0.2 X+100 Y+100 Z+0",
+        "TOOL CALL 1 Z S5000",
+        "L Z+100 R0 FMAX M3",
+        "L X+10 Y-5 R0 FMAX",
+        "L Z-2 R0 F200",
+        "L IX+20 R0",
+        "L X+30 Y-5 Z+5 A+30 C+90 R0 F MAX",
+        "L Z+10 ; a comment",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    assert_eq!(r.format, Format::Heidenhain);
+    assert_eq!(
+        (r.unit, r.unit_reason.as_str()),
+        (LengthUnit::Mm, "millimetres: BEGIN PGM … MM on line 1")
+    );
+    // Line 5 leaves X and Y unknown (no point); FMAX this block only; F MAX with a space.
+    let expected = [
+        (6, [10.0, -5.0, 100.0], [0.0, 0.0], Motion::Rapid),
+        (7, [10.0, -5.0, -2.0], [0.0, 0.0], Motion::Feed),
+        (8, [30.0, -5.0, -2.0], [0.0, 0.0], Motion::Feed),
+        (9, [30.0, -5.0, 5.0], [90.0, 30.0], Motion::Rapid),
+        (10, [30.0, -5.0, 10.0], [90.0, 30.0], Motion::Feed),
+    ];
+    assert_eq!(p.len(), expected.len(), "{p:?}");
+    for (q, (line, tip, angles, motion)) in p.iter().zip(expected) {
+        assert_eq!((q.line, q.motion), (line, motion));
+        assert_eq!(q.tip, Vector3::from(tip));
+        assert_eq!(q.angles, Some(angles));
+        close_vec(&q.axis, &caz(angles[0], angles[1]), 1e-15, "axis");
+    }
+    assert_eq!(skipped(&r, "BLK FORM"), 2);
+    assert_eq!(skipped(&r, "TOOL CALL"), 1);
+    let (p, r) = read_all(
+        "0 BEGIN PGM T INCH\n1 L X+1 Y+0 Z+0 R0 FMAX\n2 END PGM T INCH\n",
+        H,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(25.4, 0.0, 0.0));
+    assert_eq!(r.unit_reason, "inches: BEGIN PGM … INCH on line 1");
+}
+
+#[test]
+fn c_arcs_turn_about_the_pole_dr_plus_counter_clockwise() {
+    let m = caz_head();
+    let text = program(&[
+        "CC X+0 Y+0",
+        "L X+10 Y+0 Z+0 R0 F100",
+        "C X+0 Y+10 DR+",
+        "C X+10 Y+0 DR-",
+        "C X+10 Y+0 DR+",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    let quarter = chords(10.0, FRAC_PI_2, 0.001);
+    let whole = chords(10.0, 2.0 * PI, 0.001);
+    assert_eq!(r.arc_points, 2 * quarter + whole);
+    assert!(p[1..]
+        .iter()
+        .all(|q| (q.tip.norm() - 10.0).abs() < 1e-9 && q.motion == Motion::Arc));
+    // DR+ from (10, 0) to (0, 10): the first quadrant; DR− back the same way.
+    let first = &p[1..1 + 2 * quarter];
+    assert!(first.iter().all(|q| q.tip.x > -1e-9 && q.tip.y > -1e-9));
+    // End = start: a whole turn, through (−10, 0) and (0, −10).
+    let full = &p[1 + 2 * quarter..];
+    assert!(full.iter().any(|q| q.tip.y < -9.99) && full.iter().any(|q| q.tip.x < -9.99));
+}
+
+#[test]
+fn cr_ct_and_cp_arcs() {
+    let m = caz_head();
+    // CR from (0, 0) to (10, 0), R+5 DR−: the half circle about (5, 0), clockwise over the top.
+    let (p, _) = read_all(
+        &program(&["L X+0 Y+0 Z+0 R0 F100", "CR X+10 Y+0 R+5 DR-"]),
+        H,
+        Some(&m),
+    );
+    assert!(p[1..].iter().all(
+        |q| ((q.tip - Vector3::new(5.0, 0.0, 0.0)).norm() - 5.0).abs() < 1e-9 && q.tip.y > -1e-9
+    ));
+    // CT after a move along +X from (0, 0) to (10, 0), to (20, 10): the centre lies on the left
+    // normal at the start, (10, ρ), with ρ = |E − S|²/(2·n·(E − S)) = 200/20 = 10: (10, 10),
+    // counter-clockwise; half way, at 45°, (10 + 10 sin 45°, 10 − 10 cos 45°) = (17.07, 2.93).
+    let (p, _) = read_all(
+        &program(&["L X+0 Y+0 Z+0 R0 F100", "L X+10", "CT X+20 Y+10"]),
+        H,
+        Some(&m),
+    );
+    assert!(p[2..]
+        .iter()
+        .all(|q| ((q.tip - Vector3::new(10.0, 10.0, 0.0)).norm() - 10.0).abs() < 1e-9));
+    let s = 0.5f64.sqrt();
+    assert!(p[2..]
+        .iter()
+        .any(|q| (q.tip - Vector3::new(10.0 + 10.0 * s, 10.0 - 10.0 * s, 0.0)).norm() < 0.2));
+    // CP IPA+720 IZ−4 DR+ about CC (0, 0) from (5, 0, 0): two turns down to z = −4, each chord's
+    // z in proportion to the angle turned: after one turn, back at (5, 0), z = −2.
+    let (p, r) = read_all(
+        &program(&["CC X+0 Y+0", "L X+5 Y+0 Z+0 R0 F100", "CP IPA+720 IZ-4 DR+"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(r.arc_points, chords(5.0, 4.0 * PI, 0.001));
+    close_vec(
+        &p[p.len() - 1].tip,
+        &Vector3::new(5.0, 0.0, -4.0),
+        1e-9,
+        "CP end",
+    );
+    let half = p.len() / 2;
+    assert!((p[half].tip.z + 2.0).abs() < 0.01, "{:?}", p[half].tip);
+    // CC X Z: the pole's axes give the ZX plane; CP IPA+90 DR+ turns +X towards −Z (about +Y,
+    // the polar angle counted from +Z towards +X): (10, 0, 0) → (0, 0, −10).
+    let (p, _) = read_all(
+        &program(&["CC X+0 Z+0", "L X+10 Y+0 Z+0 R0 F100", "CP IPA+90 DR+"]),
+        H,
+        Some(&m),
+    );
+    close_vec(
+        &p[p.len() - 1].tip,
+        &Vector3::new(0.0, 0.0, -10.0),
+        1e-9,
+        "CP in ZX",
+    );
+    at(
+        &error(
+            &program(&["L X+0 Y+0 Z+0 R0 F100", "C X+10 Y+0 DR+"]),
+            H,
+            Some(&m),
+        ),
+        3,
+        3,
+        "no CC comes before it",
+    );
+    at(
+        &error(
+            &program(&["CC X+0 Y+0", "L X+5 Y+0 Z+0 R0 F100", "C X+0 Y+5"]),
+            H,
+            Some(&m),
+        ),
+        4,
+        3,
+        "DR+ (counter-clockwise) or DR−",
+    );
+}
+
+#[test]
+fn datum_shift_and_rotation_cycles_move_the_points() {
+    let m = caz_head();
+    let text = program(&[
+        "CYCL DEF 7.0 DATUM SHIFT",
+        "CYCL DEF 7.1 X+100",
+        "CYCL DEF 7.2 Y+50",
+        "L X+10 Y+10 Z+0 R0 FMAX",
+        "CYCL DEF 7.0 DATUM SHIFT",
+        "CYCL DEF 7.1 IX+5",
+        "L X+10 Y+10 Z+0 R0 FMAX",
+        "CYCL DEF 7.0 DATUM SHIFT",
+        "CYCL DEF 7.1 X+0",
+        "CYCL DEF 7.2 Y+0",
+        "CYCL DEF 10.0 ROTATION",
+        "CYCL DEF 10.1 ROT+90",
+        "L X+10 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(110.0, 60.0, 0.0));
+    assert_eq!(p[1].tip, Vector3::new(115.0, 60.0, 0.0));
+    close_vec(&p[2].tip, &Vector3::new(0.0, 10.0, 0.0), 1e-12, "ROT+90");
+    assert_eq!(note(&r, "DATUM SHIFT").kind, NoteKind::Frame);
+    assert_eq!(note(&r, "ROTATION").kind, NoteKind::Frame);
+}
+
+#[test]
+fn plane_functions_tilt_the_working_plane_in_their_documented_order() {
+    let m = caz_head();
+    let s = 0.5f64.sqrt();
+    // SPATIAL SPA+0 SPB+45 SPC+0: R = R_Y(45°); tool axis (sin 45°, 0, cos 45°); (0, 0, 10) of
+    // the plane is (7.071, 0, 7.071).
+    let text = program(&[
+        "PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN MB MAX FMAX",
+        "L X+0 Y+0 Z+10 R0 FMAX",
+        "PLANE RESET STAY",
+        "L Z+20 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    close_vec(&p[0].axis, &Vector3::new(s, 0.0, s), 1e-15, "SPB+45");
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(10.0 * s, 0.0, 10.0 * s),
+        1e-12,
+        "tip",
+    );
+    assert_eq!(p[0].angles, None);
+    assert_eq!(note(&r, "PLANE SPATIAL").kind, NoteKind::Frame);
+    close_vec(&p[1].axis, &Vector3::z(), 1e-15, "after PLANE RESET");
+    // SPA+90 SPB+0 SPC+90: first about X, then Y, then Z, all fixed: R = R_Z(90°)·R_X(90°)
+    // takes z to R_Z(90°)·(0, −1, 0) = (1, 0, 0). (C first would give (0, −1, 0).)
+    let (p, _) = read_all(
+        &program(&[
+            "PLANE SPATIAL SPA+90 SPB+0 SPC+90 STAY",
+            "L X+0 Y+0 Z+0 R0 FMAX",
+        ]),
+        H,
+        Some(&m),
+    );
+    close_vec(&p[0].axis, &Vector3::x(), 1e-15, "SPA+90 SPC+90");
+    // EULER EULPR+90 EULNU+45 EULROT+0: R_Z(90°)·R_X(45°) takes z to (sin 45°, 0, cos 45°).
+    let (p, _) = read_all(
+        &program(&[
+            "PLANE EULER EULPR+90 EULNU+45 EULROT+0 STAY",
+            "L X+0 Y+0 Z+0 R0 FMAX",
+        ]),
+        H,
+        Some(&m),
+    );
+    close_vec(&p[0].axis, &Vector3::new(s, 0.0, s), 1e-15, "EULER");
+    // VECTOR: the normal is the tool axis.
+    let (p, _) = read_all(
+        &program(&[
+            "PLANE VECTOR BX+1 BY+0 BZ+0 NX+0 NY-1 NZ+1 STAY",
+            "L X+0 Y+0 Z+0 R0 FMAX",
+        ]),
+        H,
+        Some(&m),
+    );
+    close_vec(&p[0].axis, &Vector3::new(0.0, -s, s), 1e-15, "VECTOR");
+    at(
+        &error(&program(&["PLANE AXIAL B+45 STAY"]), H, Some(&m)),
+        2,
+        3,
+        "PLANE AXIAL",
+    );
+    at(
+        &error(&program(&["PLANE SPATIAL SPA+0 SPB+45 STAY"]), H, Some(&m)),
+        2,
+        3,
+        "needs SPC",
+    );
+}
+
+#[test]
+fn plane_stay_leaves_the_machine_s_angles_in_q120_to_q122() {
+    let m = caz_head();
+    // SPB+45 on a C/A machine: (sin a sin c, −sin a cos c, cos a) = (sin 45°, 0, cos 45°) takes
+    // a = ±45°, sin c = ±1; the smallest tilt with A ≥ 0: A = 45°, C = 90°. Q120 is A, Q122 C.
+    let text = program(&[
+        "PLANE SPATIAL SPA+0 SPB+45 SPC+0 STAY SEQ+",
+        "L A+Q120 C+Q122 R0 FMAX",
+        "PLANE RESET STAY",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    assert_eq!(p.len(), 1);
+    let [c, a] = p[0].angles.unwrap();
+    assert!(
+        (c - 90.0).abs() < 1e-9 && (a - 45.0).abs() < 1e-9,
+        "{c} {a}"
+    );
+}
+
+#[test]
+fn tcp_machine_coordinates_and_cycle_calls() {
+    let m = caz_head();
+    let (_, r) = read_all(
+        &program(&["L X+0 Y+0 Z+0 R0 FMAX", "M128", "L A+10 C+10 F500"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(r.tcp.as_deref(), Some("M128 on line 3"));
+    let (_, r) = read_all(
+        &program(&[
+            "FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS",
+            "L X+0 Y+0 Z+0 A+10 R0 FMAX",
+        ]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(r.tcp.as_deref(), Some("FUNCTION TCPM on line 2"));
+    // M91: machine coordinates, the path breaks; M140 MB MAX: retract, likewise.
+    let (p, r) = read_all(
+        &program(&[
+            "L X+0 Y+0 Z+10 R0 FMAX",
+            "L Z+0 R0 FMAX M91",
+            "L X+5 R0 FMAX",
+            "L Z+5 R0 F100",
+        ]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(
+        p.iter().map(|q| (q.line, q.motion)).collect::<Vec<_>>(),
+        [(2, Motion::Rapid), (5, Motion::Rapid)]
+    );
+    assert_eq!(note(&r, "M91/M92").kind, NoteKind::Break);
+    let text = program(&[
+        "CYCL DEF 200 DRILLING ~",
+        "  Q200=2 ;SET-UP CLEARANCE ~",
+        "  Q201=-5 ;DEPTH",
+        "L X+10 Y+10 Z+10 R0 FMAX M99",
+        "CYCL CALL",
+    ]);
+    // `~` joins the parameter lines to the block; the text is renumbered by program(), so the
+    // continuation lines carry block numbers here, which the joined block ignores.
+    let (p, r) = read_all(
+        &text
+            .replace("2   Q200", "  Q200")
+            .replace("3   Q201", "  Q201"),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1);
+    let n = note(&r, "cycle 200 DRILLING");
+    assert_eq!((n.kind, n.count), (NoteKind::Partial, 2));
+}
+
+#[test]
+fn labels_are_called_and_repeated() {
+    let m = caz_head();
+    let text = "0 BEGIN PGM LBL MM\n\
+                1 L X+0 Y+0 Z+10 R0 FMAX\n\
+                2 CALL LBL 1\n\
+                3 L X+50 R0 FMAX\n\
+                4 LBL 2\n\
+                5 L IX+1 R0 F100\n\
+                6 CALL LBL 2 REP 2\n\
+                7 M30\n\
+                8 LBL 1\n\
+                9 L X+10 R0 F100\n\
+                10 L Y+10\n\
+                11 LBL 0\n\
+                12 END PGM LBL MM\n";
+    let (p, _) = read_all(text, H, Some(&m));
+    // The subprogram (lines 10, 11), back to line 4, then line 6 three times (once in order,
+    // twice repeated).
+    let x: Vec<(u32, f64)> = p.iter().map(|q| (q.line, q.tip.x)).collect();
+    assert_eq!(
+        x,
+        [
+            (2, 0.0),
+            (10, 10.0),
+            (11, 10.0),
+            (4, 50.0),
+            (6, 51.0),
+            (6, 52.0),
+            (6, 53.0)
+        ]
+    );
+    at(
+        &error(&program(&["CALL LBL 5"]), H, Some(&m)),
+        2,
+        3,
+        "no label 5",
+    );
+}
+
+#[test]
+fn q_parameters_that_are_plain_numbers_are_read_and_others_refused() {
+    let m = caz_head();
+    let (p, _) = read_all(
+        &program(&["FN 0: Q1 = +10", "Q2 = 5", "L X+Q1 Y-Q2 Z+0 R0 FMAX"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(10.0, -5.0, 0.0));
+    at(
+        &error(
+            &program(&["FN 2: Q3 = +Q1 - +Q2", "L X+Q3 Y+0 Z+0 R0 FMAX"]),
+            H,
+            Some(&m),
+        ),
+        3,
+        3,
+        "computed on line 2",
+    );
+    at(
+        &error(&program(&["L X+Q7 Y+0 Z+0 R0 FMAX"]), H, Some(&m)),
+        2,
+        3,
+        "does not set to a number",
+    );
+}
+
+#[test]
+fn contours_the_control_builds_are_refused_when_run() {
+    let m = caz_head();
+    for (block, part) in [
+        (
+            "APPR LCT X+10 Y+0 R5 RL F100",
+            "approaches or leaves the contour",
+        ),
+        ("RND R5", "rounds or chamfers"),
+        ("CHF 2", "rounds or chamfers"),
+        ("FPOL X+10 Y+10", "free contour programming"),
+        ("LP PR+10 PA+45", "polar coordinates"),
+        ("CYCL DEF 19.0 WORKING PLANE", "CYCL DEF 19"),
+        ("CYCL DEF 8.0 MIRROR IMAGE", "mirrors or scales"),
+        ("FN 9: IF +Q1 EQU +0 GOTO LBL 1", "jumps on a condition"),
+        ("CALL PGM OTHER.H", "calls another program"),
+        ("L X+0 Y+0 Z+0 B+10 R0 FMAX", "got B"),
+    ] {
+        at(&error(&program(&[block]), H, Some(&m)), 2, 3, part);
+    }
+    // Blocks after M30 that are never called are never run: a jump there is not refused.
+    let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 FMAX\n2 M30\n3 LBL 9\n4 FN 9: IF +Q1 EQU +0 GOTO LBL 9\n5 LBL 0\n6 END PGM T MM\n", H, Some(&m));
+    assert_eq!(p.len(), 1);
+}
+
+/// `CYCL CALL POS X Y Z FMAX` moves to the position, then runs the cycle there (TNC 640
+/// cycle programming manual, "CYCL CALL POS"): the moves after it start from the last hole.
+#[test]
+fn cycl_call_pos_moves_to_its_position() {
+    let m = caz_head();
+    let text = program(&[
+        "CYCL DEF 200 DRILLING",
+        "L X+0 Y+0 Z+10 R0 FMAX",
+        "CYCL CALL POS X+20 Y+30 Z+0 FMAX",
+        "CYCL CALL POS X+40 Y+30 Z+0 FMAX",
+        "L Z+5 F500",
+        "L X+60",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    let got: Vec<_> = p.iter().map(|q| (q.tip, q.motion)).collect();
+    assert_eq!(
+        got,
+        [
+            (Vector3::new(0.0, 0.0, 10.0), Motion::Rapid),
+            (Vector3::new(20.0, 30.0, 0.0), Motion::Rapid),
+            (Vector3::new(40.0, 30.0, 0.0), Motion::Rapid),
+            (Vector3::new(40.0, 30.0, 5.0), Motion::Feed),
+            (Vector3::new(60.0, 30.0, 5.0), Motion::Feed),
+        ]
+    );
+    assert!(
+        note(
+            &r,
+            "cycle 200 DRILLING is called at the position the block gives"
+        )
+        .count
+            == 2
+    );
+}
+
+/// `CALL LBL 1 REP 2/2`, as the TNC stores and shows a repeat (remaining/total; the
+/// repository's own real file `heid_handwritten_cut.h` line 49 has `REP 20/20`): the section
+/// runs once, then twice more. A REP without a number is refused as such.
+#[test]
+fn call_lbl_rep_in_the_stored_form_n_slash_n() {
+    let m = caz_head();
+    for rep in ["REP 2/2", "REP2", "REP 2"] {
+        let text = program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "LBL 1",
+            "L IX+10 F500",
+            &format!("CALL LBL 1 {rep}"),
+        ]);
+        let (p, _) = read_all(&text, H, Some(&m));
+        let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
+        assert_eq!(xs, [0.0, 10.0, 20.0, 30.0], "{rep}");
+    }
+    let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", "CALL LBL 1 REP X"]);
+    let e = error(&text, H, Some(&m));
+    assert!(
+        e.contains("REP must be followed by the number of repeats"),
+        "{e}"
+    );
+    // An empty section repeated 4 000 000 000 times: clamped to the TNC's 65 534 and ended.
+    let text = program(&["L X+0 Y+0 Z+0 FMAX", "LBL 1", "CALL LBL 1 REP 4000000000"]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    assert_eq!(p.len(), 1);
+}
+
+/// A datum shift programmed after PLANE acts along the tilted axes (TNC7 user's manual,
+/// "working plane coordinate system WPL-CS": transformations programmed after tilting);
+/// one programmed before is along the workpiece's. PLANE SPATIAL SPB+90: x' = (0, 0, −1),
+/// so a shift X+10 after it moves the datum to (0, 0, −10).
+#[test]
+fn a_datum_shift_after_plane_is_along_the_tilted_axes() {
+    let m = caz_head();
+    let after = program(&[
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN MB MAX FMAX SEQ+ TABLE ROT",
+        "CYCL DEF 7.0 DATUM SHIFT",
+        "CYCL DEF 7.1 X+10",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&after, H, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(0.0, 0.0, -10.0),
+        1e-12,
+        "after PLANE",
+    );
+    assert!(
+        note(&r, "CYCL DEF 7 DATUM SHIFT moves the datum by (10, 0, 0)")
+            .text
+            .contains("along the tilted plane's axes")
+    );
+    let before = program(&[
+        "TRANS DATUM AXIS X+10",
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN MB MAX FMAX SEQ+ TABLE ROT",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, _) = read_all(&before, H, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(10.0, 0.0, 0.0),
+        1e-12,
+        "before PLANE",
+    );
+}
+
+/// Under M128 in a tilted plane, rotary words give the tool axis (5-axis moves in the plane);
+/// an LN vector is the tool direction in the tilted frame. Before M128 the plane's z holds.
+#[test]
+fn m128_in_a_tilted_plane_follows_the_rotary_words_and_vectors() {
+    let m = caz_head();
+    let text = program(&[
+        "PLANE SPATIAL SPA+30 SPB+0 SPC+0 STAY",
+        "L X+0 Y+0 Z+10 R0 FMAX",
+        "M128",
+        "L X+10 A+45 C+0 F500",
+        "LN X+20 Y+0 Z+10 TX+0 TY+0 TZ+1 F500",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    // SPA+30: Rx(30°), z' = (0, −0.5, 0.866); A30 C0 on this head gives the same.
+    let plane_z = Vector3::new(0.0, -0.5, 3f64.sqrt() / 2.0);
+    close_vec(&p[0].axis, &plane_z, 1e-12, "the plane's z");
+    close_vec(&p[1].axis, &caz(0.0, 45.0), 1e-12, "A+45 under M128");
+    close_vec(&p[2].axis, &plane_z, 1e-12, "TZ+1 in the tilted frame");
+    assert_eq!(note(&r, "give the tool axis from here").line, 5);
+}
+
+/// Statements the TNC writes that the reader now reads: `M140 MB MAX` on its own (a retract:
+/// the path breaks), `PRESET SELECT` (another preset: a break), `F MAX` (not a feed); and two
+/// it refuses, naming them: `TRANS DATUM TABLE` (the shift is in a table) and
+/// `FUNCTION TCPM … AXIS SPAT` (A B C are spatial angles there).
+#[test]
+fn m140_preset_select_f_max_and_what_is_refused() {
+    let m = caz_head();
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "L X+10 F500",
+        "M140 MB MAX",
+        "L X+20 Y+0 F MAX",
+        "L Z+5 FMAX",
+        "PRESET SELECT #5",
+        "L X+0 Y+0 Z+0 F MAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    assert_eq!(note(&r, "M140 retracts").kind, NoteKind::Break);
+    assert_eq!(note(&r, "PRESET SELECT").kind, NoteKind::Break);
+    // After M140 X Y Z are unknown until Z+5 (block 5): then (20, 0, 5).
+    assert_eq!(p[2].tip, Vector3::new(20.0, 0.0, 5.0));
+    assert_eq!(skipped(&r, "feeds (F)"), 1, "only F500");
+    assert!(p[3].motion == Motion::Rapid && p[3].tip == Vector3::zeros());
+    for (stmt, part) in [
+        ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM TABLE"),
+        ("FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS", "AXIS SPAT"),
+    ] {
+        let e = error(&program(&[stmt, "L X+0 Y+0 Z+0 FMAX"]), H, Some(&m));
+        assert!(e.starts_with("line 2") && e.contains(part), "{e}");
+    }
+}
+
+/// Detection looks at statements, not comments: a Fanuc program with `(TOOL CALL T1 …)` and a
+/// Sinumerik one starting `;TOOL CALL T1` are not Heidenhain.
+#[test]
+fn detection_ignores_keywords_in_comments() {
+    assert_eq!(
+        Format::detect("%\nO1000 (TOOL CALL T1 D10 FLAT)\nG90 G21 G17\nG0 X0 Y0 Z10\n"),
+        Format::Nc
+    );
+    assert_ne!(
+        Format::detect(";TOOL CALL T1\nG71 G90\nTRAORI\nG0 X0 Y0 Z10\n"),
+        Format::Heidenhain
+    );
+    assert_eq!(
+        Format::detect("1 TOOL CALL 5 Z S3000\n"),
+        Format::Heidenhain
+    );
+}

@@ -1,0 +1,302 @@
+//! The Siemens Sinumerik 840D reader (`fiveaxis::toolpath::read::siemens`), construct by
+//! construct, on programs written from the SINUMERIK manuals: ONE / 840D sl Programming Manual
+//! "NC programming" 12/2019 (6FC5398-2EP40-0BA0: `CR=` p.192, `TRANS`/`ATRANS` p.309 with its
+//! example "TRANS X10 Y10 Z10 then ATRANS X5 Y5 gives X15 Y15 Z10", `ROT`/`AROT` pp.315–316,
+//! `TRAORI` p.666), Job Planning 03/2006 (A3 B3 C3 "points towards the tool adapter; the length
+//! is of no significance", p.7-20), 808D Programming Manual (`=AC()`/`=IC()` p.53, `TRANS`
+//! alone clears p.56), 828D Job Planning (`DEF` p.23), Function Manual K2 (MD10600: ROT turns
+//! "first about Z, then about the new Y′, then about the new X″"). Expected points are computed
+//! by hand in the comments.
+
+#![allow(clippy::unwrap_used)]
+use crate::common;
+
+use common::toolpath::{at, caz, caz_head, close_vec, error, note, read_all, skipped};
+use fiveaxis::toolpath::read::{Format, LengthUnit, Motion, NoteKind};
+use nalgebra::Vector3;
+
+const S: Format = Format::Siemens;
+
+#[test]
+fn traori_blocks_with_ic_ac_and_dc_words() {
+    let m = caz_head();
+    let text = "N10 G17 G90 G71 ; millimetres\n\
+                N20 MSG(\"roughing\")\n\
+                N30 TRAORI\n\
+                N40 G0 X10 Y20 Z30 A0 C0\n\
+                N50 G1 X=15 Y=IC(5) A=30 F1000\n\
+                N60 Z=AC(12) C=DC(350)\n\
+                N70 M30\n";
+    let (p, r) = read_all(text, S, Some(&m));
+    assert_eq!(r.format, Format::Siemens);
+    assert_eq!(r.tcp.as_deref(), Some("TRAORI on line 3"));
+    assert_eq!(r.unit, LengthUnit::Mm);
+    assert_eq!(r.unit_reason, "millimetres: G71 on line 1");
+    // Y=IC(5): 20 + 5. C=DC(350) from 0°: the shorter way, −10°.
+    let expected = [
+        (4, [10.0, 20.0, 30.0], [0.0, 0.0], Motion::Rapid),
+        (5, [15.0, 25.0, 30.0], [0.0, 30.0], Motion::Feed),
+        (6, [15.0, 25.0, 12.0], [-10.0, 30.0], Motion::Feed),
+    ];
+    assert_eq!(p.len(), expected.len());
+    for (q, (line, tip, angles, motion)) in p.iter().zip(expected) {
+        assert_eq!((q.line, q.motion), (line, motion));
+        assert_eq!(q.tip, Vector3::from(tip));
+        assert_eq!(q.angles, Some(angles));
+        close_vec(&q.axis, &caz(angles[0], angles[1]), 1e-15, "axis");
+    }
+    assert_eq!(skipped(&r, "messages"), 1);
+    assert_eq!(skipped(&r, "program ends"), 1);
+}
+
+#[test]
+fn variables_defined_as_plain_numbers_are_read_and_expressions_are_refused() {
+    let m = caz_head();
+    let text = "DEF REAL DEPTH=-5, SAFE=50\nR1=10\nG0 X=R1 Y=-R1 Z=SAFE\nG1 Z=DEPTH\n";
+    let (p, _) = read_all(text, S, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(10.0, -10.0, 50.0));
+    assert_eq!(p[1].tip, Vector3::new(10.0, -10.0, -5.0));
+    at(
+        &error("R1=10\nG0 X0 Y0 Z=R1+5\n", S, Some(&m)),
+        2,
+        12,
+        "\"R1+5\" is an expression",
+    );
+    at(
+        &error("R1=10\nR2=R1*2\nG0 X=R2\n", S, Some(&m)),
+        3,
+        6,
+        "computed on line 2",
+    );
+    at(
+        &error("G0 X0 Y0 Z=_Z_HOME\n", S, Some(&m)),
+        1,
+        12,
+        "uses \"_Z_HOME\", which the file does not define",
+    );
+    at(
+        &error("G0 Y=130+45+85+10\n", S, Some(&m)),
+        1,
+        6,
+        "is an expression",
+    );
+}
+
+#[test]
+fn trans_and_atrans_shift_as_the_manual_s_example_says() {
+    let m = caz_head();
+    // TRANS X10 Y10 Z10, then ATRANS X5 Y5: the offset is X15 Y15 Z10.
+    let text = "TRANS X10 Y10 Z10\nATRANS X5 Y5\nG0 X0 Y0 Z0\nTRANS\nG0 X1\n";
+    let (p, r) = read_all(text, S, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(15.0, 15.0, 10.0));
+    // TRANS alone clears the programmable frame.
+    assert_eq!(p[1].tip, Vector3::new(1.0, 0.0, 0.0));
+    assert_eq!(note(&r, "programmable frame").kind, NoteKind::Frame);
+}
+
+#[test]
+fn rot_turns_about_z_then_the_new_y_then_the_new_x() {
+    let m = caz_head();
+    // ROT Z90: (10, 0, 0) → (0, 10, 0).
+    let (p, _) = read_all("ROT Z90\nG0 X10 Y0 Z0\n", S, Some(&m));
+    close_vec(&p[0].tip, &Vector3::new(0.0, 10.0, 0.0), 1e-12, "ROT Z90");
+    // ROT X90 Z90: R = R_Z(90°)·R_Y(0)·R_X(90°). (0, 0, 1) → R_X(90°): (0, −1, 0) → R_Z(90°):
+    // (1, 0, 0). (X first about the fixed axes would give R_X(90°)·R_Z(90°)·(0, 0, 1) = (0, −1,
+    // 0).)
+    let (p, _) = read_all("ROT X90 Z90\nG0 X0 Y0 Z1\n", S, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(1.0, 0.0, 0.0),
+        1e-12,
+        "ROT X90 Z90",
+    );
+    // AROT RPL=90 (G17: about Z) after TRANS X100: the shift stays, the turn is added in it:
+    // (10, 0) → (0, 10) → (100, 10).
+    let (p, _) = read_all("G17\nTRANS X100\nAROT RPL=90\nG0 X10 Y0 Z0\n", S, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(100.0, 10.0, 0.0),
+        1e-12,
+        "AROT RPL",
+    );
+    at(
+        &error("SCALE X2 Y2\n", S, Some(&m)),
+        1,
+        1,
+        "scales or mirrors",
+    );
+}
+
+#[test]
+fn g70_is_inches_and_a3_b3_c3_give_the_tool_vector() {
+    let m = caz_head();
+    let (p, r) = read_all("G70\nG0 X1 Y0 Z0\n", S, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(25.4, 0.0, 0.0));
+    assert_eq!(r.unit_reason, "inches: G70 on line 1");
+    // A3 B3 C3: the direction only counts.
+    let (p, _) = read_all(
+        "TRAORI\nG1 X0 Y0 Z0 A3=0 B3=0 C3=2\nX1 A3=1 C3=1\n",
+        S,
+        Some(&m),
+    );
+    close_vec(&p[0].axis, &Vector3::z(), 1e-15, "C3");
+    let s = 0.5f64.sqrt();
+    close_vec(&p[1].axis, &Vector3::new(s, 0.0, s), 1e-15, "A3 C3");
+    assert_eq!(p[1].angles, None);
+}
+
+#[test]
+fn cr_and_absolute_centres_give_arcs() {
+    let m = caz_head();
+    // G2 from (0, 0) to (10, 0) with CR=5: the half circle about (5, 0), clockwise over the top.
+    let (p, _) = read_all("G17 G0 X0 Y0 Z0\nG2 X10 Y0 CR=5\n", S, Some(&m));
+    assert!(p[1..]
+        .iter()
+        .all(|q| ((q.tip - Vector3::new(5.0, 0.0, 0.0)).norm() - 5.0).abs() < 1e-9));
+    assert!(p[1..]
+        .iter()
+        .all(|q| q.tip.y >= -1e-9 && q.motion == Motion::Arc));
+    // I=AC(5) J=AC(0): the same centre, absolute.
+    let (p, _) = read_all("G17 G0 X0 Y0 Z0\nG2 X10 Y0 I=AC(5) J=AC(0)\n", S, Some(&m));
+    assert!(p[1..]
+        .iter()
+        .all(|q| ((q.tip - Vector3::new(5.0, 0.0, 0.0)).norm() - 5.0).abs() < 1e-9));
+}
+
+#[test]
+fn supa_and_work_offsets_break_the_path_and_cycles_are_noted() {
+    let m = caz_head();
+    let (p, r) = read_all(
+        "G54\nG0 X0 Y0 Z10\nSUPA G0 Z0\nG0 X5 Z5\nG55\nG1 X6\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(
+        p.iter().map(|q| (q.line, q.motion)).collect::<Vec<_>>(),
+        [(2, Motion::Rapid), (4, Motion::Rapid), (6, Motion::Rapid)]
+    );
+    assert_eq!(note(&r, "machine coordinates").line, 3);
+    assert_eq!(note(&r, "another work offset").line, 5);
+    let (_, r) = read_all(
+        "G0 X0 Y0 Z10\nMCALL CYCLE81(10,0,2,-5)\nX5\nMCALL\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(note(&r, "drilling cycle CYCLE81").kind, NoteKind::Partial);
+    // G4 F2: F is the dwell's time.
+    let (p, r) = read_all("G0 X0 Y0 Z0\nG4 F2\nG1 X1\n", S, Some(&m));
+    assert_eq!(p.len(), 2);
+    assert_eq!(skipped(&r, "dwells"), 1);
+}
+
+#[test]
+fn cycle800_resets_are_read_and_swivels_refused() {
+    let m = caz_head();
+    let (p, r) = read_all(
+        "CYCLE800(0,\"TC1\",200000,57,0,0,0,0,0,0,0,0,0,1,100,1)\nG0 X0 Y0 Z0\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1);
+    assert_eq!(skipped(&r, "swivel resets"), 1);
+    at(
+        &error(
+            "CYCLE800(1,\"TC1\",0,57,0,0,0,0,30,0,0,0,0,1)\n",
+            S,
+            Some(&m),
+        ),
+        1,
+        1,
+        "CYCLE800 swivels the working plane",
+    );
+}
+
+#[test]
+fn program_flow_calls_and_other_forms_are_refused() {
+    let m = caz_head();
+    for (text, column, part) in [
+        ("IF R1>0 GOTOF END\n", 1, "program flow"),
+        ("N10 GOTOB START\n", 5, "program flow"),
+        ("L100\n", 1, "calls subprogram L100"),
+        ("N12 L140(2)\n", 5, "calls a subprogram"),
+        ("CALL \"PART2\"\n", 1, "calls a subprogram"),
+        ("PROC PART(REAL A)\n", 1, "PROC starts a subprogram"),
+        ("G0 X0 Y0 Z0\nCIP X10 Y10 I1=5 J1=5\n", 1, "CIP"),
+        ("G0 AP=90 RP=10\n", 4, "polar coordinates"),
+        ("TRAORI\nG1 A2=10 B2=20\n", 4, "orientation by angles"),
+        ("G0 X0 Y0 Z0 B10\n", 13, "got B"),
+    ] {
+        let line = if text.starts_with("G0 X0 Y0 Z0\n") || text.starts_with("TRAORI\n") {
+            2
+        } else {
+            1
+        };
+        at(&error(text, S, Some(&m)), line, column, part);
+    }
+}
+
+/// `G74 X1=0 Z1=0` (reference point approach) and `G75 FP=2 X=0 Y=0 Z=0` (fixed point
+/// approach: "the programmed position values … are ignored, but must still be written"; the
+/// axes go to a point stored in machine data, MD30600) take the named axes where the file does
+/// not say: the path breaks, and the moves after them start from unknown positions. `G0` in a
+/// block with `SUPA` stays in force after it (modal group 1).
+#[test]
+fn g74_g75_break_the_path_and_g0_with_supa_stays_modal() {
+    let m = caz_head();
+    let text = "G71 G90\nG0 X0 Y0 Z10\nG1 Z0 F500\nX10\nG74 Z1=0\nG0 X50 Y50\nG1 Z-1\nG75 FP=2 X=0 Y=0 Z=0\nG1 X0\n";
+    let (p, r) = read_all(text, S, Some(&m));
+    assert_eq!(note(&r, "G74/G75 take Z").kind, NoteKind::Break);
+    // After G74 Z is unknown: G0 X50 Y50 gives no point; G1 Z-1 does, reached across the break.
+    let lines: Vec<u32> = p.iter().map(|q| q.line).collect();
+    assert_eq!(lines, [2, 3, 4, 7]);
+    assert_eq!(p[3].motion, Motion::Rapid);
+    assert_eq!(skipped(&r, "variable"), 0, "X1= is not a variable");
+    // G0 SUPA Z0 D0 then modal moves: rapids.
+    let text = "G71 G90\nG1 X0 Y0 Z10 F500\nG1 Z0\nG0 SUPA Z0 D0\nX50 Y50\nZ5\nZ1\n";
+    let (p, _) = read_all(text, S, Some(&m));
+    assert_eq!(
+        p.last().map(|q| (q.tip.z, q.motion)),
+        Some((1.0, Motion::Rapid))
+    );
+}
+
+/// `DEF` after a block number (posts number every block), and a call not closed on its line is
+/// an error with its place, not a crash (a non-ASCII character at the end of it).
+#[test]
+fn def_after_a_block_number_and_an_unclosed_call() {
+    let m = caz_head();
+    let (p, _) = read_all(
+        "N10 DEF REAL DEPTH=5\nN20 G71 G90 G0 X0 Y0 Z=DEPTH\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(0.0, 0.0, 5.0));
+    at(
+        &error("G71\nMSG(\"Fräsen Ø\n", S, Some(&m)),
+        2,
+        1,
+        "MSG( is not closed",
+    );
+    at(
+        &error("CYCLE81(10,0,2,-5,Ø\n", S, Some(&m)),
+        1,
+        1,
+        "CYCLE81( is not closed",
+    );
+}
+
+/// A frame set in inches stays where it is when the program switches to millimetres: TRANS X1
+/// (25.4 mm), then G71 and ATRANS Y10: the origin is (25.4, 10, 0) mm.
+#[test]
+fn a_frame_stays_where_it_is_when_the_unit_changes() {
+    let m = caz_head();
+    let (p, r) = read_all(
+        "G70 G90\nTRANS X1\nG71\nATRANS Y10\nG0 X0 Y0 Z0\n",
+        S,
+        Some(&m),
+    );
+    close_vec(&p[0].tip, &Vector3::new(25.4, 10.0, 0.0), 1e-9, "origin");
+    assert!(note(&r, "TRANS sets the programmable frame")
+        .text
+        .contains("origin (25.4, 0, 0) mm"));
+}
