@@ -60,7 +60,7 @@ files() {
 # second (`--re`, by name from the ledger) runs the first pass's survivors again, except those
 # listed as equivalent, against every test of the crate: a mutant survives only when no test
 # kills it.
-# Slow test files (`slow` below) run only in the second pass, and only for the scopes whose code
+# Slow test files (`slow_files` below) run only in the second pass, and only for the scopes whose code
 # they reach: reversal::fit (≈ 30 s) for reversal, ballbar::rotary_identify_monte_carlo (≈ 10 s,
 # of a mutant's 15) for ballbar, nonlinear::fast_peak and nonlinear::paper (≈ 7 s and 5 s: the
 # rotary-axis types and the chain) for nonlinear, rotary and chain. (No unit test of crate/src
