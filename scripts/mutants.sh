@@ -8,6 +8,9 @@
 #   npm run mutants -- resume cubic       go on where a stopped run of the scope left off
 #   npm run mutants -- chain -- --shard 1/4 --baseline skip
 #                                         anything after a second `--` goes to cargo-mutants
+#                                         (not --cargo-test-arg: this script's filters for the
+#                                         test binary come after cargo's `--`, and a cargo test
+#                                         option after them would reach the binary)
 #
 # A scope is a module of the engine (its source files) and the tests named for it, run against
 # each of its mutants in two passes (see `quick` below): every mutant against the scope's quick tests, then the
@@ -56,7 +59,9 @@ files() {
 # of its module and the integration tests named for it (the engine's one test binary,
 # crate/tests/engine.rs, mirrors crate/src: crate/tests/chain/model.rs tests chain.rs as
 # `chain::model::…`, crate/tests/machine/travel.rs machine/ as `machine::travel::…`), chosen by
-# libtest's name filter `<scope>::`, so a new test file joins its scope by where it is. The
+# libtest's name filter `<scope>::`, so a new test file (declared in engine.rs) joins its scope
+# by where it is. libtest's filter matches anywhere in a name: `machine::` also runs
+# `sshape::machine::…`, more tests than the scope's own, never fewer. The
 # second (`--re`, by name from the ledger) runs the first pass's survivors again, except those
 # listed as equivalent, against every test of the crate: a mutant survives only when no test
 # kills it.
@@ -71,6 +76,8 @@ slow_files="reversal::fit=reversal ballbar::rotary_identify_monte_carlo=ballbar 
 quick() {
   local f
   echo "${1%%/*}::"
+  # The edge's tests are those of its one caller, api.rs's table: crate/tests/api/.
+  [ "${1%%/*}" = edge ] && echo "api::"
   for f in $slow_files; do printf -- '--skip\n%s::\n' "${f%%=*}"; done
 }
 every() {

@@ -1,7 +1,8 @@
 //! The engine's integration tests: one test binary (linked once, not once per file), its
 //! modules mirroring `crate/src/` (`ballbar/…` tests `crate/src/ballbar/`, `lib/` the crate as a
 //! whole). Each test is named for the behaviour it checks; `cargo test -p fiveaxis --test engine
-//! -- cubic::paper` runs one file's tests.
+//! -- cubic::paper` runs one file's tests. A new file needs its `mod` line here
+//! (`lib::test_tree` fails without it).
 
 mod common;
 mod probe_common;
@@ -40,6 +41,7 @@ mod identify {
 }
 mod lib {
     mod module_graph;
+    mod test_tree;
 }
 mod machine {
     mod model;

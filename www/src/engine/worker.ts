@@ -10,7 +10,16 @@ import init, * as engine from '@engine';
 import { utf8Check } from '../ui/decode';
 import { transferables } from './transfer';
 
-const ready = init();
+/** A module of one function that uses WebAssembly SIMD (`i32.const 0; i8x16.splat;
+ *  i8x16.popcnt`): valid only where the browser runs SIMD, which the engine is built with. */
+const SIMD_PROBE = new Uint8Array([0, 97, 115, 109, 1, 0, 0, 0, 1, 5, 1, 96, 0, 1, 123, 3, 2, 1, 0, 10, 10, 1, 8, 0, 65, 0, 253, 15, 253, 98, 11]);
+// A browser without SIMD cannot compile the engine: say so rather than the compiler's words.
+const ready = init().catch((err: unknown) => {
+  if (!WebAssembly.validate(SIMD_PROBE)) {
+    throw new Error('this browser cannot run the engine: it lacks WebAssembly SIMD (Chrome or Edge 91, Firefox 89, Safari 16.4 or later have it)');
+  }
+  throw err;
+});
 const callable = engine as unknown as Record<string, unknown>;
 const post = (msg: unknown, transfer: Transferable[] = []) => (self as DedicatedWorkerGlobalScope).postMessage(msg, transfer);
 
