@@ -128,6 +128,13 @@ for s in "${scopes[@]}"; do
   # rotary/ without ballbar's own files).
   args+=(--file "$(files "$s")")
   resumed=()
+  # A run stopped part-way (the machine reset, a kill) left its outcomes in
+  # $out/mutants.out/outcomes.json, unmerged: merged first, or the next run, which moves that
+  # folder aside, would test them again. (That file is always the latest run's, so merging it
+  # again after a finished run changes nothing.)
+  if [ "$resume" = 1 ] && [ -f "$out/mutants.out/outcomes.json" ]; then
+    node scripts/mutants-ledger.mjs merge "$out"
+  fi
   if [ "$resume" = 1 ] && [ -f "$out/ledger.json" ]; then
     mapfile -t resumed < <(regexes --exclude-re done)
     say "scope $s: resuming ($(($(printf '%s\n' "${resumed[@]}" | grep -c '^\^' || true))) mutants settled before are left out)"
