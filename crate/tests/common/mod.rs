@@ -141,3 +141,17 @@ pub fn close3(got: [f64; 3], want: [f64; 3], what: &str) {
         close(got[i], want[i], 1e-9, &format!("{what}[{i}]"));
     }
 }
+
+/// Every `.rs` file under `dir`, at any depth (the crate's own sources and tests: a failure to
+/// read them stops the test).
+#[allow(clippy::unwrap_used)]
+pub fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}

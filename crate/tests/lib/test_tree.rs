@@ -8,25 +8,25 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::Path;
 
-/// The `.rs` files under `dir` (relative, `/`-separated, without `.rs`), not descending into
-/// `skip`.
-fn files(dir: &Path, rel: &str, skip: &[&str], out: &mut BTreeSet<String>) {
-    for entry in fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_str().unwrap().to_string();
-        let here = if rel.is_empty() {
-            name.clone()
-        } else {
-            format!("{rel}/{name}")
-        };
-        if path.is_dir() {
-            if !skip.contains(&here.as_str()) {
-                files(&path, &here, skip, out);
-            }
-        } else if let Some(stem) = here.strip_suffix(".rs") {
-            out.insert(stem.to_string());
-        }
-    }
+use crate::common::rust_files;
+
+/// The `.rs` files under `dir` (relative, `/`-separated, without `.rs`), but those under the
+/// folders named in `skip`.
+fn files(dir: &Path, skip: &[&str]) -> BTreeSet<String> {
+    let mut paths = Vec::new();
+    rust_files(dir, &mut paths);
+    paths
+        .iter()
+        .map(|p| {
+            let rel = p.strip_prefix(dir).unwrap().with_extension("");
+            let parts: Vec<_> = rel
+                .components()
+                .map(|c| c.as_os_str().to_str().unwrap())
+                .collect();
+            parts.join("/")
+        })
+        .filter(|f| !skip.iter().any(|s| f.starts_with(&format!("{s}/"))))
+        .collect()
 }
 
 /// The module files a root declares: `mod a;` at the top level is `a` (or `a/mod`), `mod b;`
@@ -61,9 +61,8 @@ fn modules(files: BTreeSet<String>) -> BTreeSet<String> {
 #[test]
 fn every_engine_test_file_is_a_module_of_the_engine_binary() {
     let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-    let mut found = BTreeSet::new();
     // The helpers' folders are declared as a whole (`mod common;`); their own files by them.
-    files(&tests, "", &["common", "probe_common", "data"], &mut found);
+    let mut found = files(&tests, &["common", "probe_common", "data"]);
     found.remove("engine");
     let mut found = modules(found);
     found.insert("common".into());
@@ -80,8 +79,7 @@ fn every_engine_test_file_is_a_module_of_the_engine_binary() {
 #[test]
 fn every_binding_test_file_is_a_module_of_the_wasm_binary() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../wasm/tests/wasm");
-    let mut found = BTreeSet::new();
-    files(&dir, "", &[], &mut found);
+    let mut found = files(&dir, &[]);
     found.remove("main");
     let root = fs::read_to_string(dir.join("main.rs")).unwrap();
     assert_eq!(

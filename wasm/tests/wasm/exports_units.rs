@@ -3,7 +3,6 @@
 //! error of Chanal et al.'s machine entered alone (in mm or degrees) against the exact
 //! kinematic chain at the export's own poses (degrees turned into radians here); the nonlinear
 //! move's sweep angle and approximation shortfall by their definitions.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use crate::common;

@@ -1,7 +1,6 @@
 //! Every export refuses what it does not know, with a message that starts with the path of the
 //! offending input: an unknown key at the top and inside the machine, a misspelt error name, a
 //! `NaN`, a value of the wrong kind. One test per export, as WebAssembly in headless Node.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use crate::common;

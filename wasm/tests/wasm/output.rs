@@ -4,7 +4,6 @@
 //! texts with characters outside ASCII and of two UTF-16 units, the same field names again and
 //! again) must arrive as the value `serde_json` writes, and each series as a `Float64Array` of
 //! the same numbers. As WebAssembly in headless Node.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use fiveaxis_wasm::output;

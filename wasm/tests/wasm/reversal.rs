@@ -1,7 +1,6 @@
 //! The reversal study through the JavaScript API: inputs refused with their paths, units at the
 //! edge (degrees in and out), the ideal drive's exact circle, the dent's proportion to r, a
 //! machine without a C table refused, and a simulated trace fitted back to its friction.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use crate::common;

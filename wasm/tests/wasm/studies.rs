@@ -2,7 +2,6 @@
 //! facts and closed forms written here (not the engine's output): Li et al.'s Table 2 and the
 //! first-order heights of eq 10 at II-1, eq 26 of the nonlinear paper, Chanal et al.'s
 //! Appendix A for single errors and the identification of the sample file.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use crate::common;

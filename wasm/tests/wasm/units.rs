@@ -3,7 +3,6 @@
 //! degrees × π/180), and every angle and per-angle sensitivity that comes out is in degrees. A
 //! swapped name or an inverted degree/radian conversion anywhere between the page and the chain
 //! fails one of these.
-#![cfg(target_arch = "wasm32")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use crate::common;
