@@ -134,13 +134,23 @@ test('changing the machine once changes every panel; a share link carries the ma
     const { page, assertClean } = await guardedPage(ctx, b.url);
     await page.goto(b.url);
     await page.waitForSelector('#machine[data-ready=true]');
-    const plots = ['nl-curve', 'cb-zones', 'ss-defects'];
+    // A plot of each panel; a panel is drawn while its tab is open (one on another tab when it
+    // is opened), so each is opened before its plot is read.
+    const opened = { 'nl-curve': 'nonlinear', 'cb-zones': 'cubic', 'ss-defects': 'sshape' };
+    const plots = Object.keys(opened);
+    const openAll = async (page, count = {}) => {
+      for (const pid of plots) {
+        await page.click(`#tab-${opened[pid]}`);
+        await page.waitForSelector(`#panel-${opened[pid]}[data-ready=true]`);
+        await waitPlotted(page, pid, count[pid]);
+      }
+      await settle(page, plots);
+    };
     for (const p of PANELS) {
       await page.click(`#tab-${p.tab}`);
       await page.waitForSelector(`#panel-${p.tab}[data-ready=true]`);
     }
-    for (const pid of plots) await waitPlotted(page, pid);
-    await settle(page, plots);
+    await openAll(page);
     const before = await page.$eval('#nl-summary #nl-max', (e) => e.textContent);
     const count = Object.fromEntries(await Promise.all(plots.map(async (p) => [p, await waitPlotted(page, p)])));
 
@@ -148,8 +158,7 @@ test('changing the machine once changes every panel; a share link carries the ma
     // line 20 µm towards +X.
     await page.fill('#m-geometry-tableHeight', '150');
     await page.fill('#m-errors-E_X0B', '20');
-    for (const pid of plots) await waitPlotted(page, pid, count[pid]);
-    await settle(page, plots);
+    await openAll(page, count);
 
     // Nonlinear: L is the machine's table height (the default machine is a table-table one), and
     // δ is proportional to L: the maximum grows by 150/100.
@@ -185,12 +194,7 @@ test('changing the machine once changes every panel; a share link carries the ma
     await other.page.waitForSelector('#machine[data-ready=true]');
     assert.equal(await other.page.inputValue('#m-geometry-tableHeight'), '150');
     assert.equal(await other.page.inputValue('#m-errors-E_X0B'), '20');
-    for (const p of PANELS) {
-      await other.page.click(`#tab-${p.tab}`);
-      await other.page.waitForSelector(`#panel-${p.tab}[data-ready=true]`);
-    }
-    for (const pid of plots) await waitPlotted(other.page, pid);
-    await settle(other.page, plots);
+    await openAll(other.page);
     for (const pid of plots) assert.deepEqual(await plotData(other.page, pid), expected[pid], pid);
     other.assertClean();
     await fresh.close();

@@ -165,6 +165,7 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     }
     // The machine: every panel's plots (and the drawing) stay as they were, greyed.
     let before = await settle(page);
+    const first = Object.fromEntries(await Promise.all(tabs.map(async (t) => [t, await drawCounts(page, `#panel-${t}`)])));
     let { calls } = await waitIdle(page);
     const machineIds = await numericFields(page, '#machine');
     const originals = await Promise.all(machineIds.map((id) => page.inputValue(`#${id}`)));
@@ -177,8 +178,24 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
       else assert.ok(greyed, `${id} greyed while the machine is invalid`);
     }
     for (const [i, id] of machineIds.entries()) await page.fill(`#${id}`, originals[i]);
-    await page.waitForFunction(() => [...document.querySelectorAll('.panel .plot-wrap')].every((w) => !w.classList.contains('stale') || !w.querySelector('.js-plotly-plot')));
-    // Each panel's own fields.
+    // The machine valid again: the open panel is redrawn; a panel on another tab computes but is
+    // drawn only when its tab is opened, greyed until then.
+    const open = tabs[tabs.length - 1];
+    const greyed = (tab) => page.$$eval(`#panel-${tab} .plot-wrap`, (ws) => ws.filter((w) => w.querySelector('.js-plotly-plot') && w.classList.contains('stale')).map((w) => w.querySelector('.plot').id));
+    await page.waitForFunction((open) => [...document.querySelectorAll(`#panel-${open} .plot-wrap`)].every((w) => !w.classList.contains('stale') || !w.querySelector('.js-plotly-plot')), open);
+    await waitIdle(page);
+    const hidden = tabs.filter((t) => t !== open && !MACHINE_FREE.has(t));
+    for (const tab of hidden) {
+      assert.equal(await drawCounts(page, `#panel-${tab}`), first[tab], `${tab}: not redrawn behind its tab`);
+      assert.ok((await greyed(tab)).length > 0, `${tab}: greyed behind its tab until drawn`);
+    }
+    for (const tab of hidden) {
+      await page.click(`#tab-${tab}`);
+      assert.notEqual(await settle(page, `#panel-${tab}`), first[tab], `${tab}: drawn when its tab is opened`);
+      assert.deepEqual(await greyed(tab), [], `${tab}: every plot current once its tab is opened`);
+    }
+    // Each panel's own fields (left invalid: a field of the machine's error motions, on the
+    // Volumetric tab, greys the panels after it).
     for (const tab of tabs) {
       await page.click(`#tab-${tab}`);
       before = await settle(page, `#panel-${tab}`);

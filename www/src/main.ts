@@ -1,4 +1,5 @@
-// The page shell: one tab per study (each panel is mounted when first opened), the unit
+// The page shell: one tab per study (each panel is mounted when first opened, and drawn only
+// while shown: a plot asked for behind another tab waits for its tab, ui/plot.ts), the unit
 // preferences, and the page state: share link, inputs kept across reloads, reset, named cases.
 import './style.css';
 import type { Panel } from './panels/panel';
@@ -23,6 +24,7 @@ import { DEFAULT_UNITS } from './ui/units';
 import { debounced, track } from './engine/idle';
 import { excerpt } from './ui/format';
 import { printReport, setupPrint } from './ui/print';
+import { drawWaiting } from './ui/plot';
 import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
@@ -182,6 +184,9 @@ async function show(id: string) {
     if (on) revealTab(tabs, b);
   }
   for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
+  // Its plots asked for while it was hidden, drawn now that it is shown.
+  const section = mounted.get(panel.id);
+  if (section) void drawWaiting(section);
   await mount(panel);
   scheduleSave();
 }

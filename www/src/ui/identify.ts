@@ -5,7 +5,7 @@
 // the engine's `fiveaxis::identify`).
 import type { Identification } from '@engine';
 import { el } from './fields';
-import { loadPlotly } from './plot';
+import { forgetDrawing, loadPlotly } from './plot';
 import * as fmt from './format';
 import { show } from './units';
 
@@ -92,6 +92,7 @@ export function identificationView(prefix: string, f: Identification, source: st
 
 /** Removes a plot entirely (a result that belongs to other inputs must not stay on screen). */
 export async function clearPlot(target: HTMLElement) {
+  forgetDrawing(target);
   const P = await loadPlotly();
   P.purge(target);
   target.parentElement?.querySelector(':scope > .plot-tools')?.remove();

@@ -223,17 +223,62 @@ function plainColorbar(t: Data): Data {
   return out;
 }
 
-/** Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data). */
+/**
+ * The drawings asked for plots of a panel that is not shown (another tab), by plot: each the
+ * latest asked for, drawn when its panel is shown (`drawWaiting`). A hidden panel still computes
+ * (its verdict and key numbers are current, for the machine's report), but Plotly draws only
+ * what can be seen: a change of the machine redraws the open panel, not the ten behind it.
+ */
+const waiting = new Map<HTMLElement, () => Promise<void>>();
+
+/** Whether `el` is a plot of a panel on another tab (hidden, and not being printed). The
+ *  machine's drawing is in no panel. */
+function behindTab(el: HTMLElement): boolean {
+  const panel = el.closest<HTMLElement>('section.panel');
+  return !!panel?.hidden && !panel.classList.contains('report-study');
+}
+
+/**
+ * Draws or redraws `el` in place (Plotly.react keeps zoom state out of the way of new data), or,
+ * for a plot of a panel on another tab, greys it and keeps the drawing until the panel is shown.
+ */
 export async function draw(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
+  const box = el.closest<HTMLElement>('.plot-wrap') ?? el;
+  if (behindTab(el)) {
+    // What it shows no longer answers the inputs: greyed until it is drawn. Greyed again later
+    // (the machine turned invalid meanwhile), it stays greyed when drawn (`drawNow`).
+    stale(el, true, 'Drawing the result of the current inputs…');
+    const greyed = greyedAt.get(box);
+    waiting.set(el, () => drawCounted(el, title, data, layout, filename, greyed));
+    return;
+  }
+  waiting.delete(el);
+  await drawCounted(el, title, data, layout, filename, greyedAt.get(box));
+}
+
+/** Draws the plots inside `root` whose drawing waited while their panel was hidden. */
+export async function drawWaiting(root: HTMLElement): Promise<void> {
+  const due = [...waiting].filter(([el]) => root.contains(el));
+  for (const [el] of due) waiting.delete(el);
+  await Promise.all(due.map(([, drawIt]) => drawIt()));
+}
+
+/** Forgets the drawing waiting for `el` (a plot removed: its data belongs to other inputs). */
+export function forgetDrawing(el: HTMLElement) {
+  waiting.delete(el);
+}
+
+async function drawCounted(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string, greyedBefore: number | undefined) {
   const end = drawStarted();
   try {
-    await drawNow(el, title, data, layout, filename);
+    await drawNow(el, title, data, layout, filename, greyedBefore);
   } finally {
     end();
   }
 }
 
-async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string) {
+/** Draws `el`; it stays greyed if it was greyed after `greyedBefore` (when the drawing was asked). */
+async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Partial<Layout>, filename: string, greyedBefore: number | undefined) {
   const P = is3d(data) ? await loadPlotly3d() : await loadPlotly();
   const config: Partial<Config> = {
     responsive: true,
@@ -273,12 +318,11 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   // Each drawing a task of its own: two plots drawn from one result (the toolpath's δ plot and
   // its 3D path) would otherwise hold the main thread as one long task.
   const box = el.closest<HTMLElement>('.plot-wrap') ?? el;
-  const greyedBefore = greyedAt.get(box);
   await new Promise((resolve) => setTimeout(resolve, 0));
   await P.react(el, traces, fitted, config);
   toolbar(el, title, filename);
-  // Greyed while it was being drawn (an input turned invalid meanwhile): it stays greyed, since
-  // what it shows no longer answers the inputs.
+  // Greyed after the drawing was asked (an input turned invalid meanwhile): it stays greyed,
+  // since what it shows no longer answers the inputs.
   if (greyedAt.get(box) === greyedBefore) {
     stale(el, false);
     el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');

@@ -13,7 +13,7 @@
 import { el, fields } from './fields';
 import { reportHeader, reportSummary, signatureBlock, type Study } from './report';
 import type { Layout } from 'plotly.js';
-import { loadPlotly } from './plot';
+import { drawWaiting, loadPlotly } from './plot';
 import { idle } from '../engine/idle';
 
 /** Width and height of a plot on an A4 or Letter page (CSS pixels, inside default margins). */
@@ -199,8 +199,11 @@ async function enter(hooks: PrintHooks) {
   add(panels, front, 'before');
   document.body.classList.add('printing', `print-${scope}`);
   printedSections = printed.map((s) => s.section);
+  for (const s of printed) s.section.classList.add('report-study');
+  // The plots of the studies on other tabs, kept until shown (ui/plot.ts), drawn for the page
+  // before a plot never drawn is marked empty.
+  await Promise.all(printed.map((s) => drawWaiting(s.section)));
   for (const s of printed) {
-    s.section.classList.add('report-study');
     add(s.section, studyInputs(s, scope === 'study'), 'before');
     // The inputs go under the study's heading and lead.
     const grid = s.section.querySelector('.panel-grid');
