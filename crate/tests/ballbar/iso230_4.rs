@@ -223,6 +223,30 @@ fn several_faults_together_within_their_intervals() {
     }
 }
 
+/// A deviation column per direction with a value that is not a number: the message names the
+/// column's direction and the line.
+// Found by cargo-mutants: the CCW/CW word of this message (the reader's match on the column's
+// direction) was untested.
+#[test]
+fn a_bad_value_names_the_directions_column() {
+    let mut csv = String::from("# radius: 100 mm\nangle (deg); ccw (mm); cw (mm)\n");
+    for k in 0..360 {
+        csv.push_str(&format!("{k}; 0.001; -0.001\n"));
+    }
+    for (from, to, word) in [
+        ("\n5; 0.001; -0.001\n", "\n5; fast; -0.001\n", "CCW deviation"),
+        ("\n5; 0.001; -0.001\n", "\n5; 0.001; slow\n", "CW deviation"),
+    ] {
+        let bad = csv.replacen(from, to, 1);
+        let e = evaluate_input(json!({ "csv": bad }))
+            .unwrap_err()
+            .to_string();
+        // Line 1 is the header's radius, line 2 the column names, angle 0 on line 3.
+        assert!(e.contains("line 8: "), "{to}: {e}");
+        assert!(e.contains(&format!("{word} \"")), "{to}: {e}");
+        assert!(!e.contains(&format!("C{word}")), "{to}: {e}");
+    }
+}
 /// Known by construction: CCW `a·cos 3θ + c/2`, CW `a·cos 3θ − c/2` (no noise). The
 /// least-squares circle of both is the nominal one (mean 0, no first harmonic), so
 /// G_ccw = G_cw = 2a, G = 2a + c, H = c; the third harmonic has amplitude a.
