@@ -234,7 +234,11 @@ fn a_bad_value_names_the_directions_column() {
         csv.push_str(&format!("{k}; 0.001; -0.001\n"));
     }
     for (from, to, word) in [
-        ("\n5; 0.001; -0.001\n", "\n5; fast; -0.001\n", "CCW deviation"),
+        (
+            "\n5; 0.001; -0.001\n",
+            "\n5; fast; -0.001\n",
+            "CCW deviation",
+        ),
         ("\n5; 0.001; -0.001\n", "\n5; 0.001; slow\n", "CW deviation"),
     ] {
         let bad = csv.replacen(from, to, 1);
@@ -246,6 +250,44 @@ fn a_bad_value_names_the_directions_column() {
         assert!(e.contains(&format!("{word} \"")), "{to}: {e}");
         assert!(!e.contains(&format!("C{word}")), "{to}: {e}");
     }
+}
+
+/// The limits of what a circular test reads: 20 points round the circle are enough and 19 are
+/// refused, with the count; a file whose test column names one test is read as that test.
+// Found by cargo-mutants: the boundaries of the point count and of the number of tests
+// (`read_trace`) were untested.
+#[test]
+fn twenty_points_and_one_named_test_are_read() {
+    let good = trace(Faults::default(), 0.0, 1);
+    let (head, points): (Vec<&str>, Vec<&str>) = good
+        .lines()
+        .partition(|l| l.starts_with('#') || l.starts_with("angle"));
+    // Every 18th point of the CCW run: 20 points, 18° apart, round the whole circle.
+    let spread: Vec<&str> = points.iter().take(360).step_by(18).copied().collect();
+    assert_eq!(spread.len(), 20);
+    let file = |pts: &[&str]| format!("{}\n{}\n", head.join("\n"), pts.join("\n"));
+    let b = run(&file(&spread));
+    assert!(
+        b.g_ccw.is_some() && b.g_cw.is_none(),
+        "{:?} {:?}",
+        b.g_ccw,
+        b.g_cw
+    );
+    let e = evaluate_input(json!({ "csv": file(&spread[..19]) }))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("needs at least 20 points round the circle, got 19"),
+        "{e}"
+    );
+    // The same trace with a test column naming one test: the same result.
+    let named = good
+        .replace("; direction\n", "; direction; test\n")
+        .replace("; ccw\n", "; ccw; left\n")
+        .replace("; cw\n", "; cw; left\n");
+    let (plain, with_test) = (run(&good), run(&named));
+    assert_eq!(plain.g_ccw, with_test.g_ccw);
+    assert_eq!(plain.g_cw, with_test.g_cw);
 }
 /// Known by construction: CCW `a·cos 3θ + c/2`, CW `a·cos 3θ − c/2` (no noise). The
 /// least-squares circle of both is the nominal one (mean 0, no first harmonic), so
