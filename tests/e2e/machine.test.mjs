@@ -158,6 +158,8 @@ test('changing the machine once changes every panel; a share link carries the ma
     // line 20 µm towards +X.
     await page.fill('#m-geometry-tableHeight', '150');
     await page.fill('#m-errors-E_X0B', '20');
+    // Both edits computed (one machine or two, as the debounce took them) before any is read.
+    await waitIdle(page);
     await openAll(page, count);
 
     // Nonlinear: L is the machine's table height (the default machine is a table-table one), and

@@ -273,6 +273,13 @@ test('the machine report: every study’s verdict with its own tolerance, the wo
     assert.doesNotMatch(text, /Identification from measured zones/, 'the cubic identification has no data: no heading');
     await page.emulateMedia({ media: 'screen' });
     await page.waitForSelector('.report-front', { state: 'detached' });
+    // Back on screen, a study printed from behind its tab is drawn at its box's width when its
+    // tab is opened (not at the page's width the report gave it).
+    await page.click('#tab-volumetric');
+    await waitIdle(page);
+    const widths = await page.$$eval('#panel-volumetric .js-plotly-plot', (gs) => gs.map((g) => [g.id, Number(g.querySelector('svg.main-svg')?.getAttribute('width')), g.clientWidth]));
+    assert.ok(widths.length > 0, 'volumetric plots drawn');
+    for (const [id, drawn, box] of widths) assert.ok(Math.abs(drawn - box) <= 1, `${id}: drawn ${drawn} px wide in a ${box} px box`);
   });
 });
 

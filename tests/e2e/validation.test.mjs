@@ -163,6 +163,10 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
       await page.waitForSelector(`#panel-${tab}[data-ready=true]`);
       await page.waitForFunction((tab) => document.querySelector(`#panel-${tab} .js-plotly-plot`), tab, { timeout: 60_000 });
     }
+    // The open panel one that depends on the machine (the first tab), the others behind it.
+    const open = tabs[0];
+    assert.ok(!MACHINE_FREE.has(open), `${open} depends on the machine`);
+    await page.click(`#tab-${open}`);
     // The machine: every panel's plots (and the drawing) stay as they were, greyed.
     let before = await settle(page);
     const first = Object.fromEntries(await Promise.all(tabs.map(async (t) => [t, await drawCounts(page, `#panel-${t}`)])));
@@ -180,10 +184,10 @@ test('bad text keeps the last good plot: no redraw while a field of the machine 
     for (const [i, id] of machineIds.entries()) await page.fill(`#${id}`, originals[i]);
     // The machine valid again: the open panel is redrawn; a panel on another tab computes but is
     // drawn only when its tab is opened, greyed until then.
-    const open = tabs[tabs.length - 1];
     const greyed = (tab) => page.$$eval(`#panel-${tab} .plot-wrap`, (ws) => ws.filter((w) => w.querySelector('.js-plotly-plot') && w.classList.contains('stale')).map((w) => w.querySelector('.plot').id));
     await page.waitForFunction((open) => [...document.querySelectorAll(`#panel-${open} .plot-wrap`)].every((w) => !w.classList.contains('stale') || !w.querySelector('.js-plotly-plot')), open);
     await waitIdle(page);
+    assert.notEqual(await drawCounts(page, `#panel-${open}`), first[open], `${open}: the open panel redrawn`);
     const hidden = tabs.filter((t) => t !== open && !MACHINE_FREE.has(t));
     for (const tab of hidden) {
       assert.equal(await drawCounts(page, `#panel-${tab}`), first[tab], `${tab}: not redrawn behind its tab`);

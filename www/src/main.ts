@@ -24,7 +24,7 @@ import { DEFAULT_UNITS } from './ui/units';
 import { debounced, track } from './engine/idle';
 import { excerpt } from './ui/format';
 import { printReport, setupPrint } from './ui/print';
-import { drawWaiting } from './ui/plot';
+import { drawWaiting, fitWidths } from './ui/plot';
 import { reportMenu, reportScope, type Study } from './ui/report';
 import { DRAWING_PREFIX, MACHINE_PREFIX, mountMachine, type MachineSection } from './machine/section';
 
@@ -184,9 +184,10 @@ async function show(id: string) {
     if (on) revealTab(tabs, b);
   }
   for (const [pid, section] of mounted) section.hidden = pid !== panel.id;
-  // Its plots asked for while it was hidden, drawn now that it is shown.
+  // Its plots asked for while it was hidden, drawn now that it is shown (and any laid out at
+  // another width while hidden, resized).
   const section = mounted.get(panel.id);
-  if (section) void drawWaiting(section);
+  if (section) void drawWaiting(section).then(() => fitWidths(section));
   await mount(panel);
   scheduleSave();
 }

@@ -14,7 +14,7 @@ import { download } from '../ui/export';
 import { el, selectField } from '../ui/fields';
 import { checkFile, FileRefused, WINDOWS_1252_NOTE } from '../ui/files';
 import { loadSchema, renderFields } from '../ui/form';
-import { axis, draw, note, stale } from '../ui/plot';
+import { axis, draw, drawnOrWaiting, note, stale } from '../ui/plot';
 import { blockedBy, invalidFields } from '../ui/status';
 import * as fmt from '../ui/format';
 import { onUnitsChange, show, titled, toDisplay } from '../ui/units';
@@ -267,8 +267,9 @@ async function mount(root: HTMLElement, machine: MachineSection) {
    *  dropped. */
   const greyResults = (why?: string) => {
     for (const p of [along.p, path3d.p]) {
-      // A plot never drawn says why instead of spinning.
-      if (p.dataset.plotted) stale(p, true, why);
+      // A plot never drawn says why instead of spinning (one whose drawing waits behind its
+      // tab is greyed: it is drawn greyed when the tab is opened).
+      if (drawnOrWaiting(p)) stale(p, true, why);
       else note(p, why ?? `No plot: ${blockedBy(invalidFields(p), 'an input is missing')}.`);
     }
     tableWrap.classList.add('stale');
@@ -330,7 +331,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       engineError(e, along.p);
       const err = EngineError.of(e);
       const why = sentence(err.text);
-      for (const p of [along.p, path3d.p]) if (!p.dataset.plotted) note(p, `No plot: ${why}`);
+      for (const p of [along.p, path3d.p]) if (!drawnOrWaiting(p)) note(p, `No plot: ${why}`);
       rapidsBox.classList.add('stale');
       if (err.field) verdict.invalid(why);
       else verdict.error(why);

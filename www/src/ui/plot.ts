@@ -263,6 +263,31 @@ export async function drawWaiting(root: HTMLElement): Promise<void> {
   await Promise.all(due.map(([, drawIt]) => drawIt()));
 }
 
+/**
+ * The plots inside `root` drawn at another width than their box's, resized to it: a study on
+ * another tab when the machine's report was printed is given back its size while hidden, which
+ * Plotly cannot measure.
+ */
+export async function fitWidths(root: HTMLElement): Promise<void> {
+  const off = [...root.querySelectorAll<HTMLElement>('.js-plotly-plot')].filter((gd) => {
+    const drawn = Number(gd.querySelector('svg.main-svg')?.getAttribute('width'));
+    return drawn > 0 && gd.clientWidth > 0 && Math.abs(drawn - gd.clientWidth) > 1;
+  });
+  if (!off.length) return;
+  const end = drawStarted();
+  try {
+    const P = await loadPlotly();
+    for (const gd of off) P.Plots.resize(gd);
+  } finally {
+    end();
+  }
+}
+
+/** Whether `el` shows a drawing or has one waiting behind its tab (`draw`). */
+export function drawnOrWaiting(el: HTMLElement): boolean {
+  return Number(el.dataset.plotted ?? 0) > 0 || waiting.has(el);
+}
+
 /** Forgets the drawing waiting for `el` (a plot removed: its data belongs to other inputs). */
 export function forgetDrawing(el: HTMLElement) {
   waiting.delete(el);
@@ -323,16 +348,22 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   toolbar(el, title, filename);
   // Greyed after the drawing was asked (an input turned invalid meanwhile): it stays greyed,
   // since what it shows no longer answers the inputs.
-  if (greyedAt.get(box) === greyedBefore) {
+  const current = greyedAt.get(box) === greyedBefore;
+  if (current) {
     stale(el, false);
     el.closest('.results')?.querySelector(':scope > dl.summary')?.classList.remove('stale');
   }
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
+  // Greyed before it showed anything (its first drawing waited behind its tab), it had no line
+  // saying why: it has now.
+  if (!current && !box.querySelector(':scope > .stale-label')) stale(el, true, greyedWhy.get(box));
 }
 
 
 /** When each box was last greyed (a count): a drawing started before it leaves it greyed. */
 const greyedAt = new WeakMap<HTMLElement, number>();
+/** Why each box was last greyed (`stale`'s `why`; none for the default line). */
+const greyedWhy = new WeakMap<HTMLElement, string | undefined>();
 let greyings = 0;
 
 /**
@@ -345,7 +376,10 @@ let greyings = 0;
 export function stale(target: HTMLElement, on: boolean, why?: string) {
   const box = target.closest<HTMLElement>('.plot-wrap') ?? target;
   box.classList.toggle('stale', on);
-  if (on) greyedAt.set(box, ++greyings);
+  if (on) {
+    greyedAt.set(box, ++greyings);
+    greyedWhy.set(box, why);
+  }
   // The label sits in the plot's frame (not greyed with the plot), or just before the element.
   const isPlot = box !== target;
   let label = isPlot ? box.querySelector<HTMLElement>(':scope > .stale-label') : box.previousElementSibling?.classList.contains('stale-label') ? (box.previousElementSibling as HTMLElement) : null;

@@ -203,6 +203,8 @@ async function enter(hooks: PrintHooks) {
   // The plots of the studies on other tabs, kept until shown (ui/plot.ts), drawn for the page
   // before a plot never drawn is marked empty.
   await Promise.all(printed.map((s) => drawWaiting(s.section)));
+  // Printing ended meanwhile (`leave` has run): nothing more to add.
+  if (!printing) return;
   for (const s of printed) {
     add(s.section, studyInputs(s, scope === 'study'), 'before');
     // The inputs go under the study's heading and lead.
