@@ -1,6 +1,7 @@
 // Phones and small screens: at 360 and 390 px (a phone, touch) no panel makes the page wider than
 // the screen, with its results drawn; the tabs are thumb-sized (≥ 44 px) and scroll inside their
-// own bar; no plot's title is covered by Plotly's mode bar. Screenshots of every panel at 360,
+// own bar; no plot's title is covered by Plotly's mode bar; no tick reads a number of more than
+// 8 digits. Screenshots of every panel at 360,
 // 390 and 1366 px go to tests/artifacts/ (phone-<width>-<panel>.png) to be looked at.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -43,6 +44,16 @@ function layoutProblems(page, width) {
       const a = bar.getBoundingClientRect();
       const b = title.getBoundingClientRect();
       if (a.width && b.width && a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom) out.push(`${gd.id}: the mode bar covers the title`);
+    }
+    // A number on an axis or a colour bar written with more digits than anyone reads (a colour
+    // scale over values equal to 1e-12: "164.70423213582998").
+    for (const gd of document.querySelectorAll('.js-plotly-plot')) {
+      if (!gd.offsetParent) continue;
+      for (const t of gd.querySelectorAll('.xtick text, .ytick text, .colorbar text')) {
+        const s = (t.textContent ?? '').replace(/[\s,]/g, '').replace('−', '-');
+        const digits = (s.match(/\d/g) ?? []).length;
+        if (/^-?\d*\.?\d+$/.test(s) && digits > 8) out.push(`${gd.id}: a tick reads ${t.textContent}`);
+      }
     }
     return out;
   }, width);

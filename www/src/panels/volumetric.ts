@@ -43,6 +43,19 @@ function drawFit(p: HTMLElement, title: string, ...rest: Parameters<typeof draw>
   return draw(p, lines.join('<br>'), ...rest);
 }
 
+/**
+ * The top of a colour scale that starts at 0 (or runs from −top to top) for `values`, in the
+ * display unit of `q`: their largest magnitude, or, when that is round-off (no error entered), a
+ * tenth of a micrometre or 1e-4° (a scale still, the map at 0). Both ends are given: with one
+ * only, Plotly stretches a near-constant map's scale over its round-off, and its ticks read
+ * 164.70423213582998.
+ */
+function scaleTop(values: number[], q: 'errLength' | 'errAngle'): number {
+  let top = 0;
+  for (const v of values) top = Math.max(top, Math.abs(v));
+  return top > toDisplay(q, ROUND_OFF) ? top : toDisplay(q, 1e-4);
+}
+
 /** A length from the engine (mm) in the unit shown now; an angle shown back to degrees. */
 const D = (mm: number) => toDisplay('errLength', mm);
 const fromAngle = (shown: number) => fromDisplay('errAngle', shown);
@@ -314,7 +327,8 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       : 'no deviation in the plane: no arrows';
     drawFit(mapPlot.p, `Tool-tip deviation |Δ| over the ${ua}–${va} plane at ${wa} = ${fmt.num(w.position['XYZ'.indexOf(wa)])} mm<br>${arrowText}; ✕ the worst point`, [
       {
-        type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(Array.from(r.norm, D), nu, nv), colorscale: 'YlOrRd', reversescale: true, zmin: 0,
+        type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(Array.from(r.norm, D), nu, nv), colorscale: 'YlOrRd', reversescale: true,
+        zmin: 0, zmax: scaleTop(Array.from(r.norm, D), 'errLength'),
         name: '|Δ|', colorbar: { title: { text: titled('|Δ|', 'errLength') }, exponentformat: 'none' },
         hovertemplate: `${ua} %{x:.4g} mm, ${va} %{y:.4g} mm<br>|Δ| %{z:.4g} ${unit}<extra></extra>`,
       } as Data,
@@ -341,7 +355,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const tiltRange = tHi - tLo < 1e-6 * Math.max(tHi, 1e-30) ? `the same everywhere: ${show('errAngle', r.worst.tilt)}` : `from ${show('errAngle', fromAngle(tLo))} to ${show('errAngle', fromAngle(tHi))}`;
     drawFit(tiltPlot.p, `Tilt error of the tool axis over the ${ua}–${va} plane<br>actual vs commanded tool axis, ${tiltRange}`, [{
       type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(tilt, nu, nv),
-      colorscale: 'Viridis', zmin: 0, zmax: tHi > toDisplay('errAngle', ROUND_OFF) ? tHi : toDisplay('errAngle', 1e-4), name: 'tilt error', colorbar: { title: { text: titled('tilt', 'errAngle') }, exponentformat: 'none' },
+      colorscale: 'Viridis', zmin: 0, zmax: scaleTop(tilt, 'errAngle'), name: 'tilt error', colorbar: { title: { text: titled('tilt', 'errAngle') }, exponentformat: 'none' },
       hovertemplate: `${ua} %{x:.4g} mm, ${va} %{y:.4g} mm<br>tilt %{z:.4g} ${unitDef('errAngle').label}<extra></extra>`,
     } as Data], { xaxis: axis(`${ua} (mm)`, { constrain: 'domain' }), yaxis: axis(`${va} (mm)`, { scaleanchor: 'x' }) }, 'volumetric-tilt');
 
@@ -366,7 +380,7 @@ async function mount(root: HTMLElement, machine: MachineSection) {
     const key = component.select.value as 'dx' | 'dy' | 'dz';
     const label = COMPONENTS.find((c) => c.value === key)?.label ?? key;
     const data = Array.from(r.deviation[(['dx', 'dy', 'dz'] as const).indexOf(key)], D);
-    const R = Math.max(1e-12, ...data.map(Math.abs));
+    const R = scaleTop(data, 'errLength');
     const [ua, va] = r.axes;
     drawFit(compPlot.p, `${label.split(':')[0]} over the ${ua}–${va} plane<br>${label.split(': ')[1]} (red +, blue −)`, [{
       type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(data, r.u.length, r.v.length), colorscale: 'RdBu',
