@@ -223,16 +223,22 @@ fn several_faults_together_within_their_intervals() {
     }
 }
 
+/// A trace with a deviation column per direction (CCW +1 µm, CW −1 µm, every degree).
+fn two_columns() -> String {
+    let mut csv = String::from("# radius: 100 mm\nangle (deg); ccw (mm); cw (mm)\n");
+    for k in 0..360 {
+        csv.push_str(&format!("{k}; 0.001; -0.001\n"));
+    }
+    csv
+}
+
 /// A deviation column per direction with a value that is not a number: the message names the
 /// column's direction and the line.
 // Found by cargo-mutants: the CCW/CW word of this message (the reader's match on the column's
 // direction) was untested.
 #[test]
 fn a_bad_value_names_the_directions_column() {
-    let mut csv = String::from("# radius: 100 mm\nangle (deg); ccw (mm); cw (mm)\n");
-    for k in 0..360 {
-        csv.push_str(&format!("{k}; 0.001; -0.001\n"));
-    }
+    let csv = two_columns();
     for (from, to, word) in [
         (
             "\n5; 0.001; -0.001\n",
@@ -809,10 +815,7 @@ fn header_units_of_radius_and_feed() {
 // Found by cargo-mutants: the CCW/CW word of the message was untested.
 #[test]
 fn an_unknown_unit_names_the_directions_column() {
-    let mut csv = String::from("# radius: 100 mm\nangle (deg); ccw (mm); cw (mm)\n");
-    for k in 0..360 {
-        csv.push_str(&format!("{k}; 0.001; -0.001\n"));
-    }
+    let csv = two_columns();
     for (from, to, word) in [
         ("ccw (mm)", "ccw (furlongs)", "CCW deviation"),
         ("; cw (mm)", "; cw (furlongs)", "CW deviation"),
