@@ -355,8 +355,13 @@ async function drawNow(el: HTMLElement, title: string, data: Data[], layout: Par
   }
   el.dataset.plotted = String(Number(el.dataset.plotted ?? '0') + 1);
   // Greyed before it showed anything (its first drawing waited behind its tab), it had no line
-  // saying why: it has now.
-  if (!current && !box.querySelector(':scope > .stale-label')) stale(el, true, greyedWhy.get(box));
+  // saying why: it has now. (Not counted as a new greying: a later drawing already under way,
+  // asked after that greying, must still clear it.)
+  if (!current && !box.querySelector(':scope > .stale-label')) {
+    const at = greyedAt.get(box);
+    stale(el, true, greyedWhy.get(box));
+    if (at !== undefined) greyedAt.set(box, at);
+  }
 }
 
 
