@@ -35,6 +35,48 @@ fn simulate(machine: &Value, tests: Value) -> Value {
     .unwrap()
 }
 
+/// A test's held angle and its sweep lie within their axes' travel (B −120° to 120° on the B/C
+/// table): the ends are accepted, a degree beyond either is refused at the field, naming the
+/// axis and its travel.
+// Found by cargo-mutants: the held angle's travel check (`place`) was untested.
+#[test]
+fn a_held_angle_or_a_sweep_beyond_the_travel_is_refused_at_its_field() {
+    let machine = bc_table();
+    let c_test = |hold: f64| json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 30, "hold": hold }]);
+    let b_test = |from: f64, to: f64| json!([{ "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 10, "from": from, "to": to }]);
+    let run = |tests: Value| {
+        call(
+            "ballbarRotarySimulate",
+            &json!({ "machine": machine, "tests": tests }),
+        )
+        .map_err(|e| e.to_string())
+    };
+    for ok in [c_test(-120.0), c_test(120.0), b_test(-120.0, 120.0)] {
+        assert!(run(ok.clone()).is_ok(), "{ok}: {:?}", run(ok.clone()).err());
+    }
+    for (tests, want) in [
+        (
+            c_test(121.0),
+            "tests[0].hold: B = 121° is outside its travel (-120° to 120°)",
+        ),
+        (
+            c_test(-121.0),
+            "tests[0].hold: B = -121° is outside its travel (-120° to 120°)",
+        ),
+        (
+            b_test(-121.0, 120.0),
+            "tests[0].from: B = -121° is outside its travel (-120° to 120°)",
+        ),
+        (
+            b_test(-120.0, 121.0),
+            "tests[0].to: B = 121° is outside its travel (-120° to 120°)",
+        ),
+    ] {
+        let e = run(tests).unwrap_err();
+        assert!(e.starts_with(want), "{e}");
+    }
+}
+
 #[test]
 fn an_offset_of_the_c_axis_line_gives_the_closed_form_once_per_turn() {
     let (r, h) = (120.0_f64, 40.0);
