@@ -37,13 +37,14 @@ fn simulate(machine: &Value, tests: Value) -> Value {
 
 /// A test's held angle and its sweep lie within their axes' travel (B −120° to 120° on the B/C
 /// table): the ends are accepted, a degree beyond either is refused at the field, naming the
-/// axis and its travel.
-// Found by cargo-mutants: the held angle's travel check (`place`) was untested.
+/// axis and its travel. A sweep of more than MAX_POINTS points is refused at its step.
+// Found by cargo-mutants: the held angle's travel check and the points' limit (`place`) were
+// untested.
 #[test]
 fn a_held_angle_or_a_sweep_beyond_the_travel_is_refused_at_its_field() {
     let machine = bc_table();
     let c_test = |hold: f64| json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 30, "hold": hold }]);
-    let b_test = |from: f64, to: f64| json!([{ "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 10, "from": from, "to": to }]);
+    let b_test = |from: f64, to: f64, step: f64| json!([{ "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": step, "from": from, "to": to }]);
     let run = |tests: Value| {
         call(
             "ballbarRotarySimulate",
@@ -51,29 +52,37 @@ fn a_held_angle_or_a_sweep_beyond_the_travel_is_refused_at_its_field() {
         )
         .map_err(|e| e.to_string())
     };
-    for ok in [c_test(-120.0), c_test(120.0), b_test(-120.0, 120.0)] {
-        assert!(run(ok.clone()).is_ok(), "{ok}: {:?}", run(ok.clone()).err());
+    // C turns endlessly: 500° in steps of 0.05° is 10 000 points each way, within MAX_POINTS
+    // (20 000); 2000° is 40 000.
+    let c_sweep = |from: f64, to: f64| json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 0.05, "from": from, "to": to }]);
+    let ok = [
+        c_test(-120.0),
+        c_test(120.0),
+        b_test(-120.0, 120.0, 10.0),
+        c_sweep(-250.0, 250.0),
+    ];
+    for t in ok {
+        assert!(run(t.clone()).is_ok(), "{t}: {:?}", run(t.clone()).err());
     }
+    let travel = "is outside its travel (-120° to 120°)";
     for (tests, want) in [
+        (c_test(121.0), format!("tests[0].hold: B = 121° {travel}")),
+        (c_test(-121.0), format!("tests[0].hold: B = -121° {travel}")),
         (
-            c_test(121.0),
-            "tests[0].hold: B = 121° is outside its travel (-120° to 120°)",
+            b_test(-121.0, 120.0, 10.0),
+            format!("tests[0].from: B = -121° {travel}"),
         ),
         (
-            c_test(-121.0),
-            "tests[0].hold: B = -121° is outside its travel (-120° to 120°)",
+            b_test(-120.0, 121.0, 10.0),
+            format!("tests[0].to: B = 121° {travel}"),
         ),
         (
-            b_test(-121.0, 120.0),
-            "tests[0].from: B = -121° is outside its travel (-120° to 120°)",
-        ),
-        (
-            b_test(-120.0, 121.0),
-            "tests[0].to: B = 121° is outside its travel (-120° to 120°)",
+            c_sweep(-1000.0, 1000.0),
+            "tests[0].step: 0.05° over 2000°: more than 20000 points; take a larger step".into(),
         ),
     ] {
         let e = run(tests).unwrap_err();
-        assert!(e.starts_with(want), "{e}");
+        assert!(e.starts_with(&want), "{e}");
     }
 }
 
