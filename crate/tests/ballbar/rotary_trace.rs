@@ -86,6 +86,19 @@ fn a_held_angle_or_a_sweep_beyond_the_travel_is_refused_at_its_field() {
     }
 }
 
+/// The table ball is where its test puts it: x, y on the face and its height along the spindle
+/// (on the B/C table with a vertical spindle, the face's axes are X and Y, its normal Z), in
+/// the frame the result reports it in.
+// Found by cargo-mutants: the ball's position was only ever read back from the result.
+#[test]
+fn the_table_ball_is_at_its_x_y_and_height() {
+    let s = simulate(
+        &bc_table(),
+        json!([{ "ball": { "x": 150, "y": 20, "height": 60 }, "step": 30 }]),
+    );
+    assert_eq!(numbers(&s["tests"][0]["ball"]), vec![150.0, 20.0, 60.0]);
+}
+
 #[test]
 fn an_offset_of_the_c_axis_line_gives_the_closed_form_once_per_turn() {
     let (r, h) = (120.0_f64, 40.0);
