@@ -51,8 +51,8 @@ function drawFit(p: HTMLElement, title: string, ...rest: Parameters<typeof draw>
  * 164.70423213582998.
  */
 function scaleTop(values: number[], q: 'errLength' | 'errAngle'): number {
-  let top = 0;
-  for (const v of values) top = Math.max(top, Math.abs(v));
+  const [lo, hi] = extent(values);
+  const top = Math.max(-lo, hi, 0);
   return top > toDisplay(q, ROUND_OFF) ? top : toDisplay(q, 1e-4);
 }
 
@@ -321,14 +321,15 @@ async function mount(root: HTMLElement, machine: MachineSection) {
       }
     }
     const [wu, wv] = [w.position['XYZ'.indexOf(ua)], w.position['XYZ'.indexOf(va)]];
+    const norm = Array.from(r.norm, D);
     const unit = unitDef('errLength').label;
     const arrowText = scale > 0
       ? `arrows: the deviation in the ${ua}${va} plane, 1 ${unit} drawn as ${fmt.num(scale / unitDef('errLength').factor, 3)} mm`
       : 'no deviation in the plane: no arrows';
     drawFit(mapPlot.p, `Tool-tip deviation |Δ| over the ${ua}–${va} plane at ${wa} = ${fmt.num(w.position['XYZ'.indexOf(wa)])} mm<br>${arrowText}; ✕ the worst point`, [
       {
-        type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(Array.from(r.norm, D), nu, nv), colorscale: 'YlOrRd', reversescale: true,
-        zmin: 0, zmax: scaleTop(Array.from(r.norm, D), 'errLength'),
+        type: 'heatmap', x: Array.from(r.u), y: Array.from(r.v), z: rows(norm, nu, nv), colorscale: 'YlOrRd', reversescale: true,
+        zmin: 0, zmax: scaleTop(norm, 'errLength'),
         name: '|Δ|', colorbar: { title: { text: titled('|Δ|', 'errLength') }, exponentformat: 'none' },
         hovertemplate: `${ua} %{x:.4g} mm, ${va} %{y:.4g} mm<br>|Δ| %{z:.4g} ${unit}<extra></extra>`,
       } as Data,
