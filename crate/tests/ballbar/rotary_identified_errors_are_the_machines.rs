@@ -196,3 +196,118 @@ fn an_error_the_bar_cannot_see_is_explained_once_in_the_summary() {
         about[0]
     );
 }
+
+/// A trace written here, not simulated: the C axis line `e` off along X seen by a radial bar,
+/// `d(φ) = −e·cos φ` (the closed form's first order, as the simulated file above shows at 0°),
+/// plus a constant of its own in each direction (the bar's set-up: `a` counter-clockwise, `b`
+/// clockwise). The identification finds `e` and one offset per direction, each named for its test
+/// and direction; the spread before is the rms of each point less its own direction's mean,
+/// computed here from the values written.
+// Found by cargo-mutants: the spread before (each direction's mean, the rms), the offsets'
+// names and their labels (one test, two errors), and the summary's carrying of the
+// identification's lines were reached by no test.
+#[test]
+fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean() {
+    let (e, a, b) = (10.0, 2.0, -3.0); // µm
+    let mut csv = String::from("angle (deg);deviation (µm);direction\n");
+    let mut values: Vec<(f64, f64)> = Vec::new(); // (direction, value)
+    for (dir, word, shift) in [(1.0, "ccw", a), (-1.0, "cw", b)] {
+        for k in 0..=12 {
+            let phi = 30.0 * f64::from(if dir > 0.0 { k } else { 12 - k });
+            let d = -e * phi.to_radians().cos() + shift;
+            csv += &format!("{phi};{d:.6};{word}\n");
+            values.push((dir, d));
+        }
+    }
+    let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 30 }]);
+    let r = call(
+        "ballbarRotaryIdentify",
+        &json!({ "machine": bc_table(), "tests": tests, "parameters": ["E_X0C", "E_Y0C"],
+                 "csv": csv }),
+    )
+    .unwrap();
+    let estimates = r["identification"]["estimates"].as_array().unwrap();
+    let estimate = |name: &str| {
+        estimates
+            .iter()
+            .find(|x| x["name"] == name)
+            .unwrap_or_else(|| panic!("no {name} in {estimates:#?}"))
+    };
+    // The model's second order (e²/L ≈ 1 nm) and the file's 1 pm rounding.
+    let near = |name: &str, want_um: f64| {
+        let got = estimate(name)["value"].as_f64().unwrap() * 1e3;
+        assert!(
+            (got - want_um).abs() < 0.01,
+            "{name}: {got} µm vs {want_um}"
+        );
+    };
+    near("E_X0C", e);
+    near("E_Y0C", 0.0);
+    near("offset_1_ccw", a);
+    near("offset_1_cw", b);
+    for dir in ["ccw", "cw"] {
+        let words = estimate(&format!("offset_1_{dir}"))["words"]
+            .as_str()
+            .unwrap();
+        assert!(
+            words.contains(&format!("in test 1 ({dir}) differ")),
+            "{words}"
+        );
+    }
+    // The result's summary carries the identification's own lines.
+    let summary: Vec<&str> = r["summary"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    let x_words = estimate("E_X0C")["words"].as_str().unwrap();
+    assert!(summary.contains(&x_words), "{summary:#?}");
+    // Before: about each direction's own mean.
+    let mean = |dir: f64| {
+        let v: Vec<f64> = values.iter().filter(|p| p.0 == dir).map(|p| p.1).collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let (mc, mw) = (mean(1.0), mean(-1.0));
+    let ss: f64 = values
+        .iter()
+        .map(|&(dir, d)| (d - if dir > 0.0 { mc } else { mw }).powi(2))
+        .sum();
+    let want = (ss / values.len() as f64).sqrt() * 1e-3;
+    let t = &r["tests"][0];
+    let before = t["before"].as_f64().unwrap();
+    assert!((before - want).abs() < 1e-9, "before {before} mm vs {want}");
+    // In closed form: the 13 angles 0°, 30°, … 360° of each direction have Σcos φ = 1 and
+    // Σcos²φ = 7, so the spread is e·√((7 − 1/13)/13) = 7.298 µm; about one mean of both
+    // directions it would be √(7.298² + 2.5²) = 7.71 µm.
+    let closed = e * ((7.0 - 1.0 / 13.0) / 13.0_f64).sqrt() * 1e-3;
+    assert!((before - closed).abs() < 1e-8, "{before} vs {closed}");
+    assert!(t["after"].as_f64().unwrap() < 2e-6, "{}", t["after"]);
+}
+
+/// A test needs MIN_POINTS (8) measured points: 8 are fitted, 7 refused naming the count.
+// Found by cargo-mutants: the count's edge was reached by no test.
+#[test]
+fn eight_points_of_a_test_are_enough_and_seven_are_not() {
+    let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 30 }]);
+    let run = |n: usize| {
+        let mut csv = String::from("angle (deg);deviation (µm);direction\n");
+        for k in 0..n {
+            let phi = 30.0 * k as f64;
+            csv += &format!("{phi};{:.4};ccw\n", -10.0 * phi.to_radians().cos());
+        }
+        call(
+            "ballbarRotaryIdentify",
+            &json!({ "machine": bc_table(), "tests": tests, "parameters": ["E_X0C", "E_Y0C"],
+                     "csv": csv }),
+        )
+        .map_err(|e| e.to_string())
+    };
+    let r = run(8).unwrap();
+    assert_eq!(r["tests"][0]["points"], 8);
+    let e = run(7).unwrap_err();
+    assert!(
+        e.starts_with("csv: test 1 has 7 measured points: give at least 8"),
+        "{e}"
+    );
+}

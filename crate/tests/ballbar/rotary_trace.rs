@@ -498,3 +498,58 @@ fn the_first_order_change_follows_the_exact_one_with_error_motions_alone() {
     // The motions do move the bar (micrometres), so the comparison above is not of zeros.
     assert!(largest > 1e-3, "{largest}");
 }
+
+/// A test of a head axis is placed from the spindle: on the head-table machine (B head, the tip
+/// `pivotLength + toolLength` = 300 mm below B's axis), a radial bar of B stands along the line
+/// from B's axis to the tool tip, so the tool ball is right above the table ball (the bar
+/// points up, from the table ball towards B's axis), the tool ball 300 mm from the line, and
+/// the axis line 300 mm above the tool ball; a tangential bar lies along X, square to both B's
+/// axis (Y) and that line.
+// Found by cargo-mutants: a head axis's radial direction, its bar and its axis line (`place`)
+// were reached by no test that checks them: every pose test derives them from the result.
+#[test]
+fn a_head_axis_test_is_placed_from_the_spindle() {
+    let s = rotary_study(json!({ "machine": head_table(), "tests": [
+        { "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 5, "from": -60, "to": 30 },
+        { "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 5, "from": -60, "to": 30, "direction": "tangential" }
+    ] }));
+    let (radial, tangential) = (&s.tests[0], &s.tests[1]);
+    let near = |a: Vector3<f64>, b: Vector3<f64>| (a - b).norm() < 1e-9;
+    assert!(!radial.table_side);
+    assert!(near(radial.ball, Vector3::new(120.0, -30.0, 40.0)));
+    assert!(near(radial.bar, Vector3::z()), "{}", radial.bar);
+    assert!(near(radial.tool, radial.ball + Vector3::new(0.0, 0.0, L)));
+    assert!((radial.radius - 300.0).abs() < 1e-9, "{}", radial.radius);
+    let axis = radial.frame[2];
+    assert!(near(axis.abs(), Vector3::y()), "{axis}");
+    let up = radial.axis_point - radial.tool;
+    let across = up - axis * up.dot(&axis);
+    assert!(near(across, Vector3::new(0.0, 0.0, 300.0)), "{across}");
+    assert!(
+        near(tangential.bar.abs(), Vector3::x()),
+        "{}",
+        tangential.bar
+    );
+    assert!(near(tangential.tool - tangential.ball, tangential.bar * L));
+}
+
+/// An axial bar needs no radial direction, so its table ball may sit on the axis line: the
+/// test's frame is then still three unit vectors square to each other, the third the axis.
+// Found by cargo-mutants: the frame chosen for a ball on the line was reached by no test.
+#[test]
+fn an_axial_bar_over_the_axis_line_has_a_square_frame() {
+    let s = rotary_study(json!({ "machine": bc_table(), "tests": [
+        { "ball": { "x": 0, "y": 0, "height": 50 }, "step": 30, "direction": "axial" }
+    ] }));
+    let t = &s.tests[0];
+    assert!(t.radius < 1e-9, "{}", t.radius);
+    let [r, g, a] = t.frame;
+    assert!((a.abs() - Vector3::z()).norm() < 1e-12, "{a}");
+    for (u, w) in [(r, g), (g, a), (a, r)] {
+        assert!(
+            (u.norm() - 1.0).abs() < 1e-12 && u.dot(&w).abs() < 1e-12,
+            "{u} {w}"
+        );
+    }
+    assert!((t.tool - t.ball - a * L).norm() < 1e-9);
+}
