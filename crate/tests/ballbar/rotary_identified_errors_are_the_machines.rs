@@ -202,16 +202,18 @@ fn an_error_the_bar_cannot_see_is_explained_once_in_the_summary() {
 /// plus a constant of its own in each direction (the bar's set-up: `a` counter-clockwise, `b`
 /// clockwise). The identification finds `e` and one offset per direction, each named for its test
 /// and direction; the spread before is the rms of each point less its own direction's mean,
-/// computed here from the values written.
+/// computed here from the values written. The offsets follow the errors, counter-clockwise
+/// first, whatever the file's order.
 // Found by cargo-mutants: the spread before (each direction's mean, the rms), the offsets'
-// names and their labels (one test, two errors), and the summary's carrying of the
+// names, order and labels (one test, two errors), and the summary's carrying of the
 // identification's lines were reached by no test.
 #[test]
 fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean() {
     let (e, a, b) = (10.0, 2.0, -3.0); // µm
     let mut csv = String::from("angle (deg);deviation (µm);direction\n");
     let mut values: Vec<(f64, f64)> = Vec::new(); // (direction, value)
-    for (dir, word, shift) in [(1.0, "ccw", a), (-1.0, "cw", b)] {
+                                                  // The clockwise run first: the offsets are still listed counter-clockwise first.
+    for (dir, word, shift) in [(-1.0, "cw", b), (1.0, "ccw", a)] {
         for k in 0..=12 {
             let phi = 30.0 * f64::from(if dir > 0.0 { k } else { 12 - k });
             let d = -e * phi.to_radians().cos() + shift;
@@ -241,6 +243,11 @@ fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean
             "{name}: {got} µm vs {want_um}"
         );
     };
+    let names: Vec<&str> = estimates
+        .iter()
+        .map(|x| x["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["E_X0C", "E_Y0C", "offset_1_ccw", "offset_1_cw"]);
     near("E_X0C", e);
     near("E_Y0C", 0.0);
     near("offset_1_ccw", a);
