@@ -292,15 +292,18 @@ fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean
     assert!(t["after"].as_f64().unwrap() < 2e-6, "{}", t["after"]);
 }
 
-/// A test needs MIN_POINTS (8) measured points: 8 are fitted, 7 refused naming the count.
-// Found by cargo-mutants: the count's edge was reached by no test.
+/// A test needs MIN_POINTS (8) measured points: 8 are fitted, 7 refused naming the count. Eight
+/// points of one direction at 10°, 50° … 290° (no sensitivity exactly 0) see E_X0C (`cos C`)
+/// and E_Y0C (`sin C`) apart from the one offset.
+// Found by cargo-mutants: the count's edge was reached by no test, nor a test alone whose every
+// sensitivity is non-zero (`together`).
 #[test]
 fn eight_points_of_a_test_are_enough_and_seven_are_not() {
     let tests = json!([{ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 30 }]);
     let run = |n: usize| {
         let mut csv = String::from("angle (deg);deviation (µm);direction\n");
         for k in 0..n {
-            let phi = 30.0 * k as f64;
+            let phi = 10.0 + 40.0 * k as f64;
             csv += &format!("{phi};{:.4};ccw\n", -10.0 * phi.to_radians().cos());
         }
         call(
@@ -312,6 +315,10 @@ fn eight_points_of_a_test_are_enough_and_seven_are_not() {
     };
     let r = run(8).unwrap();
     assert_eq!(r["tests"][0]["points"], 8);
+    assert_eq!(
+        r["together"]["alone"][0]["identifiable"],
+        json!(["E_X0C", "E_Y0C"])
+    );
     let e = run(7).unwrap_err();
     assert!(
         e.starts_with("csv: test 1 has 7 measured points: give at least 8"),

@@ -252,6 +252,12 @@ fn the_shortest_sweep_two_angles_each_way_is_judged() {
         }),
         "{v}"
     );
+    // The reason names the error, not the offsets.
+    let why = groups[0]["why"].as_str().unwrap();
+    assert!(
+        why.starts_with("E_X0C: changes the bar's length by the same amount at every angle"),
+        "{why}"
+    );
 }
 
 /// A turn about the moving axis's own line (its zero error) moves the table ball along its
@@ -274,4 +280,70 @@ fn a_tilt_axis_turning_about_its_own_line_is_said_to_be_unseen_by_its_name() {
             "{zero}: {why}"
         );
     }
+}
+
+/// Each error a test cannot see gets its own reason: with a radial bar on C, a turn about C's
+/// own line (E_C0C) and a shift along it (E_Z0C) move the ball square to the bar; with an axial
+/// bar, a shift of C's line across (E_X0C) moves it square to the bar, which is no property of
+/// C's own line.
+// Found by cargo-mutants: the choice between the reasons (`why_unseen`) was checked for the
+// turn alone.
+#[test]
+fn each_unseen_error_is_given_its_own_reason() {
+    let reasons = |direction: &str| -> Vec<(String, String)> {
+        let set = json!([{ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 30, "direction": direction }]);
+        let params: Vec<String> = ["E_X0C", "E_Z0C", "E_C0C"].map(String::from).to_vec();
+        let s = simulate(&bc_table(), &params, &set);
+        s["visibility"]["invisible"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|u| {
+                let why = u["why"].as_str().unwrap();
+                (u["name"].as_str().unwrap().to_string(), why.to_string())
+            })
+            .collect()
+    };
+    let radial = reasons("radial");
+    let names: Vec<&str> = radial.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["E_Z0C", "E_C0C"], "{radial:?}");
+    assert!(radial[0].1.starts_with("a shift along the C axis's own line moves the ball along that line, square to the radial bar"), "{}", radial[0].1);
+    assert!(
+        radial[1]
+            .1
+            .starts_with("a turn about the C axis's own line (its zero)"),
+        "{}",
+        radial[1].1
+    );
+    let axial = reasons("axial");
+    let x = axial
+        .iter()
+        .find(|(n, _)| n == "E_X0C")
+        .unwrap_or_else(|| panic!("{axial:?}"));
+    assert!(
+        x.1.starts_with("it moves the tool ball relative to the table only square to the bar"),
+        "{}",
+        x.1
+    );
+}
+
+/// One test is told to add a second; two tests are compared with each other.
+// Found by cargo-mutants: the count of tests behind the words (`together`) was reached only with
+// one test or four.
+#[test]
+fn one_test_is_told_to_add_a_second_and_two_are_compared() {
+    let c = json!({ "ball": { "x": 100, "y": 0, "height": 50 }, "step": 30 });
+    let b = json!({ "axis": "m", "ball": { "x": 100, "y": 0, "height": 50 }, "step": 10, "from": -60, "to": 30 });
+    let params: Vec<String> = ["E_X0C", "E_Y0C", "E_X0B", "E_Z0B"]
+        .map(String::from)
+        .to_vec();
+    let words = |tests: Value| {
+        simulate(&bc_table(), &params, &tests)["together"]["words"]
+            .as_str()
+            .unwrap()
+            .to_string()
+    };
+    assert!(words(json!([c])).starts_with("One test: add a second"));
+    let two = words(json!([c, b]));
+    assert!(two.starts_with("Together the tests"), "{two}");
 }

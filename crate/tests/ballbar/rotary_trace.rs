@@ -553,3 +553,36 @@ fn an_axial_bar_over_the_axis_line_has_a_square_frame() {
     }
     assert!((t.tool - t.ball - a * L).norm() < 1e-9);
 }
+
+/// The commanded axes are given in their own units: the linear axes in mm, the rotary axes in
+/// degrees, the moving one at the sweep's angles and the held one at its hold.
+// Found by cargo-mutants: every pose test read each axis's unit and converted, so the units
+// themselves were unchecked.
+#[test]
+fn the_commanded_rotary_axes_are_in_degrees_and_the_linear_in_mm() {
+    let s = simulate(
+        &bc_table(),
+        json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 90, "hold": 20 }]),
+    );
+    for a in s["tests"][0]["commanded"].as_array().unwrap() {
+        let name = a["name"].as_str().unwrap();
+        let values = numbers(&a["values"]);
+        match name {
+            "C" => {
+                assert_eq!(a["unit"], "deg");
+                let ccw = [0.0, 90.0, 180.0, 270.0, 360.0];
+                for (v, w) in values.iter().zip(ccw) {
+                    assert!((v - w).abs() < 1e-9, "C: {values:?}");
+                }
+            }
+            "B" => {
+                assert_eq!(a["unit"], "deg");
+                assert!(
+                    values.iter().all(|v| (v - 20.0).abs() < 1e-9),
+                    "B: {values:?}"
+                );
+            }
+            _ => assert_eq!(a["unit"], "mm", "{name}"),
+        }
+    }
+}
