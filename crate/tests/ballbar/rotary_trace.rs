@@ -509,7 +509,11 @@ fn the_first_order_change_follows_the_exact_one_with_error_motions_alone() {
 // were reached by no test that checks them: every pose test derives them from the result.
 #[test]
 fn a_head_axis_test_is_placed_from_the_spindle() {
-    let s = rotary_study(json!({ "machine": head_table(), "tests": [
+    // The table surface 50 mm above the machine origin (the C table's centre), so that B's line
+    // is off the workpiece origin across the axis too.
+    let mut machine = head_table();
+    machine["geometry"]["tableHeight"] = json!(50);
+    let s = rotary_study(json!({ "machine": machine, "tests": [
         { "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 5, "from": -60, "to": 30 },
         { "axis": "m", "ball": { "x": 120, "y": -30, "height": 40 }, "step": 5, "from": -60, "to": 30, "direction": "tangential" }
     ] }));
