@@ -568,7 +568,11 @@ fn the_commanded_rotary_axes_are_in_degrees_and_the_linear_in_mm() {
         &bc_table(),
         json!([{ "ball": { "x": 150, "y": 0, "height": 50 }, "step": 90, "hold": 20 }]),
     );
-    for a in s["tests"][0]["commanded"].as_array().unwrap() {
+    let axes = s["tests"][0]["commanded"].as_array().unwrap();
+    let mut names: Vec<&str> = axes.iter().map(|a| a["name"].as_str().unwrap()).collect();
+    names.sort_unstable();
+    assert_eq!(names, ["B", "C", "X", "Y", "Z"]);
+    for a in axes {
         let name = a["name"].as_str().unwrap();
         let values = numbers(&a["values"]);
         match name {
