@@ -594,3 +594,30 @@ fn the_commanded_rotary_axes_are_in_degrees_and_the_linear_in_mm() {
         }
     }
 }
+
+/// The simulated file (module docs of `ballbar::rotary::simulate`, `trace_csv`) has a test column
+/// only when it holds several tests: one test's lines are `angle;deviation;direction`, two
+/// tests' `test;angle;deviation;direction`, the test named on each line.
+// Found by cargo-mutants: the file was only ever read back, and the reader takes both forms.
+#[test]
+fn the_simulated_file_has_a_test_column_only_for_several_tests() {
+    let one = json!({ "name": "one", "ball": { "x": 150, "y": 0, "height": 50 }, "step": 90 });
+    let two = json!({ "name": "two", "ball": { "x": 150, "y": 0, "height": 50 }, "step": 90, "direction": "axial" });
+    let data = |tests: Value| -> Vec<String> {
+        let s = simulate(&bc_table(), tests);
+        s["csv"]
+            .as_str()
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(String::from)
+            .collect()
+    };
+    let single = data(json!([one]));
+    assert_eq!(single[0], "angle (deg);deviation (µm);direction");
+    assert_eq!(single[1], "0;0.0000;ccw");
+    let both = data(json!([one, two]));
+    assert_eq!(both[0], "test;angle (deg);deviation (µm);direction");
+    assert_eq!(both[1], "one;0;0.0000;ccw");
+    assert!(both.last().unwrap().starts_with("two;0;"), "{both:?}");
+}
