@@ -21,7 +21,9 @@ use nalgebra::Vector3;
 // Found by cargo-mutants: a mutant in `crate/src/sshape/` survived every other test.
 /// A clamped cubic needs p + 1 = 4 points. With exactly 4 it is the Bézier curve (knots
 /// 0,0,0,0,1,1,1,1), whose midpoint is (P0 + 3·P1 + 3·P2 + P3)/8 (Bernstein weights at ½);
-/// with 3 or 2 points it is refused.
+/// with 3 or 2 points it is refused, as too few control points (not as a knot vector of the
+/// wrong length, which the caller never gave).
+// Found by cargo-mutants too: the refusal's reason was unchecked (`clamped_uniform`).
 #[test]
 fn four_points_make_the_bezier_cubic_and_fewer_are_refused() {
     let p = vec![
@@ -34,8 +36,13 @@ fn four_points_make_the_bezier_cubic_and_fewer_are_refused() {
     assert_eq!(c.knots(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
     let mid = (p[0] + 3.0 * p[1] + 3.0 * p[2] + p[3]) / 8.0;
     assert!((c.point(0.5) - mid).norm() < 1e-12);
-    assert!(BSpline::clamped_uniform(3, p[..3].to_vec()).is_err());
-    assert!(BSpline::clamped_uniform(3, p[..2].to_vec()).is_err());
+    for n in [3, 2] {
+        let e = BSpline::clamped_uniform(3, p[..n].to_vec()).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("points: a curve of degree 3 needs at least 4 control points, got {n}")
+        );
+    }
 }
 
 /// Curves off the unit domain with repeated interior knots (degree, knots, points).
