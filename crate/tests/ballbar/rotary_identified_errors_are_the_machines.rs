@@ -8,7 +8,7 @@
 use crate::probe_common;
 
 use fiveaxis::api::call;
-use probe_common::{bc_table, numbers, with_errors};
+use probe_common::{bc_table, numbers, strings, with_errors};
 use serde_json::{json, Value};
 
 #[test]
@@ -182,12 +182,7 @@ fn an_error_the_bar_cannot_see_is_explained_once_in_the_summary() {
                  "csv": sim["csv"] }),
     )
     .unwrap();
-    let lines: Vec<&str> = r["summary"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|l| l.as_str().unwrap())
-        .collect();
+    let lines = strings(&r["summary"]);
     let about: Vec<&&str> = lines.iter().filter(|l| l.contains("E_C0C")).collect();
     assert_eq!(about.len(), 1, "{lines:#?}");
     assert!(
@@ -262,12 +257,7 @@ fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean
         );
     }
     // The result's summary carries the identification's own lines.
-    let summary: Vec<&str> = r["summary"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|l| l.as_str().unwrap())
-        .collect();
+    let summary = strings(&r["summary"]);
     let x_words = estimate("E_X0C")["words"].as_str().unwrap();
     assert!(summary.contains(&x_words), "{summary:#?}");
     // Before: about each direction's own mean.

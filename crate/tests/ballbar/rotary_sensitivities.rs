@@ -6,7 +6,7 @@
 use crate::probe_common;
 
 use fiveaxis::api::call;
-use probe_common::{ac_trunnion, bc_table, head_table, numbers, with_errors};
+use probe_common::{ac_trunnion, bc_table, head_table, numbers, strings, with_errors};
 use serde_json::{json, Value};
 
 /// The machines with the letters of their rotary axes.
@@ -242,12 +242,7 @@ fn the_shortest_sweep_two_angles_each_way_is_judged() {
     let groups = v["inseparable"].as_array().unwrap();
     assert!(
         groups.iter().any(|g| {
-            let m: Vec<&str> = g["members"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|n| n.as_str().unwrap())
-                .collect();
+            let m = strings(&g["members"]);
             m.contains(&"E_X0C") && m.contains(&"offset_1_ccw") && m.contains(&"offset_1_cw")
         }),
         "{v}"

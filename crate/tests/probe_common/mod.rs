@@ -91,3 +91,12 @@ pub fn numbers(v: &Value) -> Vec<f64> {
         .map(|x| x.as_f64().unwrap_or_else(|| panic!("not a number: {x}")))
         .collect()
 }
+
+/// A JSON list of strings.
+pub fn strings(v: &Value) -> Vec<&str> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("not a list: {v}"))
+        .iter()
+        .map(|x| x.as_str().unwrap_or_else(|| panic!("not a string: {x}")))
+        .collect()
+}
