@@ -206,8 +206,9 @@ fn an_error_the_bar_cannot_see_is_explained_once_in_the_summary() {
 fn each_direction_has_its_own_offset_and_the_spread_before_is_about_its_own_mean() {
     let (e, a, b) = (10.0, 2.0, -3.0); // µm
     let mut csv = String::from("angle (deg);deviation (µm);direction\n");
-    let mut values: Vec<(f64, f64)> = Vec::new(); // (direction, value)
-                                                  // The clockwise run first: the offsets are still listed counter-clockwise first.
+    // (direction, value) of each line written. The clockwise run first: the offsets are still
+    // listed counter-clockwise first.
+    let mut values: Vec<(f64, f64)> = Vec::new();
     for (dir, word, shift) in [(-1.0, "cw", b), (1.0, "ccw", a)] {
         for k in 0..=12 {
             let phi = 30.0 * f64::from(if dir > 0.0 { k } else { 12 - k });

@@ -23,7 +23,8 @@ use nalgebra::Vector3;
 /// 0,0,0,0,1,1,1,1), whose midpoint is (P0 + 3·P1 + 3·P2 + P3)/8 (Bernstein weights at ½);
 /// with 3 or 2 points it is refused, as too few control points (not as a knot vector of the
 /// wrong length, which the caller never gave).
-// Found by cargo-mutants too: the refusal's reason was unchecked (`clamped_uniform`).
+// The refusal's reason is checked since a mutant of `clamped_uniform`'s guard survived; that
+// mutant is equivalent (listed in mutants-equivalent.txt: `new` refuses with this message).
 #[test]
 fn four_points_make_the_bezier_cubic_and_fewer_are_refused() {
     let p = vec![
