@@ -300,3 +300,19 @@ fn a_frame_stays_where_it_is_when_the_unit_changes() {
         .text
         .contains("origin (25.4, 0, 0) mm"));
 }
+
+/// Addresses with decimal numbers, as posts write them and as the manual's examples run them
+/// together (`G1X-5.5`): a sign, digits and one decimal point, with the digits before or after the
+/// point left out (`Y.25`, `Z+1.`). A second point ends the number, and the reader refuses what
+/// follows it where it stands (column 8 of `G1 X1.2.3`) rather than guessing 1.2 or 1.23.
+/// (From the mutants of `lex::number_len`: without these decimals every Siemens test read whole
+/// numbers only.)
+#[test]
+fn decimal_numbers_with_a_sign_and_one_point() {
+    let m = caz_head();
+    let (p, _) = read_all("G1X-5.5Y.25Z+1. A-.5 C12.125 F1000\n", S, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!(p[0].tip, Vector3::new(-5.5, 0.25, 1.0));
+    assert_eq!(p[0].angles, Some([12.125, -0.5]));
+    at(&error("G1 X1.2.3\n", S, Some(&m)), 1, 8, "got \".\"");
+}

@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used)]
 use crate::common;
 
+use common::close;
 use common::toolpath::{caz, chords, close_vec, note, read_all, skipped};
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::RotaryType;
@@ -277,6 +278,56 @@ fn a_hypermill_heidenhain_program_with_plane_spatial_and_labels_after_m30() {
 }
 
 /// Programs the reader cannot read right are refused at their line, with the construct:
+/// 121philip/SINUMERIK-840D-sl-CAS-Package, `Approach A/CAM TEST.MPF` (commit 07c07dc, MIT):
+/// an NX post's output for a Sinumerik 840D, 3-axis pocketing. Its first line defines five
+/// variables without values (`DEF REAL _X_HOME, _Y_HOME, …`), which the reader once refused at
+/// the first comma; its homes are moves in machine coordinates (`SUPA`), and its arcs are helical
+/// ramps given by I and J.
+#[test]
+fn an_nx_sinumerik_program_with_def_variables_and_supa_homes() {
+    let text = file("nx_sinumerik_840d_cam_test.mpf");
+    assert_eq!(Format::detect(&text), Format::Siemens);
+    let m = trunnion();
+    let (p, r) = read_all(&text, Format::Siemens, Some(&m));
+    assert_eq!(r.unit_reason, "millimetres: G710 on line 6");
+    // The five SUPA blocks (lines 8, 9, 13, 14, 993) break the path and give no point.
+    let supa = note(&r, "machine coordinates (SUPA");
+    assert_eq!((supa.line, supa.count), (8, 5));
+    assert!(p.iter().all(|q| q.line > 14 && q.line != 993));
+    // The first point is line 18's rapid, the last line 990's (`N9900 G0 Z60.`).
+    let first = &p[0];
+    assert_eq!((first.line, first.motion), (18, Motion::Rapid));
+    assert_eq!(first.tip, Vector3::new(165.356, 114.944, 60.0));
+    let last = &p[p.len() - 1];
+    assert_eq!((last.line, last.motion), (990, Motion::Rapid));
+    assert_eq!(last.tip, Vector3::new(174.94, 98.786, 60.0));
+    // Every point has the tool along +Z.
+    assert!(p.iter().all(|q| q.axis == Vector3::z()));
+    // Line 20, `G3 X165.434 Y122.046 Z49. I1.46 J3.535` from (165.356, 114.944, 53): a helix
+    // counter-clockwise about (166.816, 118.479), radius 3.8246 at the start and 3.8254 at the
+    // end (the post rounds to 3 decimals), from the start's angle atan2(−3.535, −1.46) to the
+    // end's atan2(3.567, −1.382), 223.6° counter-clockwise, Z falling 4 mm in proportion.
+    let c = Vector3::new(166.816, 118.479, 0.0);
+    let angle = |q: &Vector3<f64>| (q.y - c.y).atan2(q.x - c.x);
+    let (a0, a1) = ((-3.535f64).atan2(-1.46), 3.567f64.atan2(-1.382));
+    let sweep = (a1 - a0).rem_euclid(2.0 * PI);
+    assert!((sweep.to_degrees() - 223.6).abs() < 0.05);
+    let arc = at_line(&p, 20);
+    assert!(arc.len() > 10 && arc.iter().all(|q| q.motion == Motion::Arc));
+    assert_eq!(arc[arc.len() - 1].tip, Vector3::new(165.434, 122.046, 49.0));
+    for q in &arc {
+        let turned = (angle(&q.tip) - a0).rem_euclid(2.0 * PI);
+        assert!(
+            turned > 0.0 && turned <= sweep + 1e-9,
+            "line 20 at {:?}",
+            q.tip
+        );
+        let radius = (q.tip - c).xy().norm();
+        assert!((radius - 3.825).abs() < 1e-3, "radius {radius}");
+        close(q.tip.z, 53.0 - 4.0 * turned / sweep, 1e-3, "z of the ramp");
+    }
+}
+
 /// LinuxCNC/linuxcnc `configs/sim/axis/vismach/5axis/table-rotary-tilting/examples/
 /// test-xyzac.ngc` (commit 1db7923, GPL-2.0), an o-word subroutine; aamorim1913/AptPostProcessor
 /// `machine-code/CUT.h` (commit 1070a82, GPL-3.0), coordinates computed by FN functions; and that

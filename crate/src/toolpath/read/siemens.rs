@@ -216,20 +216,18 @@ impl Siemens {
         if first == "PROC" {
             return Err(loc.err(first_off, "PROC starts a subprogram whose values come from the program that calls it; read the program that calls it, posted with the moves written out"));
         }
+        // DEF: variables (after a block number, if any), read before the words: its names are
+        // listed with commas, with or without a value (`DEF REAL _X_HOME, _Y_HOME`).
+        if first == "DEF" {
+            log.blocks += 1;
+            self.def(&text[first_off..], no);
+            return Ok(());
+        }
         let toks = lex(text, &loc)?;
         if toks.is_empty() {
             return Ok(());
         }
         log.blocks += 1;
-        // DEF: variables (after a block number, if any).
-        if let Some(Tok::Name { name, at }) = toks
-            .iter()
-            .find(|t| !matches!(t, Tok::Word { letter: 'N', .. } | Tok::Label))
-        {
-            if name == "DEF" {
-                return self.def(&text[*at..], no);
-            }
-        }
         let mut b = Block {
             at: first_at(&toks),
             ..Block::default()
@@ -577,8 +575,9 @@ impl Siemens {
         log.skip("variable assignments (R1=…, DEF)", no);
     }
 
-    /// `DEF type name[=value], …`.
-    fn def(&mut self, text: &str, no: u32) -> Result<()> {
+    /// `DEF type name[=value], …`: a name defined without a value is 0, the default value of
+    /// the numeric types (828D Job Planning, `DEF` p.23).
+    fn def(&mut self, text: &str, no: u32) {
         let code = text.split(';').next().unwrap_or("");
         let after = code.trim_start();
         let after = after.get(3..).unwrap_or("").trim_start(); // past DEF
@@ -600,7 +599,6 @@ impl Siemens {
             };
             self.vars.insert(name.to_ascii_uppercase(), v);
         }
-        Ok(())
     }
 
     /// `name(args)`.
