@@ -99,6 +99,7 @@ mod toolpath {
     mod parse_limits;
     mod program;
     mod read_apt;
+    mod read_bytes;
     mod read_heidenhain;
     mod read_iso;
     mod read_siemens;
