@@ -135,11 +135,7 @@ fn csv_line(
         text: line,
         segs: &segs,
     };
-    let mut f = Fields {
-        vals: [0.0; 6],
-        offs: [0; 6],
-        toks: [""; 6],
-    };
+    let mut f = Fields::new();
     let mut n = 0;
     for (off, tok) in csv_fields(line) {
         if n == 6 {
