@@ -61,3 +61,38 @@ fn only_the_first_bytes_say_what_the_file_is() {
         assert_eq!(p, whole, "cut at byte {cut}");
     }
 }
+
+/// Lines end with `\n` (Unix), `\r\n` (Windows) or `\r` alone (classic Mac OS), and the note
+/// counts them as the reader does: `# Abweichung µm` is line 3 with each, also when a piece is
+/// cut between the `\r` and the `\n` of a line end.
+#[test]
+fn the_line_of_the_note_is_counted_with_any_line_end() {
+    for end in [&b"\n"[..], b"\r\n", b"\r"] {
+        let mut bytes = Vec::new();
+        for line in [
+            &b"# Messung"[..],
+            b"0,0,0,0,0,1",
+            b"# Abweichung \xb5m",
+            b"1,0,0,0,0,1",
+        ] {
+            bytes.extend_from_slice(line);
+            bytes.extend_from_slice(end);
+        }
+        let (p, r) = read_pieces(&[&bytes]);
+        assert_eq!(p.len(), 2, "{end:?}");
+        assert_eq!(legacy_note(&r).line, 3, "{end:?}");
+    }
+    let (_, r) = read_pieces(&[b"# Messung\r", b"\n0,0,0,0,0,1\r\n# Abweichung \xb5m\r\n"]);
+    assert_eq!(legacy_note(&r).line, 3);
+}
+
+/// A file in Windows-1252 whose last byte is `é` (0xE9), with no line end after it: in UTF-8
+/// that byte starts a three-byte sequence, which the end of the file cuts. It is read as
+/// Windows-1252, and the note names the last line. (From the mutant of `Decoder::finish`
+/// returning nothing.)
+#[test]
+fn a_file_that_ends_inside_a_utf8_sequence_is_windows_1252() {
+    let (p, r) = read_pieces(&[b"0,0,0,0,0,1\n# Caf\xe9"]);
+    assert_eq!(p.len(), 1);
+    assert_eq!(legacy_note(&r).line, 2);
+}

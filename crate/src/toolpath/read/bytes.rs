@@ -48,6 +48,15 @@ fn not_text(head: &[u8]) -> Option<&'static str> {
         .then_some("a binary file")
 }
 
+/// A piece of a file's text.
+#[derive(Debug)]
+pub(super) struct Piece<'a> {
+    pub text: Cow<'a, str>,
+    /// The byte of `text` from which it is read as Windows-1252, when the bytes stopped being
+    /// UTF-8 in this piece (`text[..i]` is the piece's UTF-8 part).
+    pub legacy_from: Option<usize>,
+}
+
 /// A streaming decoder (module docs).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Decoder {
@@ -55,26 +64,13 @@ pub(super) struct Decoder {
     checked: bool,
     /// Bytes of a UTF-8 sequence split at the end of the last piece.
     pending: Vec<u8>,
-    /// Reading as Windows-1252, from the byte at this offset of the file.
-    legacy: Option<u64>,
-    /// Bytes decoded so far.
-    offset: u64,
+    /// The bytes stopped being UTF-8: reading as Windows-1252.
+    legacy: bool,
 }
 
 impl Decoder {
-    /// Bytes decoded so far (a piece's text starts at this offset of the file, the bytes of a
-    /// cut sequence included).
-    pub fn offset(&self) -> u64 {
-        self.offset
-    }
-
-    /// Where the bytes stopped being UTF-8 (the file's byte offset), if they did.
-    pub fn legacy_from(&self) -> Option<u64> {
-        self.legacy
-    }
-
     /// The text of the next piece of bytes.
-    pub fn decode<'a>(&mut self, bytes: &'a [u8]) -> Result<Cow<'a, str>> {
+    pub fn decode<'a>(&mut self, bytes: &'a [u8]) -> Result<Piece<'a>> {
         if !self.checked && !bytes.is_empty() {
             self.checked = true;
             if let Some(what) = not_text(bytes) {
@@ -89,21 +85,26 @@ impl Decoder {
         }
         let mut joined = std::mem::take(&mut self.pending);
         joined.extend_from_slice(bytes);
-        Ok(Cow::Owned(self.decode_slice(&joined).into_owned()))
+        let piece = self.decode_slice(&joined);
+        Ok(Piece {
+            text: Cow::Owned(piece.text.into_owned()),
+            legacy_from: piece.legacy_from,
+        })
     }
 
     /// [`Decoder::decode`] of bytes that start where the last piece ended.
-    fn decode_slice<'b>(&mut self, data: &'b [u8]) -> Cow<'b, str> {
-        let start = self.offset;
-        if self.legacy.is_some() {
-            self.offset += data.len() as u64;
-            return Cow::Owned(data.iter().map(|&b| cp1252(b)).collect());
+    fn decode_slice<'b>(&mut self, data: &'b [u8]) -> Piece<'b> {
+        if self.legacy {
+            return Piece {
+                text: Cow::Owned(data.iter().map(|&b| cp1252(b)).collect()),
+                legacy_from: None,
+            };
         }
         match std::str::from_utf8(data) {
-            Ok(s) => {
-                self.offset += data.len() as u64;
-                Cow::Borrowed(s)
-            }
+            Ok(s) => Piece {
+                text: Cow::Borrowed(s),
+                legacy_from: None,
+            },
             Err(e) => {
                 let valid = e.valid_up_to();
                 let head = std::str::from_utf8(&data[..valid]).unwrap_or("");
@@ -111,28 +112,29 @@ impl Decoder {
                     // A sequence cut at the end of the piece: it waits for the next one.
                     None => {
                         self.pending = data[valid..].to_vec();
-                        self.offset += valid as u64;
-                        Cow::Borrowed(head)
+                        Piece {
+                            text: Cow::Borrowed(head),
+                            legacy_from: None,
+                        }
                     }
                     // Not UTF-8: Windows-1252 from here on.
                     Some(_) => {
-                        self.legacy = Some(start + valid as u64);
-                        self.offset += data.len() as u64;
+                        self.legacy = true;
                         let mut s = head.to_owned();
                         s.extend(data[valid..].iter().map(|&b| cp1252(b)));
-                        Cow::Owned(s)
+                        Piece {
+                            text: Cow::Owned(s),
+                            legacy_from: Some(valid),
+                        }
                     }
                 }
             }
         }
     }
 
-    /// The end of the file: a sequence still cut is not UTF-8 (Windows-1252 then).
+    /// The end of the file: the bytes of a sequence still cut, which are not UTF-8, in
+    /// Windows-1252 (empty when none is).
     pub fn finish(&mut self) -> String {
-        if self.pending.is_empty() {
-            return String::new();
-        }
-        self.legacy.get_or_insert(self.offset);
         let s = self.pending.iter().map(|&b| cp1252(b)).collect();
         self.pending.clear();
         s
@@ -144,25 +146,23 @@ mod tests {
     use super::*;
 
     #[test]
+    #[allow(clippy::unwrap_used)]
     fn utf8_split_anywhere_and_windows_1252_and_binary_files() {
         // "Ø6 µm" in UTF-8, split inside Ø (C3 98) and inside µ (C2 B5).
         let text = "(Ø6 µm)\n".as_bytes();
         let mut d = Decoder::default();
         let mut got = String::new();
         for piece in [&text[..2], &text[2..6], &text[6..]] {
-            got.push_str(&d.decode(piece).unwrap_or_default());
+            let p = d.decode(piece).unwrap();
+            assert_eq!(p.legacy_from, None);
+            got.push_str(&p.text);
         }
         got.push_str(&d.finish());
         assert_eq!(got, "(Ø6 µm)\n");
-        assert_eq!(d.legacy_from(), None);
-        // "Abweichung (µm)" from a Windows editor: µ is the byte B5 alone.
-        let mut d = Decoder::default();
-        let s = d
-            .decode(b"X1\n(\xb5m \x80)\n")
-            .unwrap_or_default()
-            .into_owned();
-        assert_eq!(s, "X1\n(µm €)\n");
-        assert_eq!(d.legacy_from(), Some(4));
+        // "Abweichung (µm)" from a Windows editor: µ is the byte B5 alone, the fifth byte.
+        let p = Decoder::default().decode(b"X1\n(\xb5m \x80)\n").unwrap();
+        assert_eq!(p.text, "X1\n(µm €)\n");
+        assert_eq!(p.legacy_from, Some(4));
         for (head, what) in [
             (&b"\x89PNG\r\n\x1a\n"[..], "a PNG image"),
             (b"%PDF-1.7", "a PDF document"),

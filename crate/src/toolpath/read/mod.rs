@@ -798,20 +798,21 @@ impl Parser {
     /// Windows-1252 from the first byte that is not (a note says from which line); a file that
     /// is not text (an image, a PDF, an archive, UTF-16) is refused by its first bytes.
     pub fn feed_bytes(&mut self, chunk: &[u8], out: &mut Vec<Point>) -> Result<()> {
-        let was_legacy = self.decoder.legacy_from().is_some();
-        let start = self.decoder.offset();
-        let text = self.decoder.decode(chunk)?;
-        if let (false, Some(at)) = (was_legacy, self.decoder.legacy_from()) {
+        let piece = self.decoder.decode(chunk)?;
+        if let Some(at) = piece.legacy_from {
             // The line of the first byte that is not UTF-8: the lines before this piece, and
-            // the line ends of the piece's UTF-8 part.
-            let head = usize::try_from(at - start).unwrap_or(0).min(text.len());
-            let ends = text.as_bytes()[..head]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count();
-            self.note_legacy(self.line + 1 + ends as u32);
+            // the line ends of the piece's UTF-8 part, counted as `feed` counts them (`\r`,
+            // `\n`, or both as one).
+            let head = &piece.text.as_bytes()[..at];
+            let mut after_cr = self.after_cr;
+            let mut ends = 0u32;
+            for &b in head {
+                ends += u32::from(b == b'\r' || b == b'\n' && !after_cr);
+                after_cr = b == b'\r';
+            }
+            self.note_legacy(self.line + 1 + ends);
         }
-        self.feed(&text, out)
+        self.feed(&piece.text, out)
     }
 
     /// The note of a file read as Windows-1252 from `line`.
