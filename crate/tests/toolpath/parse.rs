@@ -91,13 +91,16 @@ fn csv_reads_a_decimal_comma_with_semicolons_or_tabs() {
     assert_eq!(p[0].tip, Vector3::new(1.5, -2.25, 0.125));
     assert_eq!(p[1].tip, Vector3::new(1.5, 2.0, 3.0));
     close_vec(&p[1].axis, &Vector3::new(0.0, 0.6, 0.8), 1e-15, "axis");
-    // Two commas in one field are no number.
-    let e = parse("1,5,0;2;3;0;0;1", Format::Csv, None).unwrap_err();
-    assert!(
-        e.message.contains("expected a number for x"),
-        "{}",
-        e.message
-    );
+    // Two commas in one field are no number, nor is a thousands point with a decimal comma
+    // (`1.000,5`, 1000.5 in German): refused rather than read as 1.0005 or 1.
+    for field in ["1,5,0", "1.000,5"] {
+        let e = parse(&format!("{field};2;3;0;0;1"), Format::Csv, None).unwrap_err();
+        assert!(
+            e.message.contains("expected a number for x"),
+            "{}",
+            e.message
+        );
+    }
 }
 
 #[test]

@@ -10,7 +10,7 @@ use common::toolpath::{caz, chords, close_vec, note, read_all, skipped};
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::RotaryType;
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::read::{read, Format, Motion, Point, ReadOptions};
+use fiveaxis::toolpath::read::{read, Format, LengthUnit, Motion, NoteKind, Point, ReadOptions};
 use fiveaxis::toolpath::{compare_path, Commands, Path};
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -325,6 +325,57 @@ fn an_nx_sinumerik_program_with_def_variables_and_supa_homes() {
         let radius = (q.tip - c).xy().norm();
         assert!((radius - 3.825).abs() < 1e-3, "radius {radius}");
         close(q.tip.z, 53.0 - 4.0 * turned / sweep, 1e-3, "z of the ramp");
+    }
+}
+
+/// userFour/MECH491-postprocessor (commit 22c4fbb, CC0-1.0): one NX toolpath twice, as CL data
+/// (`APT_Variable_Axis.txt`: `MSYS/3,3,0,…`, tool axes in the GOTOs, inches from `FEDRAT/IPM`)
+/// and as NX's Haas UMC-750 post wrote it (`PostProcessed_Variable_Axis.txt`: `G20`, `G0
+/// B-22.201 C1.05` before `G234` switches tool-centre-point control on, then X Y Z B C). The
+/// UMC-750 is a B trunnion carrying a C table: table-table `CBZ`. The two readings agree point
+/// by point: the NC tips are the CL tips in the MSYS frame, whose origin is 3 in = 76.2 mm along
+/// X and Y, and the tool axes the machine gives from B and C (written to 0.001°) are NX's
+/// (written to 10⁻⁷). The turn before `G234` reaches no point (X Y Z are not known after `G28`),
+/// so no note says the path is the machine's.
+#[test]
+fn an_nx_clsf_and_its_haas_umc_750_program_give_the_same_path() {
+    let umc = Machine::from_value(
+        &serde_json::json!({ "kind": "table-table", "type": "CBZ" }),
+        "machine",
+    )
+    .unwrap();
+    let (cl, rc) = read_all(&file("nx_clsf_variable_axis.txt"), Format::Apt, None);
+    let (nc, rn) = read_all(
+        &file("haas_umc750_nx_variable_axis.nc"),
+        Format::Nc,
+        Some(&umc),
+    );
+    assert_eq!((rc.unit, rn.unit), (LengthUnit::Inch, LengthUnit::Inch));
+    assert!(rc
+        .unit_reason
+        .starts_with("inches: FEDRAT/IPM (a feed in inches) on line 15"));
+    assert_eq!(rn.unit_reason, "inches: G20 on line 14");
+    // MSYS/ comes before the feed that says inches: its origin is described in millimetres
+    // once the unit is decided.
+    assert!(note(&rc, "MSYS/")
+        .text
+        .contains("origin (76.2, 76.2, 0) mm"));
+    assert_eq!(rc.frame_choice.unwrap().frame, "origin (76.2, 76.2, 0) mm");
+    assert_eq!(rn.tcp.as_deref(), Some("G234 (Haas TCPC) on line 32"));
+    assert!(
+        rn.notes.iter().all(|n| n.kind != NoteKind::Tcp),
+        "{:#?}",
+        rn.notes
+    );
+    // The 348 GOTOs; the program's name `Omnf01_vx_0` (line 2) is not a word.
+    assert_eq!(cl.len(), 348);
+    assert_eq!(nc.len(), cl.len());
+    let origin = Vector3::new(76.2, 76.2, 0.0);
+    for (a, b) in cl.iter().zip(&nc) {
+        assert_eq!(a.motion, b.motion, "CL line {}, NC line {}", a.line, b.line);
+        // Both are written to 0.0001 in, rounded apart: they may differ by that.
+        close_vec(&a.tip, &(b.tip + origin), 0.0001 * 25.4 + 1e-9, "tip");
+        close_vec(&a.axis, &b.axis, 2e-5, "tool axis");
     }
 }
 

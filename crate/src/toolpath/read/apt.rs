@@ -64,7 +64,8 @@
 use super::frame::{arc, ArcError, Frame};
 use super::lex::{shown, unit, unit_axis, Fields, Loc, Seg, MAX_COORDINATE, NAMES};
 use super::{
-    AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, FIELD, MAX_LINE,
+    AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, UnstatedFrame, FIELD,
+    MAX_LINE,
 };
 use crate::error::{Error, Result};
 use crate::toolpath::slerp;
@@ -398,23 +399,34 @@ impl Apt {
                 format!("line {line}: {what} states the identity frame (the output frame is the workpiece's): nothing to apply")
             });
         } else {
-            if log.frame_choice.is_none() {
-                log.frame_choice = Some(FrameFound {
-                    statement: what.to_string(),
-                    line,
-                    frame: frame.scaled(log.scale().0).describe(),
-                    reading,
-                });
-            }
             let applied = match reading {
                 AptFrameChoice::Apply => "the points after it are read in it (origin + R·p)",
                 AptFrameChoice::Ignore => {
                     "shown only: the points are left as written (your choice beside the file)"
                 }
             };
-            let desc = frame.scaled(log.scale().0).describe();
+            let (scale, stated) = log.scale();
+            let desc = frame.scaled(scale).describe();
+            let before = format!("line {line}: {what} states the output frame ");
+            let after = format!("; {applied}");
+            if log.frame_choice.is_none() {
+                log.frame_choice = Some(FrameFound {
+                    statement: what.to_string(),
+                    line,
+                    frame: desc.clone(),
+                    reading,
+                });
+                if !stated {
+                    log.unstated_frame = Some(UnstatedFrame {
+                        frame,
+                        key: "apt-frame",
+                        before: before.clone(),
+                        after: after.clone(),
+                    });
+                }
+            }
             log.note("apt-frame", NoteKind::Frame, line, || {
-                format!("line {line}: {what} states the output frame {desc}; {applied}")
+                format!("{before}{desc}{after}")
             });
         }
         if reading == AptFrameChoice::Apply {

@@ -66,10 +66,8 @@ impl CsvSep {
                 }
         );
         if decimal_comma && tok.contains(',') {
-            // One comma at most: `1,5` is a number, `1,5,2` is not.
-            if tok.matches(',').count() > 1 || tok.contains('.') {
-                return None;
-            }
+            // One comma at most: `1,5` is a number; `1,5,2` and `1.000,5`, with two points
+            // once the commas are points, are not.
             number(&tok.replace(',', "."), true)
         } else {
             number(tok, true)

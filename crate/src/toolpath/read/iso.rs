@@ -77,6 +77,9 @@ pub struct Iso {
     offset: Option<(i64, i64)>,
     /// A point has been written (a new work offset then breaks the path).
     any_point: bool,
+    /// The program's first block (other than comments) has been read: a later O and a letter
+    /// is not its name.
+    named: bool,
     /// G52 shift, G92 shift (mm: they stay where they are when the unit changes).
     local: Vector3<f64>,
     g92: Vector3<f64>,
@@ -267,6 +270,18 @@ impl Iso {
             }
             let toks = lex(code, no)?;
             return self.words(core, toks, &loc, no, log, out);
+        }
+        // The program's first block may be its name where a control reads its O number: NX's
+        // Haas posts write the part's name (`Omnf01_vx_0`, `OFinal ToolPath`). O and a letter
+        // there is a name, not a word (an o-word has digits or `<` after the O).
+        let t = text.trim_start();
+        if !self.named && !t.is_empty() && !t.starts_with(['(', ';']) {
+            self.named = true;
+            if t.starts_with(['O', 'o']) && t[1..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+                log.blocks += 1;
+                log.skip("program numbers and names (O)", no);
+                return Ok(());
+            }
         }
         let toks = lex(text, no)?;
         self.words(core, toks, &loc, no, log, out)

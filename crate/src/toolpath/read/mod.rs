@@ -486,6 +486,19 @@ pub(crate) struct Log {
     pub(crate) options: ReadOptions,
     /// The format has unit hints (APT's `FEDRAT/IPM`): an unstated unit may change later.
     hints: bool,
+    /// The output frame of [`Log::frame_choice`] when it was stated before the file's unit was:
+    /// its note and description are written again in the unit decided at the end.
+    pub(crate) unstated_frame: Option<UnstatedFrame>,
+}
+
+/// An output frame read in a unit not yet decided: the frame in the file's unit, and its note's
+/// text before and after the frame's description.
+#[derive(Debug, Clone)]
+pub(crate) struct UnstatedFrame {
+    pub frame: frame::Frame,
+    pub key: &'static str,
+    pub before: String,
+    pub after: String,
 }
 
 impl Log {
@@ -499,6 +512,7 @@ impl Log {
             frame_choice: None,
             options,
             hints: format == Format::Apt,
+            unstated_frame: None,
         }
     }
 
@@ -870,6 +884,15 @@ impl Parser {
                         return Err(Error::field(FIELD, format!("line {}: expected coordinates within ±{MAX_COORDINATE} mm, got {} mm once read in {}", p.line, p.tip.amax(), now_unit.words())));
                     }
                 }
+            }
+        }
+        if let Some(f) = self.log.unstated_frame.take() {
+            let desc = f.frame.scaled(now).describe();
+            if let Some((_, n)) = self.log.notes.iter_mut().find(|(k, _)| *k == f.key) {
+                n.text = format!("{}{desc}{}", f.before, f.after);
+            }
+            if let Some(c) = &mut self.log.frame_choice {
+                c.frame = desc;
             }
         }
         let (unit, unit_reason) = self.log.unit_report(any_unstated);

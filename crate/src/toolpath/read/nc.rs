@@ -197,6 +197,9 @@ pub(super) struct Core {
     pub rollover: [bool; 2],
     /// Heidenhain M126 is on.
     pub shortest: bool,
+    /// The line where the rotary axes turned without tool-centre-point control, until a point
+    /// is reached that way (then the reader says so) or the control is switched on first.
+    pub turned_without_tcp: Option<u32>,
 }
 
 /// The NC reader: the shared state and the dialect's own.
@@ -242,6 +245,7 @@ impl Nc {
                 tangent: None,
                 rollover: [model.machine.rotary.k_rollover, false],
                 shortest: false,
+                turned_without_tcp: None,
             },
             dialect,
         }
@@ -336,6 +340,9 @@ impl Core {
         if on && !self.tcp && log.tcp.is_none() {
             log.tcp = Some(format!("{what} on line {line}"));
         }
+        if on {
+            self.turned_without_tcp = None;
+        }
         self.tcp = on;
     }
 
@@ -425,8 +432,17 @@ impl Core {
             });
         }
         if rotary_moves && !self.tcp && !self.tilted {
+            self.turned_without_tcp = Some(loc.line_of(b.at));
+        }
+        if !known.iter().all(|&k| k) {
+            self.break_next = true;
+            return Ok(());
+        }
+        // A rotary turn matters to the points only when one is reached before tool-centre-point
+        // control is on: a post turns the table, then switches the control on (`G0 B-22.2
+        // C1.05` then `G234`), with X Y Z not yet given.
+        if let Some(line) = self.turned_without_tcp.take() {
             let [kl, ml] = self.letters;
-            let line = loc.line_of(b.at);
             log.note("no-tcp", NoteKind::Tcp, line, || {
                 format!(
                     "line {line}: the rotary axes ({kl}, {ml}) turn without tool-centre-point \
@@ -435,10 +451,6 @@ impl Core {
                      uses the rotary commands only and holds; the path drawn is the machine's."
                 )
             });
-        }
-        if !known.iter().all(|&k| k) {
-            self.break_next = true;
-            return Ok(());
         }
         let cutting = !(b.rapid_once || b.cycle || self.mode == Mode::Rapid);
         let k_turn = (new[3] - start[3]).abs();
