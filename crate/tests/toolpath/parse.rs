@@ -908,3 +908,24 @@ fn the_format_is_detected_from_the_first_lines() {
         assert_eq!(Format::detect(text), format, "{text:?}");
     }
 }
+
+/// A CSV file states no unit: read with "inches where the file does not say", its numbers are
+/// inches (× 25.4 mm), and the report counts one block a point line, the comment, the header and
+/// the blank line apart. (From the mutants of the CSV reader's scale and block count.)
+#[test]
+fn csv_in_inches_where_the_file_does_not_say() {
+    let options = ReadOptions {
+        unit: fiveaxis::toolpath::read::UnitChoice::Inch,
+        ..Default::default()
+    };
+    let (p, r) = common::toolpath::read_with(
+        "# measured\nx,y,z,i,j,k\n1,2,3,0,0,1\n\n0.5,0,-1,0,0,1\n",
+        Format::Csv,
+        None,
+        options,
+    );
+    close_vec(&p[0].tip, &Vector3::new(25.4, 50.8, 76.2), 1e-12, "tip");
+    close_vec(&p[1].tip, &Vector3::new(12.7, 0.0, -25.4), 1e-12, "tip");
+    assert_eq!(r.unit, fiveaxis::toolpath::read::LengthUnit::Inch);
+    assert_eq!(r.blocks, 2);
+}
