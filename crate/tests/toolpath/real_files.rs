@@ -379,6 +379,69 @@ fn an_nx_clsf_and_its_haas_umc_750_program_give_the_same_path() {
     }
 }
 
+/// ElMoe/Production-Data-Set-for-Five-Axis-CNC-Milling-with-Multiple-Changeovers,
+/// `NC_code/Coordinate_system_representation_Achskreuz/…Achskreuz.mpf` (commit b800366, CC BY
+/// 4.0): an NX post's program for the Sinumerik 840D sl of a Spinner U5-620, a B trunnion
+/// carrying a C table (table-table `CBZ`), run on that machine for the data set. It machines
+/// the faces of a cube 3+2: `G0 B90. C90.`, `TRAORI`, then `AROT` turns the frame so that its z
+/// is the tool (`AROT X-90.`, `AROT Z90.`), and the face's moves are written in that frame.
+///
+/// The frame and the rotary axes are two statements of one tool direction, read by two
+/// different parts of the reader (the frame's rotations, the machine's kinematics from B and C).
+/// Each block that moves Z alone in its frame (`G1 Z-1.`, a plunge or a retract) moves the
+/// tool tip along the tool axis, on every face.
+#[test]
+fn an_nx_sinumerik_program_for_a_b_c_table_machining_a_cube_3_plus_2() {
+    let text = file("nx_sinumerik_spinner_u5_achskreuz.mpf");
+    assert_eq!(Format::detect(&text), Format::Siemens);
+    let spinner = Machine::from_value(
+        &serde_json::json!({ "kind": "table-table", "type": "CBZ" }),
+        "machine",
+    )
+    .unwrap();
+    let (p, r) = read_all(&text, Format::Siemens, Some(&spinner));
+    assert_eq!(r.unit_reason, "millimetres: G710 on line 7");
+    assert_eq!(r.tcp.as_deref(), Some("TRAORI on line 1031"));
+    // Line 1034, `G0 X31. Y-15.001 Z165.236` after `G0 B90. C0.0`, `TRAORI` and `AROT Y90.`:
+    // AROT Y90 turns x onto −z and z onto x, so the tip is (165.236, −15.001, −31), and the
+    // tool, tilted 90° by B, lies along +X.
+    let q = at_line(&p, 1034)[0];
+    close_vec(&q.tip, &Vector3::new(165.236, -15.001, -31.0), 1e-9, "tip");
+    close_vec(&q.axis, &Vector3::x(), 1e-12, "axis");
+    assert_eq!(q.angles, Some([0.0, 90.0]));
+    // Every block of Z alone, on every face: the tip moves along the tool axis.
+    let lines: Vec<&str> = text.lines().collect();
+    let z_alone = |line: u32| {
+        let words: Vec<&str> = lines[line as usize - 1]
+            .split_whitespace()
+            .skip(1)
+            .collect();
+        words.iter().any(|w| w.starts_with('Z'))
+            && words
+                .iter()
+                .all(|w| w.starts_with(['Z', 'F']) || matches!(*w, "G0" | "G1"))
+    };
+    let mut axes: Vec<Vector3<f64>> = Vec::new();
+    for w in p.windows(2) {
+        if w[1].line != w[0].line && z_alone(w[1].line) {
+            let d = w[1].tip - w[0].tip;
+            assert!(
+                d.norm() > 0.0 && d.cross(&w[1].axis).norm() < 1e-9 * d.norm().max(1.0),
+                "line {}: the tip moves by {:?}, the tool axis is {:?}",
+                w[1].line,
+                d.as_slice(),
+                w[1].axis.as_slice()
+            );
+            if axes.iter().all(|a| (a - w[1].axis).norm() > 1e-6) {
+                axes.push(w[1].axis);
+            }
+        }
+    }
+    // The top, the four sides and a 45° face (`B90. C-135.`, `AROT X90. Y-45. Z-90.`): six tool
+    // directions.
+    assert!(axes.len() >= 6, "{axes:?}");
+}
+
 /// LinuxCNC/linuxcnc `configs/sim/axis/vismach/5axis/table-rotary-tilting/examples/
 /// test-xyzac.ngc` (commit 1db7923, GPL-2.0), an o-word subroutine; aamorim1913/AptPostProcessor
 /// `machine-code/CUT.h` (commit 1070a82, GPL-3.0), coordinates computed by FN functions; and that
