@@ -300,6 +300,21 @@ fn tcp_machine_coordinates_and_cycle_calls() {
         Some(&m),
     );
     assert_eq!(r.tcp.as_deref(), Some("M128 on line 3"));
+    // `M128 F25000` on its own, as a post wrote it (a program for an A/C table, DigiLiner/
+    // Heidenhain_Compile `xiaojiubei-123.H`): F is the largest feed of M128's compensating moves
+    // (iTNC 530 DIN/ISO p.290), a feed, not another statement.
+    let (p, r) = read_all(
+        &program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "M128 F25000 ; TCPM ON",
+            "L A+10 C+10 F500",
+        ]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(r.tcp.as_deref(), Some("M128 on line 3"));
+    assert_eq!(p.len(), 2);
+    assert_eq!(skipped(&r, "feeds"), 2);
     let (_, r) = read_all(
         &program(&[
             "FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS",
@@ -425,7 +440,6 @@ fn contours_the_control_builds_are_refused_when_run() {
         ("CHF 2", "rounds or chamfers"),
         ("FPOL X+10 Y+10", "free contour programming"),
         ("LP PR+10 PA+45", "polar coordinates"),
-        ("CYCL DEF 19.0 WORKING PLANE", "CYCL DEF 19"),
         ("CYCL DEF 8.0 MIRROR IMAGE", "mirrors or scales"),
         ("FN 9: IF +Q1 EQU +0 GOTO LBL 1", "jumps on a condition"),
         ("CALL PGM OTHER.H", "calls another program"),
@@ -436,6 +450,38 @@ fn contours_the_control_builds_are_refused_when_run() {
     // Blocks after M30 that are never called are never run: a jump there is not refused.
     let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+0 R0 FMAX\n2 M30\n3 LBL 9\n4 FN 9: IF +Q1 EQU +0 GOTO LBL 9\n5 LBL 0\n6 END PGM T MM\n", H, Some(&m));
     assert_eq!(p.len(), 1);
+}
+
+/// CYCL DEF 19 WORKING PLANE tilts by angles whose meaning depends on the machine: refused where
+/// its angles are given (19.1). With no angle, or every angle 0, it tilts nothing: the reset a
+/// post writes before it starts (NX's Heidenhain post: `CYCL DEF 19.0 WORKING PLANE`, `CYCL DEF
+/// 19.1` before `M128`, in DigiLiner/Heidenhain_Compile `YL-02.h`), which is read.
+#[test]
+fn cycl_def_19_is_refused_where_it_tilts_and_read_where_it_resets() {
+    let m = caz_head();
+    at(
+        &error(
+            &program(&["CYCL DEF 19.0 WORKING PLANE", "CYCL DEF 19.1 A+0 B+45 C+0"]),
+            H,
+            Some(&m),
+        ),
+        3,
+        3,
+        "CYCL DEF 19 WORKING PLANE tilts",
+    );
+    let (p, r) = read_all(
+        &program(&[
+            "CYCL DEF 19.0 WORKING PLANE",
+            "CYCL DEF 19.1",
+            "CYCL DEF 19.0 WORKING PLANE",
+            "CYCL DEF 19.1 A+0 C+0",
+            "L X+0 Y+0 Z+0 R0 FMAX",
+        ]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1);
+    assert_eq!(skipped(&r, "working plane resets"), 2);
 }
 
 /// `CYCL CALL POS X Y Z FMAX` moves to the position, then runs the cycle there (TNC 640

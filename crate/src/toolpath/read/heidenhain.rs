@@ -698,6 +698,11 @@ impl Heidenhain {
             if retract && (uw.starts_with("MB") || uw == "MAX") {
                 continue;
             }
+            // A feed: `M128 F25000` gives the largest feed of M128's compensating moves.
+            if uw.len() > 1 && uw.starts_with('F') {
+                log.skip("feeds (F)", no);
+                continue;
+            }
             let Some(m) = uw.strip_prefix('M').and_then(|m| m.parse::<u32>().ok()) else {
                 return Err(loc.err(
                     at,
@@ -1027,7 +1032,25 @@ impl Heidenhain {
                 }
                 Ok(())
             }
-            19 => Err(loc.err(at, "CYCL DEF 19 WORKING PLANE tilts by angles that mean machine axes or spatial angles depending on the machine's configuration; post the program with PLANE SPATIAL, M128/FUNCTION TCPM or as CL data")),
+            19 => {
+                // 19.0 names the cycle; 19.1 gives its angles. With none, or all 0, it tilts
+                // nothing: the reset a post writes before it starts (iTNC 530 User's Manual:
+                // cycle 19 reset by programming it again with every rotary angle 0).
+                if minor == "0" {
+                    return Ok(());
+                }
+                let mut tilts = false;
+                for w in &words {
+                    if let Some((i, _, v)) = self.axis_value(w, loc, at)? {
+                        tilts |= i >= 5 && v != 0.0;
+                    }
+                }
+                if tilts {
+                    return Err(loc.err(at, "CYCL DEF 19 WORKING PLANE tilts by angles that mean machine axes or spatial angles depending on the machine's configuration; post the program with PLANE SPATIAL, M128/FUNCTION TCPM or as CL data"));
+                }
+                log.skip("working plane resets (CYCL DEF 19 with no angle)", no);
+                Ok(())
+            }
             8 | 11 | 26 => Err(loc.err(at, format!("CYCL DEF {major} mirrors or scales the program's coordinates; the calculator reads them unscaled: post the program without it"))),
             247 => {
                 core.break_next = true;
