@@ -903,6 +903,13 @@ fn the_format_is_detected_from_the_first_lines() {
         ("G1X10Y20\n", Format::Nc),
         ("X=10\n", Format::Siemens),
         ("O1000\n", Format::Nc),
+        // A comment right after a block number, with `=` in it (the first lines of a 5-axis
+        // simulator's sample, Planet-Source-Code/cuq-a-5-axis-milling-machine-simulator
+        // `test.nc`): ISO, where it was taken for a Siemens call `N1(…)` with `Offset=`.
+        (
+            "N1(File   : test.nc)\nN3(Offset=0.00 LACE CENTER)\nN4T006M06F800S1800\n",
+            Format::Nc,
+        ),
     ];
     for (text, format) in cases {
         assert_eq!(Format::detect(text), format, "{text:?}");

@@ -90,19 +90,29 @@ pub(super) fn is_statement(l: &str) -> bool {
     if l.starts_with('(') {
         return false; // an ISO comment
     }
-    // ISO comments `( … )` (not a call's arguments, which follow a name) are not Siemens.
+    // ISO comments `( … )` are not Siemens: a `(` that does not follow a name (`MSG(`,
+    // `CYCLE800(`), such as one after a block number (`N1(File : test.nc)`).
     let mut kept = String::with_capacity(l.len());
     let mut depth = 0;
-    let mut prev = ' ';
+    // The letters and underscores the current run of name characters starts with.
+    let mut run = 0;
+    let mut head = 0;
     for c in l.chars() {
-        if c == '(' && (depth > 0 || !(prev.is_ascii_alphanumeric() || prev == '_')) {
+        if c == '(' && (depth > 0 || head < 2) {
             depth += 1;
         } else if c == ')' && depth > 0 {
             depth -= 1;
         } else if depth == 0 {
             kept.push(c);
         }
-        prev = c;
+        if c.is_ascii_alphanumeric() || c == '_' {
+            if run == head && (c.is_ascii_alphabetic() || c == '_') {
+                head += 1;
+            }
+            run += 1;
+        } else {
+            (run, head) = (0, 0);
+        }
     }
     let u = kept.to_ascii_uppercase();
     if u.starts_with("%_N_")
