@@ -296,6 +296,13 @@ fn undocumented_and_source_forms_are_refused() {
         ("ROTABL/90\n", 1, "turns the table"),
         ("MSYS/LAST\n", 6, "MSYS/LAST"),
         ("CIRCLE/0,0,0,0,0,0,5\n", 8, "must not be zero"),
+        // NX's helix of seven turns, as in userFour/MECH491-postprocessor `APT_Project2.txt`
+        // line 4641 (a helical bore): refused at TIMES, with what it is.
+        (
+            "CIRCLE/1.9949,3.6307,1.9391,0.0000000,-0.9922779,-0.1240347,0.1687,0.0060,0.5000,0.3750,0.0000,TIMES,7\n",
+            96,
+            "a helix of several turns",
+        ),
     ] {
         at(&error(text, A, None), 1, column, part);
     }

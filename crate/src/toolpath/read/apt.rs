@@ -838,6 +838,14 @@ impl Apt {
 
     /// `CIRCLE/`: the arc the next GOTOs follow.
     fn circle(&mut self, args: &str, args_at: usize, loc: &Loc) -> Result<()> {
+        // NX's `CIRCLE/…,TIMES,n`: a helix of several turns to the next GOTO.
+        if let Some(i) = args.to_ascii_uppercase().find("TIMES") {
+            return Err(loc.err(
+                args_at + i,
+                "CIRCLE/ … TIMES,n is a helix of several turns (NX), which the reader does not \
+                 read: it reads arcs of less than a turn; post the helix as GOTO points",
+            ));
+        }
         let (f, n, extra) = all_numbers(args, args_at, loc, "CIRCLE")?;
         let centre = Vector3::new(
             f[0],
