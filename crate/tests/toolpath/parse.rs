@@ -768,6 +768,10 @@ fn random_points(rng: &mut Rng, n: usize) -> Vec<Point> {
 fn csv_and_apt_round_trip_within_the_written_precision() {
     let mut rng = Rng::new(5);
     let mut points = random_points(&mut rng, 500);
+    // Every seventh point reached at rapid (the first one among them).
+    for p in points.iter_mut().step_by(7) {
+        p.motion = Motion::Rapid;
+    }
     // Exact values, a negative zero and tiny components.
     points.push(Point {
         motion: Motion::Feed,
@@ -787,6 +791,12 @@ fn csv_and_apt_round_trip_within_the_written_precision() {
         let back = parse(&text, format, None).unwrap();
         assert_eq!(back.len(), points.len());
         for (a, b) in points.iter().zip(&back) {
+            // APT keeps the rapids (`RAPID` before each), CSV has feeds only.
+            let motion = match format {
+                Format::Apt => a.motion,
+                _ => Motion::Feed,
+            };
+            assert_eq!(b.motion, motion, "{format}");
             close_vec(&a.tip, &b.tip, 5.1e-7 * 3f64.sqrt(), "tip");
             close_vec(&a.axis, &b.axis, 2e-9, "axis");
             assert_eq!(b.angles, None);
