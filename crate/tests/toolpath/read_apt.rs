@@ -161,6 +161,36 @@ fn units_stated_and_implied_by_the_feed() {
     );
 }
 
+/// A frame stated before the feed that makes the file inches is described in the unit the
+/// points are read in: `MSYS/3,3,0,…` then `FEDRAT/IPM` (as NX writes CL data) is an origin of
+/// 76.2 mm, and the point `GOTO/1,0,0` is at (4 in, 3 in, 0) = (101.6, 76.2, 0) mm; the same
+/// for `TRACUT/`. Where `UNITS/INCHES` is stated after the frame, the frame stays where it was
+/// read (3 mm: a unit change keeps positions where they are), and the note says that.
+#[test]
+fn a_frame_before_the_unit_hint_is_described_in_the_unit_decided() {
+    let msys = "MSYS/3,3,0,1,0,0,0,1,0\n";
+    let (p, r) = read_all(&format!("{msys}FEDRAT/IPM,10\nGOTO/1,0,0\n"), A, None);
+    close_vec(&p[0].tip, &Vector3::new(101.6, 76.2, 0.0), 1e-12, "tip");
+    assert!(note(&r, "MSYS/").text.contains("origin (76.2, 76.2, 0) mm"));
+    assert_eq!(r.frame_choice.unwrap().frame, "origin (76.2, 76.2, 0) mm");
+    let (p, r) = read_all(
+        "TRACUT/1,0,0,3,0,1,0,3,0,0,1,0\nFEDRAT/IPM,10\nGOTO/1,0,0\n",
+        A,
+        None,
+    );
+    close_vec(&p[0].tip, &Vector3::new(101.6, 76.2, 0.0), 1e-12, "tip");
+    assert!(note(&r, "TRACUT/")
+        .text
+        .contains("by origin (76.2, 76.2, 0) mm"));
+    let (p, r) = read_all(
+        &format!("{msys}UNITS/INCHES\nFEDRAT/IPM,10\nGOTO/1,0,0\n"),
+        A,
+        None,
+    );
+    close_vec(&p[0].tip, &Vector3::new(28.4, 3.0, 0.0), 1e-12, "tip");
+    assert!(note(&r, "MSYS/").text.contains("origin (3, 3, 0) mm"));
+}
+
 #[test]
 fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
     let text =
@@ -301,7 +331,7 @@ fn undocumented_and_source_forms_are_refused() {
         (
             "CIRCLE/1.9949,3.6307,1.9391,0.0000000,-0.9922779,-0.1240347,0.1687,0.0060,0.5000,0.3750,0.0000,TIMES,7\n",
             96,
-            "a helix of several turns",
+            "turns n times round",
         ),
     ] {
         at(&error(text, A, None), 1, column, part);

@@ -29,8 +29,8 @@ fn legacy_note(r: &Report) -> &Note {
 
 /// The note names the line of the first byte that is not UTF-8, in whichever piece it comes:
 /// here line 4 (`# Abweichung µm`, µ the byte 0xB5), in the second piece, after two lines of the
-/// first and one of its own. (From the mutant of `Decoder::offset` returning 0, which counted
-/// the piece's lines from the start of the file.)
+/// first and one of its own. (From a mutant that counted the piece's lines from the start of
+/// the file.)
 #[test]
 fn the_note_names_the_line_of_the_first_byte_that_is_not_utf8() {
     let (p, r) = read_pieces(&[
@@ -43,7 +43,7 @@ fn the_note_names_the_line_of_the_first_byte_that_is_not_utf8() {
     assert_eq!(n.line, 4);
     assert!(n.text.starts_with("line 4: "), "{}", n.text);
     // The byte right after a line end is on the next line: the header `µm-Werte` is line 2.
-    // (From the mutant of `Decoder::offset` returning 1, which put it before that line end.)
+    // (From a mutant that put it one byte early, before that line end.)
     let (_, r) = read_pieces(&[b"# Messung\n\xb5m-Werte\n0,0,0,0,0,1\n"]);
     assert_eq!(legacy_note(&r).line, 2);
 }

@@ -469,6 +469,18 @@ fn cycl_def_19_is_refused_where_it_tilts_and_read_where_it_resets() {
         3,
         "CYCL DEF 19 WORKING PLANE tilts",
     );
+    // Angles of 0 with a feed: the control positions the rotary axes itself, to positions the
+    // reader would have to guess.
+    at(
+        &error(
+            &program(&["CYCL DEF 19.0 WORKING PLANE", "CYCL DEF 19.1 A+0 C+0 F5000"]),
+            H,
+            Some(&m),
+        ),
+        3,
+        3,
+        "CYCL DEF 19 WORKING PLANE tilts",
+    );
     let (p, r) = read_all(
         &program(&[
             "CYCL DEF 19.0 WORKING PLANE",

@@ -208,6 +208,46 @@ fn tool_centre_point_control_is_reported_where_it_is_switched_on() {
     let (_, r) = read_all("G0 X0 Y0 Z0 C0 A0\nG1 C10 A10\n", Format::Nc, Some(&m));
     assert_eq!(r.tcp, None);
     assert_eq!(note(&r, "without tool-centre-point control").line, 2);
+    // Turned where X Y Z are not known, the note waits for a point: none when tool-centre-point
+    // control is switched on first (`G0 B-22.201 C1.05` then `G234`, as NX's Haas post writes
+    // it), nor when the point is in a tilted plane; else it names the first turn's line.
+    for (text, line) in [
+        ("G28 X0 Y0 Z0\nG0 C10\nG0 A5\nG43.4 H1\nG0 X0 Y0 Z0\n", None),
+        (
+            "G28 X0 Y0 Z0\nG0 C10 A5\nG68.2 X0 Y0 Z0 I0 J5 K0\nG53.1\nG0 X0 Y0 Z0\n",
+            None,
+        ),
+        ("G28 X0 Y0 Z0\nG0 C10\nG0 A5\nG0 X0 Y0 Z0\n", Some(2)),
+    ] {
+        let (p, r) = read_all(text, Format::Nc, Some(&m));
+        assert_eq!(p.len(), 1, "{text:?}");
+        let noted = r.notes.iter().find(|n| n.kind == NoteKind::Tcp);
+        assert_eq!(noted.map(|n| n.line), line, "{text:?}: {:?}", r.notes);
+    }
+}
+
+/// The program's first block may be its name, as NX's Haas posts write it where the control
+/// reads an O number (`Omnf01_vx_0`, `OFinal ToolPath`), with or without a `%` before it; a
+/// later block of O and a letter is no name and is refused.
+#[test]
+fn the_first_block_may_be_the_program_s_name() {
+    let m = caz_head();
+    for text in [
+        "%\nOmnf01_vx_0\nG0 X1 Y2 Z3\nM30\n%\n",
+        "%\n(PART: FINAL)\nOFinal ToolPath\nG0 X1 Y2 Z3\nM30\n%\n",
+        "Omnf01_vx_0\nG0 X1 Y2 Z3\nM30\n%\n",
+    ] {
+        let (p, r) = read_all(text, Format::Nc, Some(&m));
+        assert_eq!(p.len(), 1, "{text:?}");
+        assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0));
+        assert_eq!(skipped(&r, "program numbers and names"), 1, "{text:?}");
+    }
+    at(
+        &error("%\nO1000\nG0 X1 Y2 Z3\nOmnf\n", Format::Nc, Some(&m)),
+        4,
+        1,
+        "\"Omnf\" is not ISO G-code",
+    );
 }
 
 #[test]

@@ -271,6 +271,14 @@ fn def_after_a_block_number_and_an_unclosed_call() {
         Some(&m),
     );
     assert_eq!(p[0].tip, Vector3::new(0.0, 0.0, 5.0));
+    // After a label or a skip mark, and names without values (0 until assigned), as NX's
+    // posts write them (`DEF REAL _X_HOME, _Y_HOME`).
+    let (p, _) = read_all(
+        "START: DEF REAL DEPTH=5\n/N20 DEF REAL _X_HOME, _Y_HOME\nG71 G90 G0 X=_X_HOME Y=_Y_HOME Z=DEPTH\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(0.0, 0.0, 5.0));
     at(
         &error("G71\nMSG(\"Fräsen Ø\n", S, Some(&m)),
         2,

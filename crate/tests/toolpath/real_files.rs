@@ -277,7 +277,6 @@ fn a_hypermill_heidenhain_program_with_plane_spatial_and_labels_after_m30() {
     assert_eq!(skipped(&r, "Q-parameter assignments"), 1);
 }
 
-/// Programs the reader cannot read right are refused at their line, with the construct:
 /// 121philip/SINUMERIK-840D-sl-CAS-Package, `Approach A/CAM TEST.MPF` (commit 07c07dc, MIT):
 /// an NX post's output for a Sinumerik 840D, 3-axis pocketing. Its first line defines five
 /// variables without values (`DEF REAL _X_HOME, _Y_HOME, …`), which the reader once refused at
@@ -442,6 +441,7 @@ fn an_nx_sinumerik_program_for_a_b_c_table_machining_a_cube_3_plus_2() {
     assert!(axes.len() >= 6, "{axes:?}");
 }
 
+/// Programs the reader cannot read right are refused at their line, with the construct:
 /// LinuxCNC/linuxcnc `configs/sim/axis/vismach/5axis/table-rotary-tilting/examples/
 /// test-xyzac.ngc` (commit 1db7923, GPL-2.0), an o-word subroutine; aamorim1913/AptPostProcessor
 /// `machine-code/CUT.h` (commit 1070a82, GPL-3.0), coordinates computed by FN functions; and that

@@ -64,8 +64,7 @@
 use super::frame::{arc, ArcError, Frame};
 use super::lex::{shown, unit, unit_axis, Fields, Loc, Seg, MAX_COORDINATE, NAMES};
 use super::{
-    AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, UnstatedFrame, FIELD,
-    MAX_LINE,
+    AptFrameChoice, FrameFound, LengthUnit, Log, Motion, NoteKind, Point, FIELD, MAX_LINE,
 };
 use crate::error::{Error, Result};
 use crate::toolpath::slerp;
@@ -405,29 +404,21 @@ impl Apt {
                     "shown only: the points are left as written (your choice beside the file)"
                 }
             };
-            let (scale, stated) = log.scale();
-            let desc = frame.scaled(scale).describe();
-            let before = format!("line {line}: {what} states the output frame ");
-            let after = format!("; {applied}");
+            let desc = log.frame_note(
+                "apt-frame",
+                line,
+                &frame,
+                format!("line {line}: {what} states the output frame "),
+                format!("; {applied}"),
+            );
             if log.frame_choice.is_none() {
                 log.frame_choice = Some(FrameFound {
                     statement: what.to_string(),
                     line,
-                    frame: desc.clone(),
+                    frame: desc,
                     reading,
                 });
-                if !stated {
-                    log.unstated_frame = Some(UnstatedFrame {
-                        frame,
-                        key: "apt-frame",
-                        before: before.clone(),
-                        after: after.clone(),
-                    });
-                }
             }
-            log.note("apt-frame", NoteKind::Frame, line, || {
-                format!("{before}{desc}{after}")
-            });
         }
         if reading == AptFrameChoice::Apply {
             self.output = frame;
@@ -842,8 +833,9 @@ impl Apt {
         if let Some(i) = args.to_ascii_uppercase().find("TIMES") {
             return Err(loc.err(
                 args_at + i,
-                "CIRCLE/ … TIMES,n is a helix of several turns (NX), which the reader does not \
-                 read: it reads arcs of less than a turn; post the helix as GOTO points",
+                "CIRCLE/ … TIMES,n turns n times round (NX: a circle or a helix of several \
+                 turns), which the reader does not read: it reads one turn at most; post the \
+                 moves as GOTO points",
             ));
         }
         let (f, n, extra) = all_numbers(args, args_at, loc, "CIRCLE")?;
@@ -937,16 +929,18 @@ impl Apt {
             )
         })?;
         if word == "TRACUT" {
-            let desc = frame.scaled(log.scale().0).describe();
             let reading = log.options.apt_frame;
-            log.note("apt-tracut", NoteKind::Frame, no, || match reading {
-                AptFrameChoice::Apply => {
-                    format!("line {no}: TRACUT/ moves the points after it by {desc}: applied")
-                }
-                AptFrameChoice::Ignore => format!(
-                    "line {no}: TRACUT/ ({desc}) shown only: the points are left as written"
+            let (before, after) = match reading {
+                AptFrameChoice::Apply => (
+                    format!("line {no}: TRACUT/ moves the points after it by "),
+                    ": applied".to_string(),
                 ),
-            });
+                AptFrameChoice::Ignore => (
+                    format!("line {no}: TRACUT/ ("),
+                    ") shown only: the points are left as written".to_string(),
+                ),
+            };
+            log.frame_note("apt-tracut", no, &frame, before, after);
             if reading == AptFrameChoice::Apply {
                 self.tracut = frame;
             }

@@ -1039,13 +1039,13 @@ impl Heidenhain {
                 if minor == "0" {
                     return Ok(());
                 }
-                let mut tilts = false;
-                for w in &words {
-                    if let Some((i, _, v)) = self.axis_value(w, loc, at)? {
-                        tilts |= i >= 5 && v != 0.0;
-                    }
-                }
-                if tilts {
+                // Anything but rotary angles of 0 (an angle, a feed F for the automatic
+                // positioning of the rotary axes) is refused.
+                let zero = |w: &&str| {
+                    w.starts_with(['A', 'B', 'C', 'a', 'b', 'c'])
+                        && number(&w[1..], false) == Some(0.0)
+                };
+                if !words.iter().all(zero) {
                     return Err(loc.err(at, "CYCL DEF 19 WORKING PLANE tilts by angles that mean machine axes or spatial angles depending on the machine's configuration; post the program with PLANE SPATIAL, M128/FUNCTION TCPM or as CL data"));
                 }
                 log.skip("working plane resets (CYCL DEF 19 with no angle)", no);

@@ -137,7 +137,14 @@ impl Iso {
             if !self.started {
                 self.started = true;
                 let held = std::mem::take(&mut self.held);
-                if held.iter().all(|(n, l)| lex(l, *n).is_ok()) {
+                // Blocks, the first of them (comments apart) perhaps the program's name.
+                let first = held
+                    .iter()
+                    .position(|(_, l)| !l.trim_start().starts_with(['(', ';']));
+                let block = |(i, (n, l)): (usize, &(u32, String))| {
+                    lex(l, *n).is_ok() || Some(i) == first && program_name(l.trim_start())
+                };
+                if held.iter().enumerate().all(block) {
                     // The lines before are blocks: they are read, and this `%` is the end.
                     self.replay(core, held, log, out)?;
                     if !self.any_point && self.percents == 1 {
@@ -271,13 +278,10 @@ impl Iso {
             let toks = lex(code, no)?;
             return self.words(core, toks, &loc, no, log, out);
         }
-        // The program's first block may be its name where a control reads its O number: NX's
-        // Haas posts write the part's name (`Omnf01_vx_0`, `OFinal ToolPath`). O and a letter
-        // there is a name, not a word (an o-word has digits or `<` after the O).
         let t = text.trim_start();
         if !self.named && !t.is_empty() && !t.starts_with(['(', ';']) {
             self.named = true;
-            if t.starts_with(['O', 'o']) && t[1..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+            if program_name(t) {
                 log.blocks += 1;
                 log.skip("program numbers and names (O)", no);
                 return Ok(());
@@ -982,6 +986,13 @@ fn lex(line: &str, no: u32) -> Result<Vec<Tok>> {
         }
     }
     Ok(toks)
+}
+
+/// The program's first block may be its name where a control reads its O number: NX's Haas
+/// posts write the part's name (`Omnf01_vx_0`, `OFinal ToolPath`). O and a letter there is a
+/// name, not a word (an o-word has digits or `<` after the O).
+fn program_name(t: &str) -> bool {
+    t.starts_with(['O', 'o']) && t[1..].starts_with(|c: char| c.is_ascii_alphabetic())
 }
 
 /// The refusal of a LinuxCNC o-word.

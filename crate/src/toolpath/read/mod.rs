@@ -486,19 +486,18 @@ pub(crate) struct Log {
     pub(crate) options: ReadOptions,
     /// The format has unit hints (APT's `FEDRAT/IPM`): an unstated unit may change later.
     hints: bool,
-    /// The output frame of [`Log::frame_choice`] when it was stated before the file's unit was:
-    /// its note and description are written again in the unit decided at the end.
-    pub(crate) unstated_frame: Option<UnstatedFrame>,
+    /// Frames noted while the file's unit was not stated ([`Log::frame_note`]).
+    unstated_frames: Vec<UnstatedFrame>,
 }
 
-/// An output frame read in a unit not yet decided: the frame in the file's unit, and its note's
-/// text before and after the frame's description.
+/// A frame noted in a unit not yet decided: the frame in the file's unit, and its note's text
+/// before and after the frame's description.
 #[derive(Debug, Clone)]
-pub(crate) struct UnstatedFrame {
-    pub frame: frame::Frame,
-    pub key: &'static str,
-    pub before: String,
-    pub after: String,
+struct UnstatedFrame {
+    frame: frame::Frame,
+    key: &'static str,
+    before: String,
+    after: String,
 }
 
 impl Log {
@@ -512,7 +511,7 @@ impl Log {
             frame_choice: None,
             options,
             hints: format == Format::Apt,
-            unstated_frame: None,
+            unstated_frames: Vec::new(),
         }
     }
 
@@ -535,6 +534,52 @@ impl Log {
                     text: text(),
                 },
             )),
+        }
+    }
+
+    /// Records the note `key` on `line`: `before`, the description of `frame` (file unit) in
+    /// mm, `after`. While the file states no unit, that description assumes the unit chosen so
+    /// far, which a later hint may change (APT's `FEDRAT/IPM`): if the file never states one,
+    /// the note is written again at the end in the unit decided then. The description is
+    /// returned.
+    pub(crate) fn frame_note(
+        &mut self,
+        key: &'static str,
+        line: u32,
+        frame: &frame::Frame,
+        before: String,
+        after: String,
+    ) -> String {
+        let (scale, stated) = self.scale();
+        let desc = frame.scaled(scale).describe();
+        if !stated && !self.notes.iter().any(|(k, _)| *k == key) {
+            self.unstated_frames.push(UnstatedFrame {
+                frame: *frame,
+                key,
+                before: before.clone(),
+                after: after.clone(),
+            });
+        }
+        self.note(key, NoteKind::Frame, line, || {
+            format!("{before}{desc}{after}")
+        });
+        desc
+    }
+
+    /// The frame notes again in mm per file unit `now`, the unit decided at the end, when the
+    /// file stated none ([`Log::frame_note`]); the frame choice with the output frame's.
+    fn describe_frames_again(&mut self, now: f64) {
+        if self.units.stated.is_some() {
+            return;
+        }
+        for f in std::mem::take(&mut self.unstated_frames) {
+            let desc = f.frame.scaled(now).describe();
+            if let Some((_, n)) = self.notes.iter_mut().find(|(k, _)| *k == f.key) {
+                n.text = format!("{}{desc}{}", f.before, f.after);
+            }
+            if let Some(c) = self.frame_choice.as_mut().filter(|_| f.key == "apt-frame") {
+                c.frame = desc;
+            }
         }
     }
 
@@ -886,15 +931,7 @@ impl Parser {
                 }
             }
         }
-        if let Some(f) = self.log.unstated_frame.take() {
-            let desc = f.frame.scaled(now).describe();
-            if let Some((_, n)) = self.log.notes.iter_mut().find(|(k, _)| *k == f.key) {
-                n.text = format!("{}{desc}{}", f.before, f.after);
-            }
-            if let Some(c) = &mut self.log.frame_choice {
-                c.frame = desc;
-            }
-        }
+        self.log.describe_frames_again(now);
         let (unit, unit_reason) = self.log.unit_report(any_unstated);
         let notes = self.log.notes.iter().map(|(_, n)| n.clone()).collect();
         let skipped = self.log.skipped.clone();

@@ -197,8 +197,8 @@ pub(super) struct Core {
     pub rollover: [bool; 2],
     /// Heidenhain M126 is on.
     pub shortest: bool,
-    /// The line where the rotary axes turned without tool-centre-point control, until a point
-    /// is reached that way (then the reader says so) or the control is switched on first.
+    /// The line where the rotary axes first turned without tool-centre-point control, until a
+    /// point is reached that way (then the reader says so) or the control is switched on first.
     pub turned_without_tcp: Option<u32>,
 }
 
@@ -432,7 +432,7 @@ impl Core {
             });
         }
         if rotary_moves && !self.tcp && !self.tilted {
-            self.turned_without_tcp = Some(loc.line_of(b.at));
+            self.turned_without_tcp.get_or_insert(loc.line_of(b.at));
         }
         if !known.iter().all(|&k| k) {
             self.break_next = true;
@@ -440,8 +440,9 @@ impl Core {
         }
         // A rotary turn matters to the points only when one is reached before tool-centre-point
         // control is on: a post turns the table, then switches the control on (`G0 B-22.2
-        // C1.05` then `G234`), with X Y Z not yet given.
-        if let Some(line) = self.turned_without_tcp.take() {
+        // C1.05` then `G234`), with X Y Z not yet given. In a tilted working plane the points
+        // are in the plane's frame, and the turn its setting.
+        if let Some(line) = self.turned_without_tcp.take().filter(|_| !self.tilted) {
             let [kl, ml] = self.letters;
             log.note("no-tcp", NoteKind::Tcp, line, || {
                 format!(

@@ -119,7 +119,7 @@ pub(super) fn is_statement(l: &str) -> bool {
         || u.contains("DEF REAL")
         || u.contains("DEF INT")
         || u.contains("MSG(")
-        || u.contains("MSG (")
+        || l.to_ascii_uppercase().contains("MSG (")
     {
         return true;
     }
@@ -738,22 +738,37 @@ const FLOW: [&str; 17] = [
     "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE", "ELSE", "ENDIF",
 ];
 
-/// The first word of a block after its block number, and its byte offset.
+/// The first word of a block after its skip mark, block number and label, and its byte offset.
 fn first_word(text: &str) -> (&str, usize) {
-    let mut i = text.len() - text.trim_start().len();
     let b = text.as_bytes();
+    let blanks = |mut i: usize| {
+        while i < b.len() && matches!(b[i], b' ' | b'\t') {
+            i += 1;
+        }
+        i
+    };
+    let word_end = |i: usize| {
+        text[i..]
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .map_or(text.len(), |e| i + e)
+    };
+    let mut i = blanks(0);
+    // A skip mark (`/`), a block number (`N10`), a label (`MARKE1:`).
+    if b.get(i) == Some(&b'/') {
+        i = blanks(i + 1);
+    }
     if matches!(b.get(i), Some(b'N' | b'n')) && b.get(i + 1).is_some_and(u8::is_ascii_digit) {
         i += 1;
         while i < b.len() && b[i].is_ascii_digit() {
             i += 1;
         }
-        while i < b.len() && matches!(b[i], b' ' | b'\t') {
-            i += 1;
-        }
+        i = blanks(i);
     }
-    let end = text[i..]
-        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .map_or(text.len(), |e| i + e);
+    let end = word_end(i);
+    if end > i && b.get(end) == Some(&b':') {
+        i = blanks(end + 1);
+        return (&text[i..word_end(i)], i);
+    }
     (&text[i..end], i)
 }
 
