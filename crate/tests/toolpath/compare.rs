@@ -459,13 +459,19 @@ fn a_path_from_javascript_is_checked_number_by_number() {
     assert!(
         msg(PathValue::Points(vec![0.0; 5])).starts_with("points: length must be a multiple of 6")
     );
-    let mut far = two.clone();
-    far[7] = MAX_COORDINATE * 1.5;
-    assert!(
-        msg(PathValue::Points(far)).starts_with("points[1][1]: "),
-        "{}",
-        msg(PathValue::Points(two.clone()))
-    );
+    // A coordinate beyond ±MAX_COORDINATE either way, named with the range it must be in.
+    for v in [1.5, -1.5] {
+        let mut far = two.clone();
+        far[7] = MAX_COORDINATE * v;
+        let m = msg(PathValue::Points(far));
+        assert!(
+            m.starts_with(&format!(
+                "points[1][1]: must be between {} and {MAX_COORDINATE} mm",
+                -MAX_COORDINATE
+            )),
+            "{m}"
+        );
+    }
     let mut nan = two.clone();
     nan[2] = f64::NAN;
     assert!(msg(PathValue::Points(nan)).starts_with("points[0][2]: "));
