@@ -95,6 +95,7 @@ mod sshape {
 mod toolpath {
     mod analysis;
     mod compare;
+    mod export;
     mod parse;
     mod parse_limits;
     mod program;
