@@ -6,7 +6,6 @@
 use crate::common;
 
 use common::toolpath::tilted;
-use fiveaxis::schema::Inputs;
 use fiveaxis::toolpath::export::{analyse, compare, refine, write_path, PathInput, Reading};
 use fiveaxis::toolpath::read::Motion;
 use fiveaxis::toolpath::{ToolpathCase, ToolpathReadInput};
@@ -97,9 +96,10 @@ fn the_ranking_has_a_row_per_type() {
     assert_eq!(names, ["ABX", "CAZ"]);
 }
 
-/// A segment through the pole of a C-A head whose A stays at 0° or above (C must turn 180°
-/// there) is listed as a pole passage when it cuts, and as a rapid, not a pole passage, when it
-/// is reached at rapid. Refining puts points into the cutting one, each marked as inserted (-1),
+/// A segment through the pole of a C-A head whose A stays at 0° or above: C must turn 180°
+/// while the tool turns 10°, a flip (more than 30° of the axes, and more than ten times the
+/// tool's turn). It is listed as a pole passage and a flip when it cuts, and as a rapid, neither
+/// a pole passage nor a flip, when it is reached at rapid. Refining puts points into the cutting one, each marked as inserted (-1),
 /// between the original points 0 and 1; the rapid is left as it is.
 #[test]
 fn a_pole_passage_at_rapid_is_a_rapid() {
@@ -107,13 +107,13 @@ fn a_pole_passage_at_rapid_is_a_rapid() {
                                                         "rotary": { "mFrom": 0, "mTo": 110 } } }))
     .unwrap();
     let points = [
-        ([0.0, 0.0, 0.0], tilted(10.0, 0.0)),
-        ([5.0, 0.0, 0.0], tilted(10.0, 180.0)),
-        ([10.0, 0.0, 0.0], tilted(12.0, 180.0)),
+        ([0.0, 0.0, 0.0], tilted(5.0, 0.0)),
+        ([5.0, 0.0, 0.0], tilted(5.0, 180.0)),
+        ([10.0, 0.0, 0.0], tilted(6.0, 180.0)),
     ];
     let cutting = path(&points, &[Motion::Feed, Motion::Feed, Motion::Feed]);
     let a = analyse(&case, &cutting).unwrap();
-    assert_eq!((a.poles, a.flips, a.rapids), (vec![0], vec![], vec![]));
+    assert_eq!((a.poles, a.flips, a.rapids), (vec![0], vec![0], vec![]));
     let r = refine(&case, &cutting).unwrap();
     assert!(r.added > 0);
     let n = r.source.len();
