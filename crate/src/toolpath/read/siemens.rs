@@ -226,8 +226,8 @@ impl Siemens {
         if first == "PROC" {
             return Err(loc.err(first_off, "PROC starts a subprogram whose values come from the program that calls it; read the program that calls it, posted with the moves written out"));
         }
-        // DEF: variables (after a block number, if any), read before the words: its names are
-        // listed with commas, with or without a value (`DEF REAL _X_HOME, _Y_HOME`).
+        // DEF: variables (after a block number or a label, if any), read before the words: its
+        // names are listed with commas, with or without a value (`DEF REAL _X_HOME, _Y_HOME`).
         if first == "DEF" {
             log.blocks += 1;
             self.def(&text[first_off..], no);
