@@ -101,6 +101,7 @@ mod toolpath {
     mod program;
     mod read_apt;
     mod read_bytes;
+    mod read_frame;
     mod read_heidenhain;
     mod read_iso;
     mod read_siemens;
