@@ -1,7 +1,7 @@
 //! Frames of the readers (`fiveaxis::toolpath::read::frame`): a frame given by its axes or by
 //! a matrix read from a file is accepted within 1e-4 of orthonormal and made exactly so.
 
-use fiveaxis::toolpath::read::frame::Frame;
+use fiveaxis::toolpath::read::frame::{arc, ArcError, Frame};
 use nalgebra::{Matrix3, Vector3};
 
 /// `RᵀR − I`, largest entry.
@@ -34,4 +34,65 @@ fn axes_within_1e_4_of_orthonormal_make_an_exact_frame() {
     assert_eq!(f.rotation.column(0), x);
     assert!((f.rotation.column(1) - y).amax() < 1e-15);
     assert!((f.rotation.column(2) - Vector3::z()).amax() < 1e-15);
+}
+
+/// An arc needs a radius at both ends: a start or an end on the centre (within 1e-9 mm) is
+/// `NoRadius`, whatever the other end's radius, not a difference of radii. (From the mutants of
+/// that check.)
+#[test]
+fn an_arc_whose_start_or_end_is_on_the_centre_has_no_radius() {
+    let (c, n) = (Vector3::zeros(), Vector3::z());
+    let on = Vector3::new(1e-10, 0.0, 0.0);
+    let off = Vector3::new(0.0, 5.0, 0.0);
+    for (start, end) in [(on, off), (off, on), (on, on)] {
+        assert_eq!(
+            arc(&start, &end, &c, &n, true, 0, (0.001, 0.0)),
+            Err(ArcError::NoRadius)
+        );
+    }
+}
+
+/// The two radii may differ by 10⁻⁴ of the radius (rounding of the written numbers) when the
+/// reader allows no more: 10 and 10.0009 mm are one arc, 10 and 10.0011 mm are not. (From the
+/// mutant dividing by the radius.)
+#[test]
+fn radii_may_differ_by_a_ten_thousandth_of_the_radius() {
+    let (c, n) = (Vector3::zeros(), Vector3::z());
+    let start = Vector3::new(10.0, 0.0, 0.0);
+    assert!(arc(
+        &start,
+        &Vector3::new(0.0, 10.0009, 0.0),
+        &c,
+        &n,
+        true,
+        0,
+        (0.001, 0.0)
+    )
+    .is_ok());
+    assert_eq!(
+        arc(
+            &start,
+            &Vector3::new(0.0, 10.0011, 0.0),
+            &c,
+            &n,
+            true,
+            0,
+            (0.001, 0.0)
+        )
+        .map(|_| ()),
+        Err(ArcError::Radii(10.0, 10.0011))
+    );
+}
+
+/// An end that is the start but for rounding (10⁻¹² rad apart) closes a whole circle, as a full
+/// circle is programmed: the tool goes round to the far side, x = −10. (From the mutant
+/// that took such an end for a start 10⁻¹² rad away.)
+#[test]
+fn an_end_at_the_start_but_for_rounding_is_a_full_circle() {
+    let (c, n) = (Vector3::zeros(), Vector3::z());
+    let start = Vector3::new(10.0, 0.0, 0.0);
+    let end = Vector3::new(10.0, 1e-11, 0.0);
+    let p = arc(&start, &end, &c, &n, true, 0, (0.001, 0.0)).unwrap_or_else(|e| panic!("{e:?}"));
+    let far = p.iter().map(|q| q.0.x).fold(f64::INFINITY, f64::min);
+    assert!(far < -9.99, "{far}");
 }
