@@ -95,4 +95,10 @@ fn an_end_at_the_start_but_for_rounding_is_a_full_circle() {
     let p = arc(&start, &end, &c, &n, true, 0, (0.001, 0.0)).unwrap_or_else(|e| panic!("{e:?}"));
     let far = p.iter().map(|q| q.0.x).fold(f64::INFINITY, f64::min);
     assert!(far < -9.99, "{far}");
+    // Clockwise about +Z, the same full circle starts towards −Y. (From the mutant that made
+    // the clockwise whole turn negative.)
+    let p = arc(&start, &start, &c, &n, false, 0, (0.001, 0.0)).unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(p.len() > 100 && p[0].0.y < 0.0, "{:?}", p.first());
+    let far = p.iter().map(|q| q.0.x).fold(f64::INFINITY, f64::min);
+    assert!(far < -9.99, "{far}");
 }
