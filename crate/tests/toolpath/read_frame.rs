@@ -3,6 +3,7 @@
 
 use fiveaxis::toolpath::read::frame::{arc, ArcError, Frame};
 use nalgebra::{Matrix3, Vector3};
+use std::f64::consts::PI;
 
 /// `RᵀR − I`, largest entry.
 fn off_orthonormal(r: &Matrix3<f64>) -> f64 {
@@ -101,4 +102,28 @@ fn an_end_at_the_start_but_for_rounding_is_a_full_circle() {
     assert!(p.len() > 100 && p[0].0.y < 0.0, "{:?}", p.first());
     let far = p.iter().map(|q| q.0.x).fold(f64::INFINITY, f64::min);
     assert!(far < -9.99, "{far}");
+}
+
+/// Along the axis the tool moves in proportion to the angle, measured from wherever the centre
+/// is on the axis: half a turn from (10, 0, 2) to (−10, 0, 4) about the Z axis through the
+/// origin passes (0, 10, 3) halfway. (From the mutant that added the heights.)
+#[test]
+fn a_helix_rises_in_proportion_to_the_angle() {
+    let p = arc(
+        &Vector3::new(10.0, 0.0, 2.0),
+        &Vector3::new(-10.0, 0.0, 4.0),
+        &Vector3::zeros(),
+        &Vector3::z(),
+        true,
+        0,
+        (0.001, 0.0),
+    )
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    for (q, u) in &p {
+        let expected = Vector3::new(10.0 * (PI * u).cos(), 10.0 * (PI * u).sin(), 2.0 + 2.0 * u);
+        assert!((q - expected).norm() < 1e-9, "at u = {u}: {q:?}");
+    }
+    assert!(p
+        .iter()
+        .any(|(q, _)| (q - Vector3::new(0.0, 10.0, 3.0)).norm() < 0.1));
 }
