@@ -289,6 +289,7 @@ fn an_nx_sinumerik_program_with_def_variables_and_supa_homes() {
     let m = trunnion();
     let (p, r) = read_all(&text, Format::Siemens, Some(&m));
     assert_eq!(r.unit_reason, "millimetres: G710 on line 6");
+    assert_eq!(r.dialect, "Siemens Sinumerik 840D");
     // The five SUPA blocks (lines 8, 9, 13, 14, 993) break the path and give no point.
     let supa = note(&r, "machine coordinates (SUPA");
     assert_eq!((supa.line, supa.count), (8, 5));
@@ -350,6 +351,9 @@ fn an_nx_clsf_and_its_haas_umc_750_program_give_the_same_path() {
         Some(&umc),
     );
     assert_eq!((rc.unit, rn.unit), (LengthUnit::Inch, LengthUnit::Inch));
+    // The dialect as the page names it beside the file.
+    assert_eq!(rc.dialect, "APT CL data");
+    assert_eq!(rn.dialect, "ISO G-code (Fanuc, Haas)");
     assert!(rc
         .unit_reason
         .starts_with("inches: FEDRAT/IPM (a feed in inches) on line 15"));
