@@ -291,6 +291,79 @@ fn plane_stay_leaves_the_machine_s_angles_in_q120_to_q122() {
     );
 }
 
+/// `M129` (at the end of its block: iTNC 530 DIN/ISO p.290) or `FUNCTION RESET TCPM` with the
+/// rotary axes turned: the blocks after it move the machine's axes, not the tip on the part,
+/// so the first point reached so is noted at the statement's line; not once the axes are back
+/// at 0°.
+#[test]
+fn tcp_switched_off_with_the_axes_turned_is_noted() {
+    let m = caz_head();
+    for (blocks, line, what, moved) in [
+        (
+            &[
+                "L X+0 Y+0 Z+0 R0 FMAX",
+                "M128",
+                "L A+10 C+30 F500",
+                "M129",
+                "L X+10 F500",
+            ][..],
+            5,
+            "M129",
+            6,
+        ),
+        (
+            &[
+                "L X+0 Y+0 Z+0 R0 FMAX",
+                "M128",
+                "L A+10 C+30 F500 M129",
+                "L X+10 F500",
+            ][..],
+            4,
+            "M129",
+            5,
+        ),
+        (
+            &[
+                "FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS",
+                "L X+0 Y+0 Z+0 A+10 C+30 R0 FMAX",
+                "FUNCTION RESET TCPM",
+                "L X+10 F500",
+            ][..],
+            4,
+            "FUNCTION RESET TCPM",
+            5,
+        ),
+    ] {
+        let (_, r) = read_all(&program(blocks), H, Some(&m));
+        let n = note(&r, "switches tool-centre-point control off");
+        assert_eq!((n.kind, n.line), (NoteKind::Tcp, line), "{blocks:?}");
+        assert!(
+            n.text.starts_with(&format!("line {line}: {what} switches"))
+                && n.text.contains("(C 30°, A 10°)")
+                && n.text.contains(&format!("line {moved} moves")),
+            "{}",
+            n.text
+        );
+    }
+    let (_, r) = read_all(
+        &program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "M128",
+            "L A+10 C+30 F500",
+            "M129",
+            "L A+0 C+0 R0 FMAX",
+            "L X+10 F500",
+        ]),
+        H,
+        Some(&m),
+    );
+    assert!(
+        r.notes.iter().all(|n| n.kind != NoteKind::Tcp),
+        "{:?}",
+        r.notes
+    );
+}
+
 #[test]
 fn tcp_machine_coordinates_and_cycle_calls() {
     let m = caz_head();

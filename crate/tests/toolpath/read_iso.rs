@@ -226,6 +226,61 @@ fn tool_centre_point_control_is_reported_where_it_is_switched_on() {
     }
 }
 
+/// Tool-centre-point control switched off (`G49`, `G43`, `G255`, `M129`) while the rotary axes
+/// are turned: the control no longer keeps the tip on the part, so X Y Z of the blocks after it
+/// are the machine's axis positions (FANUC 30i B-63942EN/02 p.411: G49 cancels G43.4). The
+/// first point reached so is noted at the statement's line, with the angles it left the axes
+/// at; not when the axes are back at 0° (the machine's frame is then the workpiece's, a whole
+/// turn included) or the control is switched on again before the point, nor in a tilted plane.
+#[test]
+fn tool_centre_point_control_switched_off_with_the_axes_turned_is_noted() {
+    let m = caz_head();
+    let tcp_notes = |text: &str| {
+        let (_, r) = read_all(text, Format::Nc, Some(&m));
+        r.notes
+            .into_iter()
+            .filter(|n| n.kind == NoteKind::Tcp)
+            .map(|n| (n.line, n.text))
+            .collect::<Vec<_>>()
+    };
+    for off in ["G49", "G43 H2", "G255", "M129"] {
+        let text = format!("G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\n{off}\nG1 X10\n");
+        let notes = tcp_notes(&text);
+        assert_eq!(notes.len(), 1, "{text:?}: {notes:?}");
+        let (line, said) = &notes[0];
+        assert_eq!(*line, 3, "{said}");
+        let code = off.split(' ').next().unwrap();
+        assert!(
+            said.starts_with(&format!(
+                "line 3: {code} switches tool-centre-point control off"
+            )) && said.contains("(C 30°, A -20°)")
+                && said.contains("line 4 moves")
+                && said.contains("machine's axis positions"),
+            "{said}"
+        );
+    }
+    for text in [
+        // Back at 0° (or a whole turn) before the next point: the frames agree.
+        "G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nG0 C0 A0\nG1 X10\n",
+        "G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nG0 C360 A0\nG1 X10\n",
+        // Switched on again first.
+        "G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nG43.4 H2\nG1 X10\n",
+        // Switched off at 0°, then a point.
+        "G43.4 H1\nG0 X0 Y0 Z0 C0 A0\nG49\nG1 X10\n",
+        // No point after it.
+        "G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nM30\n",
+        // In a tilted working plane the tilt sets the axes.
+        "G68.2 X0 Y0 Z0 I0 J30 K0\nG53.1\nG43.4 H1\nG0 X0 Y0 Z0\nG49\nG1 X10\n",
+    ] {
+        assert_eq!(tcp_notes(text), [], "{text:?}");
+    }
+    // Turned without the control and back at 0° before any point: the point is right, no note.
+    assert_eq!(
+        tcp_notes("G28 X0 Y0 Z0\nG0 C10 A5\nG0 C0 A0\nG0 X0 Y0 Z0\n"),
+        []
+    );
+}
+
 /// The program's first block may be its name, as NX's Haas posts write it where the control
 /// reads an O number (`Omnf01_vx_0`, `OFinal ToolPath`), with or without a `%` before it; a
 /// later block of O and a letter is no name and is refused.

@@ -49,6 +49,39 @@ fn traori_blocks_with_ic_ac_and_dc_words() {
     assert_eq!(skipped(&r, "program ends"), 1);
 }
 
+/// `TRAFOOF` with the rotary axes turned switches the transformation off (840D sl Job Planning:
+/// the axes are then moved as machine axes): the next point is the machine's position, noted at
+/// TRAFOOF's line; a `TRAORI` before the point, or the axes back at 0°, leaves no note.
+#[test]
+fn trafoof_with_the_axes_turned_is_noted() {
+    let m = caz_head();
+    let (_, r) = read_all(
+        "N10 TRAORI\nN20 G0 X0 Y0 Z0 A30 C45\nN30 TRAFOOF\nN40 G1 X10 F500\n",
+        S,
+        Some(&m),
+    );
+    let n = note(&r, "switches tool-centre-point control off");
+    assert_eq!((n.kind, n.line), (NoteKind::Tcp, 3));
+    assert!(
+        n.text.starts_with("line 3: TRAFOOF switches")
+            && n.text.contains("(C 45°, A 30°)")
+            && n.text.contains("line 4 moves"),
+        "{}",
+        n.text
+    );
+    for text in [
+        "N10 TRAORI\nN20 G0 X0 Y0 Z0 A30 C45\nN30 TRAFOOF\nN40 TRAORI\nN50 G1 X10 F500\n",
+        "N10 TRAORI\nN20 G0 X0 Y0 Z0 A30 C45\nN30 TRAFOOF\nN40 G0 A0 C0\nN50 G1 X10 F500\n",
+    ] {
+        let (_, r) = read_all(text, S, Some(&m));
+        assert!(
+            r.notes.iter().all(|n| n.kind != NoteKind::Tcp),
+            "{text:?}: {:?}",
+            r.notes
+        );
+    }
+}
+
 #[test]
 fn variables_defined_as_plain_numbers_are_read_and_expressions_are_refused() {
     let m = caz_head();

@@ -408,7 +408,7 @@ impl Heidenhain {
             "PLANE" => self.plane(core, no, body, at, &u, loc, log),
             "FUNCTION" => {
                 if u.contains("RESET TCPM") {
-                    core.set_tcp(false, no, "", log);
+                    core.set_tcp(false, no, "FUNCTION RESET TCPM", log);
                 } else if u.contains("TCPM") {
                     if u.contains("AXIS SPAT") {
                         return refuse("FUNCTION TCPM … AXIS SPAT makes A, B, C spatial angles, not the rotary axes' positions, which the reader does not read; post the program with AXIS POS, with vectors (LN … TX TY TZ) or as CL data".into());
@@ -673,7 +673,7 @@ impl Heidenhain {
         }
         core.execute(&b, loc, log, out)?;
         if tcp_off {
-            core.set_tcp(false, no, "", log);
+            core.set_tcp(false, no, "M129", log);
         }
         if cycle_call {
             self.cycle_called(no, log, " at the block's end point");
@@ -714,7 +714,7 @@ impl Heidenhain {
             };
             match m {
                 128 => core.set_tcp(true, no, "M128", log),
-                129 => core.set_tcp(false, no, "", log),
+                129 => core.set_tcp(false, no, "M129", log),
                 126 => core.shortest = true,
                 127 => core.shortest = false,
                 30 | 2 => core.ended = true,
@@ -945,7 +945,7 @@ impl Heidenhain {
         }
         core.execute(&b, loc, log, out)?;
         if tcp_off {
-            core.set_tcp(false, no, "", log);
+            core.set_tcp(false, no, "M129", log);
         }
         Ok(())
     }

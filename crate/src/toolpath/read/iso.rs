@@ -397,7 +397,7 @@ impl Iso {
                     self.ijk_vector = true;
                 }
                 430 | 440 | 490 => {
-                    core.set_tcp(false, no, "", log);
+                    core.set_tcp(false, no, &format!("G{}", t.value), log);
                     if self.ijk_vector {
                         core.vector = None;
                     }
@@ -406,7 +406,7 @@ impl Iso {
                 }
                 2340 => core.set_tcp(true, no, "G234 (Haas TCPC)", log),
                 2540 => core.set_tcp(true, no, "G254 (Haas dynamic work offset)", log),
-                2550 => core.set_tcp(false, no, "", log),
+                2550 => core.set_tcp(false, no, "G255", log),
                 410 | 420 => {
                     log.note("iso-cutcom", NoteKind::Partial, no, || {
                         format!("line {no}: G{} offsets the path by the tool radius (cutter compensation); the points are read as programmed", t.value)
@@ -532,7 +532,7 @@ impl Iso {
                     log.skip("program ends (M2, M30, M99)", no);
                 }
                 1280 => core.set_tcp(true, no, "M128", log),
-                1290 => core.set_tcp(false, no, "", log),
+                1290 => core.set_tcp(false, no, "M129", log),
                 // LinuxCNC's switchable-kinematics configurations (configs/sim/axis/vismach/
                 // 5axis demos): `M428 ;TCP:xyzac`, `M429 ;Restore Trivkins`.
                 4280 => core.set_tcp(
@@ -541,7 +541,7 @@ impl Iso {
                     "M428 (LinuxCNC tool-centre-point kinematics)",
                     log,
                 ),
-                4290 => core.set_tcp(false, no, "", log),
+                4290 => core.set_tcp(false, no, "M429", log),
                 910 | 920 => {
                     keep_mode(core);
                     return self.machine_coordinates(

@@ -11,8 +11,11 @@
 //! reversed), in the workpiece frame. With tool-centre-point control on (`G43.4`, `G234`,
 //! `TRAORI`, `M128`, `FUNCTION TCPM`) that is what the control does: it keeps the programmed
 //! tip on the part whatever the rotary axes do. Without it, `X Y Z` of a block that turns the
-//! rotary axes are the machine's axis positions, not the tip on the part: the reader says so
-//! in a note. The ranking needs the tool axes only, so it holds either way.
+//! rotary axes are the machine's axis positions, not the tip on the part, and so are those after
+//! the control is switched off (`G49`, `M129`, `TRAFOOF` …) with the axes turned: the reader
+//! says so in a note at the first point reached that way, unless the axes are back at 0° there
+//! (whole turns included), where the machine's frame is the workpiece's. The ranking needs the
+//! tool axes only, so it holds either way.
 //!
 //! Where the dialect tilts the working plane (`G68.2`, `PLANE SPATIAL`) the tool axis is the
 //! tilted frame's z axis (the control turns the rotary axes to it), and the point carries no
@@ -197,9 +200,29 @@ pub(super) struct Core {
     pub rollover: [bool; 2],
     /// Heidenhain M126 is on.
     pub shortest: bool,
-    /// The line where the rotary axes first turned without tool-centre-point control, until a
-    /// point is reached that way (then the reader says so) or the control is switched on first.
-    pub turned_without_tcp: Option<u32>,
+    /// Why the next point reached without tool-centre-point control may be the machine's
+    /// position and not the tip on the part, until a point is reached (then the reader says so,
+    /// when the rotary axes are turned there) or the control is switched on first.
+    pub untracked: Option<Untracked>,
+}
+
+/// Why X Y Z may be the machine's axis positions and not the tool tip on the part.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Untracked {
+    /// The rotary axes turned on this line without tool-centre-point control.
+    Turned(u32),
+    /// The statement (`M129`, `G49`, `TRAFOOF` …) switched tool-centre-point control off on
+    /// this line with the rotary axes turned to these commanded angles (K, M; degrees).
+    Off(u32, String, [f64; 2]),
+}
+
+/// Whether commanded angles `k`, `m` (degrees) turn the machine away from its zero pose, where
+/// the workpiece frame is the machine's (whole turns are the zero pose; 10⁻⁹° is rounding).
+pub(super) fn turned(k: f64, m: f64) -> bool {
+    [k, m].iter().any(|a| {
+        let r = a.rem_euclid(360.0);
+        r > 1e-9 && r < 360.0 - 1e-9
+    })
 }
 
 /// The NC reader: the shared state and the dialect's own.
@@ -245,7 +268,7 @@ impl Nc {
                 tangent: None,
                 rollover: [model.machine.rotary.k_rollover, false],
                 shortest: false,
-                turned_without_tcp: None,
+                untracked: None,
             },
             dialect,
         }
@@ -335,13 +358,19 @@ impl Core {
         }
     }
 
-    /// Switches tool-centre-point control on or off (`what` on `line`, for the report).
+    /// Switches tool-centre-point control on or off (`what` on `line`, for the report and the
+    /// notes). Switched off with the rotary axes turned (outside a tilted working plane), the
+    /// points after it are the machine's positions until the control is on again or the axes
+    /// are back at 0°: the first one reached that way is noted.
     pub fn set_tcp(&mut self, on: bool, line: u32, what: &str, log: &mut Log) {
         if on && !self.tcp && log.tcp.is_none() {
             log.tcp = Some(format!("{what} on line {line}"));
         }
         if on {
-            self.turned_without_tcp = None;
+            self.untracked = None;
+        } else if self.tcp && !self.tilted && turned(self.pos[3], self.pos[4]) {
+            let angles = [self.pos[3], self.pos[4]];
+            self.untracked = Some(Untracked::Off(line, what.to_string(), angles));
         }
         self.tcp = on;
     }
@@ -432,26 +461,47 @@ impl Core {
             });
         }
         if rotary_moves && !self.tcp && !self.tilted {
-            self.turned_without_tcp.get_or_insert(loc.line_of(b.at));
+            self.untracked
+                .get_or_insert(Untracked::Turned(loc.line_of(b.at)));
         }
         if !known.iter().all(|&k| k) {
             self.break_next = true;
             return Ok(());
         }
         // A rotary turn matters to the points only when one is reached before tool-centre-point
-        // control is on: a post turns the table, then switches the control on (`G0 B-22.2
-        // C1.05` then `G234`), with X Y Z not yet given. In a tilted working plane the points
-        // are in the plane's frame, and the turn its setting.
-        if let Some(line) = self.turned_without_tcp.take().filter(|_| !self.tilted) {
-            let [kl, ml] = self.letters;
-            log.note("no-tcp", NoteKind::Tcp, line, || {
+        // control is on, with the axes still turned: a post turns the table, then switches the
+        // control on (`G0 B-22.2 C1.05` then `G234`), with X Y Z not yet given; at 0° the
+        // machine's frame is the workpiece's. In a tilted working plane the points are in the
+        // plane's frame, and the turn its setting.
+        let reached = self
+            .untracked
+            .take()
+            .filter(|_| !self.tilted && turned(new[3], new[4]));
+        let [kl, ml] = self.letters;
+        let then =
+            "X Y Z are then the machine's axis positions, not the tool tip on the part. The \
+                    ranking uses the rotary commands only and holds; the path drawn is the \
+                    machine's.";
+        match reached {
+            Some(Untracked::Turned(line)) => log.note("no-tcp", NoteKind::Tcp, line, || {
                 format!(
                     "line {line}: the rotary axes ({kl}, {ml}) turn without tool-centre-point \
-                     control (no G43.4, G234, TRAORI, M128 or FUNCTION TCPM before it): X Y Z are \
-                     then the machine's axis positions, not the tool tip on the part. The ranking \
-                     uses the rotary commands only and holds; the path drawn is the machine's."
+                     control (no G43.4, G234, TRAORI, M128 or FUNCTION TCPM before it): {then}"
                 )
-            });
+            }),
+            Some(Untracked::Off(line, what, [k, m])) => {
+                let moved = loc.line_of(b.at);
+                log.note("tcp-off", NoteKind::Tcp, line, || {
+                    format!(
+                        "line {line}: {what} switches tool-centre-point control off with the \
+                         rotary axes turned ({kl} {}°, {ml} {}°), and line {moved} moves before \
+                         it is on again or the axes are back at 0°: {then}",
+                        round(k),
+                        round(m)
+                    )
+                })
+            }
+            None => {}
         }
         let cutting = !(b.rapid_once || b.cycle || self.mode == Mode::Rapid);
         let k_turn = (new[3] - start[3]).abs();

@@ -339,7 +339,7 @@ impl Siemens {
                     let n = name.as_str();
                     match n {
                         "TRAORI" => core.set_tcp(true, no, "TRAORI", log),
-                        "TRAFOOF" => core.set_tcp(false, no, "", log),
+                        "TRAFOOF" => core.set_tcp(false, no, "TRAFOOF", log),
                         "TRANS" | "ATRANS" | "ROT" | "AROT" | "SCALE" | "ASCALE" | "MIRROR" | "AMIRROR" => {
                             frame_stmt = Some((n.to_string(), *at));
                         }
