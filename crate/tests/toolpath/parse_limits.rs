@@ -6,7 +6,9 @@ use crate::common;
 
 use common::toolpath::{at, caz_head, error};
 use fiveaxis::machine::Machine;
-use fiveaxis::toolpath::read::{parse, Format, Motion, Parser, Point, ReadOptions, MAX_LINE};
+use fiveaxis::toolpath::read::{
+    parse, Format, Motion, Parser, Point, ReadOptions, DETECT_LINES, MAX_LINE,
+};
 use fiveaxis::toolpath::write::write;
 use nalgebra::Vector3;
 
@@ -40,6 +42,28 @@ fn the_first_telling_line_decides_the_format() {
     for (text, format) in cases {
         assert_eq!(Format::detect(text), format, "{text:?}");
     }
+}
+
+// Found by cargo-mutants: `Format::detect`'s line limit (`>` as `>=` and `==`) and its `#` rule
+// (`||` as `&&`, `!nc` as `nc`) survived.
+/// `#` comment lines decide nothing, whatever words they hold (`FMAX`, `TOOL CALL` and `GOTO/`
+/// are Heidenhain's and APT's), and lines after the first [`DETECT_LINES`] are not read: a
+/// telling line at line 2000 decides, one at line 2001 does not (the file is then CSV).
+#[test]
+fn comments_and_lines_after_the_first_detect_lines_decide_nothing() {
+    for text in [
+        "# exported from the L X+0 FMAX block\n1,2,3,0,0,1\n",
+        "# TOOL CALL 5 Z S3000\n1 2 3 0 0 1\n",
+        "# GOTO/1,2,3\n1;2;3;0;0;1\n",
+    ] {
+        assert_eq!(Format::detect(text), Format::Csv, "{text:?}");
+    }
+    let at_line = |n: usize| format!("{}G1 X1\n", "\n".repeat(n - 1));
+    assert_eq!(Format::detect(&at_line(DETECT_LINES)), Format::Nc);
+    assert_eq!(Format::detect(&at_line(DETECT_LINES + 1)), Format::Csv);
+    let comments = |n: usize| format!("{}N10 G1 X1\n", "# x\n".repeat(n - 1));
+    assert_eq!(Format::detect(&comments(DETECT_LINES)), Format::Nc);
+    assert_eq!(Format::detect(&comments(DETECT_LINES + 1)), Format::Csv);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -191,6 +191,25 @@ fn a_frame_before_the_unit_hint_is_described_in_the_unit_decided() {
     assert!(note(&r, "MSYS/").text.contains("origin (3, 3, 0) mm"));
 }
 
+/// Two output frames before the unit hint: each applies to the points after it, both in the
+/// unit decided (inches: `GOTO/1,0,0` after `MSYS/5,5,0,…` is (6 in, 5 in, 0) = (152.4, 127,
+/// 0) mm), and the note, which describes its first occurrence and counts the rest, and the
+/// frame choice are of the first frame, described in inches too.
+// Found by cargo-mutants: `Log::frame_note` recorded the second frame for describing again
+// (`&&` as `||`, `==` as `!=`), and the note then described the second.
+#[test]
+fn two_frames_before_the_unit_hint_are_noted_as_the_first_in_the_unit_decided() {
+    let text = "MSYS/3,3,0,1,0,0,0,1,0\nGOTO/1,0,0\nMSYS/5,5,0,1,0,0,0,1,0\nFEDRAT/IPM,10\n\
+                GOTO/1,0,0\n";
+    let (p, r) = read_all(text, A, None);
+    close_vec(&p[0].tip, &Vector3::new(101.6, 76.2, 0.0), 1e-12, "first");
+    close_vec(&p[1].tip, &Vector3::new(152.4, 127.0, 0.0), 1e-12, "second");
+    let n = note(&r, "MSYS/");
+    assert_eq!((n.line, n.count), (1, 2));
+    assert!(n.text.contains("origin (76.2, 76.2, 0) mm"), "{}", n.text);
+    assert_eq!(r.frame_choice.unwrap().frame, "origin (76.2, 76.2, 0) mm");
+}
+
 #[test]
 fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
     let text =

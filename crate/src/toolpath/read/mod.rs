@@ -79,6 +79,8 @@ pub const ARC_ROUNDING_MM: f64 = 0.01;
 pub const MAX_POINTS: u64 = 5_000_000;
 /// One inch, mm.
 pub const INCH: f64 = 25.4;
+/// Lines [`Format::detect`] reads at most: a file with no telling line among them is CSV.
+pub const DETECT_LINES: usize = 2000;
 
 /// A toolpath text format: the reader that reads it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -134,8 +136,8 @@ impl Format {
         matches!(self, Format::Nc | Format::Siemens | Format::Heidenhain)
     }
 
-    /// Recognises the format from the first text of a file (the first chunk; a few hundred
-    /// lines decide). Lines are read in order:
+    /// Recognises the format from the first text of a file (the first chunk; its first
+    /// [`DETECT_LINES`] lines decide). Lines are read in order:
     /// * the first telling line decides between APT, NC and CSV: a `$$` comment or an APT
     ///   statement (a word of two or more letters, spaces allowed, followed by `/`: `GOTO/`,
     ///   `TOOL PATH/`; or `RAPID`, `FINI`, `MULTAX`, `PARTNO …` alone) is APT; a line
@@ -153,7 +155,7 @@ impl Format {
         let mut nc = false;
         for (n, raw) in first_text.split(['\n', '\r']).enumerate() {
             let l = raw.trim_start_matches('\u{feff}').trim();
-            if n > 2000 {
+            if n >= DETECT_LINES {
                 break;
             }
             if l.is_empty() || (l.starts_with('#') && !nc) {
