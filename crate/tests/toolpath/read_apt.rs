@@ -210,6 +210,66 @@ fn two_frames_before_the_unit_hint_are_noted_as_the_first_in_the_unit_decided() 
     assert_eq!(r.frame_choice.unwrap().frame, "origin (76.2, 76.2, 0) mm");
 }
 
+/// Creo's CL header, as PTC Creo 9.0 wrote it (4r19415/5-axis-Rotation-tool-center-point-RTCP-,
+/// `assets/finition.ncl` and `finition2.ncl`, commit 841acbb; no licence, so the files are not
+/// stored and these lines are quoted): `REMARK` lines (comments, as `PPRINT`), the `PPWORD/`
+/// vocabulary table of its post, and a `$$->` comment continued with `$` over two lines of
+/// numbers. None is an unknown statement, and the `GOTO/` continued with `$` after them is read:
+/// 351.7389525618 in = 8934.169 mm, the tool axis (0.9997838891, −0.0000009626, 0.0207888211)
+/// normalised. A comment line ending in `$$` (a banner), or in `$` before a statement, leaves
+/// the next line a statement.
+#[test]
+fn creo_s_remarks_vocabulary_and_continued_comments_are_comments() {
+    let text = "$$*          Pro/CLfile  Version 9.0 - 9.0.3.0\n\
+                PARTNO / MFG0001\n\
+                REMARK *          PRO/CLFILE  VERSION 9.0 - 9.0.3.0\n\
+                REMARK  GPOST MILL SYSTEM VOCABULARY TABLE\n\
+                PPWORD/TLANGL,1\n\
+                PPWORD/RETURN,7\n\
+                REMARK -> CUTTER / 6.000000\n\
+                UNITS / INCHES\n\
+                $$-> CSYS / 1.0000000000, 0.0000000000, 0.0000000000, 0.0000000000,  $\n\
+                \x20           0.0000000000, 1.0000000000, 0.0000000000, 0.0000000000,  $\n\
+                \x20           0.0000000000, 0.0000000000, 1.0000000000, 0.0000000000\n\
+                MULTAX / ON\n\
+                RAPID \n\
+                GOTO / 351.7389525618, 98.4998561102, 144.0966038928,  $\n\
+                0.9997838891, -0.0000009626, 0.0207888211\n";
+    assert_eq!(Format::detect(text), A);
+    assert_eq!(Format::detect("REMARK made by hand\nGOTO/1,2,3\n"), A);
+    let (p, r) = read_all(text, A, None);
+    assert_eq!(p.len(), 1);
+    close_vec(
+        &p[0].tip,
+        &(Vector3::new(351.7389525618, 98.4998561102, 144.0966038928) * 25.4),
+        1e-9,
+        "tip",
+    );
+    let axis = Vector3::new(0.9997838891, -0.0000009626, 0.0207888211);
+    close_vec(&p[0].axis, &axis.normalize(), 1e-15, "axis");
+    assert_eq!((p[0].line, p[0].motion), (14, Motion::Rapid));
+    assert!(
+        r.notes.iter().all(|n| n.kind != NoteKind::Partial),
+        "{:?}",
+        r.notes
+    );
+    assert_eq!(skipped(&r, "names and comments"), 4);
+    assert_eq!(skipped(&r, "post-processor"), 2);
+    assert_eq!(skipped(&r, "does not know"), 0);
+    for text in [
+        "$$ ---------- $$\nGOTO/1,2,3\n",
+        "$$ to be continued $\nGOTO/1,2,3\n",
+        "$$ to be continued $\n$$ and more\nGOTO/1,2,3\n",
+    ] {
+        let (p, _) = read_all(text, A, None);
+        assert_eq!(p.len(), 1, "{text:?}");
+        assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0), "{text:?}");
+    }
+    // The lines of numbers after a comment ending in `$`, however many, are the comment's.
+    let (p, _) = read_all("$$ CSYS / 1, 0, $\n 0, 1, $\n 0, 0\nGOTO/1,2,3\n", A, None);
+    assert_eq!(p.len(), 1);
+}
+
 #[test]
 fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
     let text =

@@ -1,7 +1,8 @@
 //! APT CL data, as NX (CLSF), CATIA, SolidWorks CAM, Mastercam, Creo and other CAM systems
 //! write it. Statements, one a line (`$` at the end continues one on the next line, `$$`
-//! starts a comment), a major word, `/` and comma-separated numbers and minor words,
-//! case-insensitive.
+//! starts a comment; a comment line ending in `$` continues on the lines of numbers after it,
+//! as Creo writes `$$-> CSYS / …, $`), a major word, `/` and comma-separated numbers and minor
+//! words, case-insensitive.
 //!
 //! No public text of ISO 4343 or ANSI X3.37 was at hand; each statement is read as the CAM
 //! system that writes it documents it, cited below as: CATIA, "Syntax of Generated APT
@@ -48,11 +49,12 @@
 //! * `FINI`: the end; the rest of the file is not read.
 //!
 //! # Skipped and counted
-//! `PARTNO`, `PPRINT`, `INSERT`, `CUTTER`, `TLDATA`, `LOADTL`, `LOAD/TOOL`, `SELECT/TOOL`,
-//! `SPINDL`, `COOLNT`, `FEDRAT`, `MULTAX`, `PAINT`, `TOOL PATH`, `END-OF-PATH`, `MACHIN`,
-//! `CLPRNT`, `INTOL`, `OUTTOL`, `TOLER`, `DELAY`, `OPSTOP`, `STOP`, `AUXFUN`, `PREFUN`,
-//! `SEQNO`, `CUTCOM` (radius compensation, noted), SolidWorks' `CSI_…`, `TRNTYP`. Any other
-//! statement is skipped and listed as not known to the reader.
+//! `PARTNO`, `PPRINT`, `INSERT`, `REMARK` (a comment: Creo writes its header in them),
+//! `CUTTER`, `TLDATA`, `LOADTL`, `LOAD/TOOL`, `SELECT/TOOL`, `SPINDL`, `COOLNT`, `FEDRAT`,
+//! `MULTAX`, `PAINT`, `TOOL PATH`, `END-OF-PATH`, `MACHIN`, `CLPRNT`, `INTOL`, `OUTTOL`,
+//! `TOLER`, `PPWORD` (Creo's post-processor vocabulary table), `DELAY`, `OPSTOP`, `STOP`,
+//! `AUXFUN`, `PREFUN`, `SEQNO`, `CUTCOM` (radius compensation, noted), SolidWorks' `CSI_…`,
+//! `TRNTYP`. Any other statement is skipped and listed as not known to the reader.
 //!
 //! # Refused
 //! `NURBS/` (a spline the control interpolates); `GOTO` with other than 3 or 6 numbers (no
@@ -72,8 +74,8 @@ use nalgebra::Vector3;
 
 /// Whether a (trimmed) line is an APT statement, for [`super::Format::detect`]: a `$$`
 /// comment, a major word of two or more letters (spaces and `-` allowed) followed by `/`, or a
-/// word that stands alone in APT (`RAPID`, `FINI`, `MULTAX`, `END`, and `PARTNO` or `PPRINT`
-/// followed by text).
+/// word that stands alone in APT (`RAPID`, `FINI`, `MULTAX`, `END`, and `PARTNO`, `PPRINT` or
+/// `REMARK` followed by text).
 pub(super) fn is_statement(l: &str) -> bool {
     if l.starts_with("$$") {
         return true;
@@ -97,7 +99,7 @@ pub(super) fn is_statement(l: &str) -> bool {
         .to_ascii_uppercase();
     let rest = l[word.len()..].trim();
     matches!(word.as_str(), "RAPID" | "FINI" | "MULTAX") && rest.is_empty()
-        || matches!(word.as_str(), "PARTNO" | "PPRINT")
+        || matches!(word.as_str(), "PARTNO" | "PPRINT" | "REMARK")
             && (rest.is_empty() || l[word.len()..].starts_with(' '))
 }
 
@@ -153,6 +155,8 @@ pub struct Apt {
     nx: bool,
     /// CATIA's matrix being read.
     catia: Option<CatiaMatrix>,
+    /// The last line was a `$$` comment ending in `$`: a next line of numbers is more of it.
+    comment_continues: bool,
 }
 
 impl Default for Apt {
@@ -172,16 +176,30 @@ impl Default for Apt {
             tracut: Frame::IDENTITY,
             nx: false,
             catia: None,
+            comment_continues: false,
         }
     }
 }
 
 /// Statements skipped because they change no geometry: major word and the kind it is counted
 /// under.
-const SKIPPED: [(&str, &str); 28] = [
-    ("PARTNO", "names and comments (PARTNO, PPRINT, INSERT)"),
-    ("PPRINT", "names and comments (PARTNO, PPRINT, INSERT)"),
-    ("INSERT", "names and comments (PARTNO, PPRINT, INSERT)"),
+const SKIPPED: [(&str, &str); 30] = [
+    (
+        "PARTNO",
+        "names and comments (PARTNO, PPRINT, INSERT, REMARK)",
+    ),
+    (
+        "PPRINT",
+        "names and comments (PARTNO, PPRINT, INSERT, REMARK)",
+    ),
+    (
+        "INSERT",
+        "names and comments (PARTNO, PPRINT, INSERT, REMARK)",
+    ),
+    (
+        "REMARK",
+        "names and comments (PARTNO, PPRINT, INSERT, REMARK)",
+    ),
     (
         "CUTTER",
         "tool data and tool changes (CUTTER, TLDATA, LOAD/TOOL …)",
@@ -233,6 +251,10 @@ const SKIPPED: [(&str, &str); 28] = [
         "TRNTYP",
         "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
     ),
+    (
+        "PPWORD",
+        "post-processor and tolerance settings (MACHIN, INTOL, OUTTOL …)",
+    ),
     ("DELAY", "stops and dwells (DELAY, OPSTOP, STOP)"),
     ("OPSTOP", "stops and dwells (DELAY, OPSTOP, STOP)"),
     ("STOP", "stops and dwells (DELAY, OPSTOP, STOP)"),
@@ -258,10 +280,21 @@ impl Apt {
         if self.fini {
             return Ok(());
         }
+        // A comment line ending in `$` continues on the lines of numbers after it: Creo writes
+        // `$$-> CSYS / 1.0, 0.0, 0.0, 0.0,  $` and two more lines of four numbers. A line that
+        // starts otherwise (a statement, another comment) is read as it is.
+        if std::mem::take(&mut self.comment_continues) {
+            let t = line.trim_ascii();
+            if t.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '.')) {
+                self.comment_continues = continues(t);
+                return Ok(());
+            }
+        }
         let comment = comment_start(line);
         if let Some(p) = comment {
             self.comment(&line[p + 2..], no, log)?;
             if line[..p].trim().is_empty() && self.segs.is_empty() {
+                self.comment_continues = continues(line[p + 2..].trim_ascii());
                 return Ok(());
             }
         }
@@ -1058,6 +1091,12 @@ fn comment_start(line: &str) -> Option<usize> {
         i = at + 1;
     }
     None
+}
+
+/// Whether a (trimmed) comment text ends in one `$`, continuing on the next line (`$$` at the
+/// end, as in a banner `$$ ---- $$`, does not).
+fn continues(t: &str) -> bool {
+    t.ends_with('$') && !t.ends_with("$$")
 }
 
 /// The comma-separated fields of `args` (a byte loop, as [`comment_start`]).
