@@ -226,6 +226,47 @@ fn tool_centre_point_control_is_reported_where_it_is_switched_on() {
     }
 }
 
+/// An arc in inches is cut within the chord tolerance in millimetres, and its two radii may
+/// differ by the rounding allowed in millimetres (0.01 mm, more than 10⁻⁴ of a 1 in radius),
+/// not by as much in inches: a quarter circle of 1 in = 25.4 mm within 1 µm takes
+/// π/2 / (2·acos(1 − 0.001/25.4)) = 88.5 → 89 chords; an end 0.0003 in = 0.00762 mm off the
+/// circle is rounding, 0.001 in = 0.0254 mm is not.
+// Found by cargo-mutants: `Log::arc_tolerances`'s conversions to the file's unit (`/ mm` as
+// `* mm` or `% mm`) survived: every arc tested was in millimetres.
+#[test]
+fn an_arc_in_inches_is_cut_and_checked_in_millimetres() {
+    let m = caz_head();
+    let n = chords(25.4, FRAC_PI_2, 0.001);
+    assert_eq!(n, 89);
+    let (p, r) = read_all("G20\nG0 X1 Y0 Z0\nG3 X0 Y1 I-1 J0\n", Format::Nc, Some(&m));
+    assert_eq!(r.arc_points, n);
+    for q in &p[1..] {
+        assert!((q.tip.norm() - 25.4).abs() < 1e-9, "{:?}", q.tip);
+    }
+    close_vec(&p[n].tip, &Vector3::new(0.0, 25.4, 0.0), 1e-12, "end");
+    let (p, _) = read_all(
+        "G20\nG0 X1 Y0 Z0\nG3 X0 Y1.0003 I-1 J0\n",
+        Format::Nc,
+        Some(&m),
+    );
+    close_vec(
+        &p[p.len() - 1].tip,
+        &Vector3::new(0.0, 25.40762, 0.0),
+        1e-9,
+        "end",
+    );
+    at(
+        &error(
+            "G20\nG0 X1 Y0 Z0\nG3 X0 Y1.001 I-1 J0\n",
+            Format::Nc,
+            Some(&m),
+        ),
+        3,
+        1,
+        "the arc's end is not on its circle: 25.4 mm from the centre at the start, 25.4254 mm",
+    );
+}
+
 /// Tool-centre-point control switched off (`G49`, `G43`, `G255`, `M129`) while the rotary axes
 /// are turned: the control no longer keeps the tip on the part, so X Y Z of the blocks after it
 /// are the machine's axis positions (FANUC 30i B-63942EN/02 p.411: G49 cancels G43.4). The
