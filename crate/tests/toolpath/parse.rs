@@ -553,10 +553,16 @@ fn an_empty_file_is_an_error() {
         ("", Format::Nc),
         ("%\nO1 (nothing)\nG90 G21\nM30\n%\n", Format::Nc),
     ] {
-        let msg = error(text, format, Some(&m));
-        assert!(
-            msg.starts_with("the file has no points; expected"),
-            "{text:?}: {msg}"
+        // Each format says what a point would have been.
+        let expected = match format {
+            Format::Csv => "lines x,y,z,i,j,k",
+            Format::Apt => "GOTO/x,y,z or GOTO/x,y,z,i,j,k statements",
+            _ => "blocks that move the tool to a known position",
+        };
+        assert_eq!(
+            error(text, format, Some(&m)),
+            format!("the file has no points; expected {expected}"),
+            "{text:?}"
         );
     }
 }

@@ -4,10 +4,11 @@
 #![allow(clippy::unwrap_used)]
 use crate::common;
 
-use common::toolpath::{at, caz_head, error};
+use common::toolpath::{at, caz_head, error, read_all};
 use fiveaxis::machine::Machine;
 use fiveaxis::toolpath::read::{
-    parse, Format, Motion, Parser, Point, ReadOptions, DETECT_LINES, MAX_LINE,
+    parse, Format, Motion, Parser, Point, ReadOptions, DETECT_LINES, MAX_COORDINATE, MAX_LINE,
+    MAX_POINTS,
 };
 use fiveaxis::toolpath::write::write;
 use nalgebra::Vector3;
@@ -154,6 +155,57 @@ fn the_points_of_the_file_are_counted_not_the_callers_vector() {
     assert_eq!(out.len(), 4);
     out.clear();
     p.finish(&mut out).unwrap();
+}
+
+// Found by cargo-mutants: the range check of points scaled at the end (`>` as `>=` or `==`)
+// and the index of the first point the caller still holds (`-` as `+`) survived: no test read
+// a point before the hint that makes the file inches.
+/// Points read before the hint that decides the unit (`FEDRAT/IPM`) are scaled at the end, and
+/// checked against ±[`MAX_COORDINATE`] mm again: 3937.0078740157483 in is 100 000 mm to the
+/// last bit, within; 5000 in is 127 000 mm, beyond, refused at its line.
+#[test]
+fn points_scaled_by_a_later_unit_hint_are_checked_against_the_range() {
+    let (p, _) = read_all(
+        "GOTO/3937.0078740157483,0,0\nFEDRAT/IPM,10\n",
+        Format::Apt,
+        None,
+    );
+    assert_eq!(p[0].tip.x, MAX_COORDINATE);
+    let e = parse(
+        "GOTO/1,0,0\nGOTO/5000,0,0\nFEDRAT/IPM,10\n",
+        Format::Apt,
+        None,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.message,
+        "line 2: expected coordinates within ±100000 mm, got 127000 mm once read in inches"
+    );
+}
+
+// Found by cargo-mutants: `Parser::count`'s limit (`>` as `>=` or `==`) survived.
+/// A file may give [`MAX_POINTS`] points, not one more: the count is of every point read, so a
+/// caller that drains its vector between chunks (as the page's worker does) meets it too.
+#[test]
+fn a_file_may_give_max_points_points_and_not_one_more() {
+    let per_chunk = 10_000;
+    let chunk = "0,0,0,0,0,1\n".repeat(per_chunk);
+    let mut out = Vec::with_capacity(per_chunk);
+    let mut p = Parser::new(Format::Csv, None, ReadOptions::default()).unwrap();
+    for _ in 0..MAX_POINTS / per_chunk as u64 {
+        p.feed(&chunk, &mut out).unwrap();
+        out.clear();
+    }
+    assert_eq!(p.lines() as u64, MAX_POINTS);
+    let e = p.feed("0,0,0,0,0,1\n", &mut out).unwrap_err();
+    assert_eq!(
+        e.message,
+        format!(
+            "line {}: the file gives more than {MAX_POINTS} points (with its arcs and repeats); \
+             read a part of the program at a time",
+            MAX_POINTS + 1
+        )
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
