@@ -45,6 +45,29 @@ fn the_first_telling_line_decides_the_format() {
     }
 }
 
+// Found by cargo-mutants: `apt::is_statement`'s rule for a major word before `/` (each `&&`
+// as `||`, each character class) survived.
+/// An APT major word before `/` starts with a letter, has two or more letters and holds only
+/// letters, digits, spaces, `-` and `_`: NX's `TOOL PATH/…` and `END-OF-PATH/` are APT; an ISO
+/// comment or block with a `/` in its text (a date, a fixture's name) is not, nor a line of
+/// numbers with a `/`.
+#[test]
+fn an_apt_major_word_is_letters_before_a_slash() {
+    let cases = [
+        (
+            "TOOL PATH/VARIABLE_CONTOUR,TOOL,BPR-SNR-323S32\n",
+            Format::Apt,
+        ),
+        ("END-OF-PATH/\nGOTO/1,2,3\n", Format::Apt),
+        ("(DATE 12/01/2026)\nG0 X1 Y2 Z3\n", Format::Nc),
+        ("N10 G0 X1 Y2 Z3 (FIXTURE A/B)\n", Format::Nc),
+        ("12/3,4,5,0,0,1\n", Format::Csv),
+    ];
+    for (text, format) in cases {
+        assert_eq!(Format::detect(text), format, "{text:?}");
+    }
+}
+
 // Found by cargo-mutants: `Format::detect`'s line limit (`>` as `>=` and `==`) and its `#` rule
 // (`||` as `&&`, `!nc` as `nc`) survived.
 /// `#` comment lines decide nothing, whatever words they hold (`FMAX`, `TOOL CALL` and `GOTO/`

@@ -265,6 +265,15 @@ fn creo_s_remarks_vocabulary_and_continued_comments_are_comments() {
         assert_eq!(p.len(), 1, "{text:?}");
         assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0), "{text:?}");
     }
+    // An indented comment, continued or not, is a comment.
+    // Found by cargo-mutants: the comment's text taken from `p * 2` instead of `p + 2` survived.
+    for text in [
+        "          $$ x\nGOTO/1,2,3\n",
+        "          $$ x $\n 1, 2\nGOTO/1,2,3\n",
+    ] {
+        let (p, _) = read_all(text, A, None);
+        assert_eq!(p.len(), 1, "{text:?}");
+    }
     // The lines of numbers after a comment ending in `$`, however many, are the comment's.
     let (p, _) = read_all("$$ CSYS / 1, 0, $\n 0, 1, $\n 0, 0\nGOTO/1,2,3\n", A, None);
     assert_eq!(p.len(), 1);

@@ -236,6 +236,20 @@ fn solidworks_cam_drilling_cycles_are_rapid_positions() {
     assert_eq!(note(&r, "CYCLE/").line, 16);
     // CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0 on line 13: the identity, said as such.
     assert_eq!(note(&r, "states the identity frame").line, 13);
+    // Every statement is one the reader knows: 49 lines, 49 statements, the four
+    // `CSI_SET_…` among SolidWorks' settings.
+    // Found by cargo-mutants: the count of statements (`+=` as `-=`, `*=`) and the first word's
+    // letters (`_` ending it) survived.
+    assert_eq!(r.blocks, 49);
+    assert_eq!(skipped(&r, "SolidWorks CAM settings (CSI_…)"), 4);
+    assert_eq!(skipped(&r, "does not know"), 0);
+    assert!(
+        r.notes
+            .iter()
+            .all(|n| n.kind != NoteKind::Partial || n.text.contains("CYCLE/")),
+        "{:?}",
+        r.notes
+    );
 }
 
 /// szborok/BRK_CNC_CORE, `test-data/…/DMU 85 monoblock MINUS/W5246NS01007B9.h` (commit
