@@ -279,6 +279,101 @@ fn creo_s_remarks_vocabulary_and_continued_comments_are_comments() {
     assert_eq!(p.len(), 1);
 }
 
+/// A `GOTO/` after `CIRCLE/` follows the arc when it lies within 10⁻³ of the radius (at least
+/// 0.01) of the circle, measured from the axis: its height along the axis does not count (an
+/// arc at z = 5 about a centre written at z = 0). Farther, it is a straight move that ends the
+/// arc; nearer than that but farther than the rounding the two radii may differ by (0.01 mm or
+/// 10⁻⁴ of the radius: 0.01 on a radius of 100), it is refused. A start off the radius is
+/// refused. (In millimetres stated: while an APT file's unit may still become inches, arcs
+/// are cut within the tolerance in inches, 25.4 times finer.)
+// Found by cargo-mutants: the radial distance (`d − n(n·d)` as `d + n(n·d)`), the tolerance
+// (`1e-3 · r` as `1e-3 / r`) and the start's check (`>` as `==`) survived.
+#[test]
+fn a_goto_follows_the_circle_within_its_tolerance_from_the_axis() {
+    let n = chords(10.0, FRAC_PI_2, 0.001);
+    let (p, r) = read_all(
+        "UNITS/MM\nGOTO/10,0,5\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,5\n",
+        A,
+        None,
+    );
+    assert_eq!(r.arc_points, n);
+    for q in &p[1..] {
+        let radial = (q.tip.x.powi(2) + q.tip.y.powi(2)).sqrt();
+        assert!(
+            (radial - 10.0).abs() < 1e-9 && q.tip.z == 5.0,
+            "{:?}",
+            q.tip
+        );
+        // Counter-clockwise about +Z (Creo's sense): the first quadrant.
+        assert!(q.tip.x > -1e-9 && q.tip.y > -1e-9, "{:?}", q.tip);
+    }
+    // Radius 100: 0.2 off is a straight move, 0.05 off is refused as not on the circle.
+    let (p, r) = read_all(
+        "UNITS/MM\nGOTO/100,0,0\nCIRCLE/0,0,0,0,0,1,100\nGOTO/0,100.2,0\n",
+        A,
+        None,
+    );
+    assert_eq!((r.arc_points, r.feeds), (0, 1));
+    assert_eq!(p[1].tip, Vector3::new(0.0, 100.2, 0.0));
+    at(
+        &error(
+            "UNITS/MM\nGOTO/100,0,0\nCIRCLE/0,0,0,0,0,1,100\nGOTO/0,100.05,0\n",
+            A,
+            None,
+        ),
+        4,
+        6,
+        "the arc's end is not on its circle (100 and 100.05",
+    );
+    at(
+        &error(
+            "UNITS/MM\nGOTO/12,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n",
+            A,
+            None,
+        ),
+        4,
+        6,
+        "the arc of the CIRCLE/ before starts 12 from its axis, not on its radius 10",
+    );
+}
+
+/// `UNITS/` keeps what the reader holds where it physically is: the last position (a
+/// `GODLTA/` after it moves from there: 25.4 mm = 1 in, + 1 in = 50.8 mm) and a circle not yet
+/// followed (centre 25.4 mm = 1 in, radius 1 in: the `GOTO/1,1,0` in inches is on it, a quarter
+/// turn of 89 chords). `FEDRAT/…,IPR` implies inches as `IPM` does.
+// Found by cargo-mutants: the position's and the circle's conversion (`* k` as `/ k`, `+ k`)
+// and `IPR` (`||` as `&&`) survived.
+#[test]
+fn units_keep_the_position_and_the_circle_held_and_ipr_is_inches() {
+    let (p, _) = read_all("GOTO/25.4,0,0\nUNITS/INCHES\nGODLTA/1,0,0\n", A, None);
+    close_vec(&p[1].tip, &Vector3::new(50.8, 0.0, 0.0), 1e-12, "GODLTA");
+    let (p, r) = read_all(
+        "GOTO/50.8,0,0\nCIRCLE/25.4,0,0,0,0,1,25.4\nUNITS/INCHES\nGOTO/1,1,0\n",
+        A,
+        None,
+    );
+    assert_eq!(r.arc_points, chords(25.4, FRAC_PI_2, 0.001));
+    for q in &p[1..] {
+        let d = q.tip - Vector3::new(25.4, 0.0, 0.0);
+        assert!((d.norm() - 25.4).abs() < 1e-9, "{:?}", q.tip);
+    }
+    close_vec(
+        &p[p.len() - 1].tip,
+        &Vector3::new(25.4, 25.4, 0.0),
+        1e-12,
+        "end",
+    );
+    let (p, r) = read_all("GOTO/1,0,0\nFEDRAT/0.004,IPR\n", A, None);
+    assert_eq!(r.unit, LengthUnit::Inch);
+    assert!(
+        r.unit_reason
+            .contains("FEDRAT/IPR (a feed in inches) on line 2"),
+        "{}",
+        r.unit_reason
+    );
+    close_vec(&p[0].tip, &Vector3::new(25.4, 0.0, 0.0), 1e-12, "tip");
+}
+
 #[test]
 fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
     let text =
