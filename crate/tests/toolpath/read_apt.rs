@@ -374,6 +374,97 @@ fn units_keep_the_position_and_the_circle_held_and_ipr_is_inches() {
     close_vec(&p[0].tip, &Vector3::new(25.4, 0.0, 0.0), 1e-12, "tip");
 }
 
+/// The numbers of a statement and their limits: a point beyond ±100 000 mm is refused at its
+/// line, after the output frame is applied (50 000 mm in an MSYS/ frame 60 000 mm along X is
+/// 110 000 mm); 100 000 mm itself is within. A `CIRCLE/` radius must be above 0 and its centre
+/// within the range. An error names the column of the field that is wrong, and a 7th number
+/// of a `GOTO/` is one too many, whatever it is; a statement with no numbers where one is
+/// needed names its empty field. A line of numbers after a comment that does not end in `$` is
+/// no statement.
+// Found by cargo-mutants: the range checks (`>` as `>=`, `==`; `||` as `&&`), the fields'
+// offsets (`+` as `-`), the count of numbers read (`<` as `<=`) and a comment's continuation
+// (`continues` always true) survived.
+#[test]
+fn numbers_ranges_and_columns() {
+    let (p, _) = read_all("UNITS/MM\nGOTO/100000,0,-100000\n", A, None);
+    assert_eq!(p[0].tip, Vector3::new(1e5, 0.0, -1e5));
+    at(
+        &error("UNITS/MM\nGOTO/200000,0,0\n", A, None),
+        2,
+        6,
+        "expected x within ±100000 mm, got \"200000\"",
+    );
+    // In the output frame: checked where the frame puts the point.
+    let e = error(
+        "UNITS/MM\nMSYS/60000,0,0,1,0,0,0,1,0\nGOTO/50000,0,0\n",
+        A,
+        None,
+    );
+    assert_eq!(e, "line 3: expected x within ±100000 mm, got 110000 mm");
+    let e = error(
+        "UNITS/MM\nMSYS/0,0,-60000,1,0,0,0,1,0\nGOTO/0,0,-50000\n",
+        A,
+        None,
+    );
+    assert_eq!(e, "line 3: expected z within ±100000 mm, got -110000 mm");
+    let (p, _) = read_all(
+        "UNITS/MM\nMSYS/50000,0,0,1,0,0,0,1,0\nGOTO/50000,0,0\n",
+        A,
+        None,
+    );
+    assert_eq!(p[0].tip.x, 1e5);
+    let (p, _) = read_all(
+        "UNITS/MM\nGOTO/99990,0,0\nCIRCLE/100000,0,0,0,0,1,10\nGOTO/100000,-10,0\n",
+        A,
+        None,
+    );
+    assert!(p.iter().all(|q| q.tip.x <= 1e5 && q.tip.x >= 99990.0));
+    for (args, col, what) in [
+        (
+            "0,0,0,0,0,1,-5",
+            8,
+            "expected a CIRCLE/ radius above 0, got -5",
+        ),
+        (
+            "0,0,0,0,0,1,0",
+            8,
+            "expected a CIRCLE/ radius above 0, got 0",
+        ),
+        (
+            "200000,0,0,0,0,1,10",
+            8,
+            "expected the CIRCLE/ centre within ±100000 mm",
+        ),
+    ] {
+        at(
+            &error(&format!("GOTO/1,0,0\nCIRCLE/{args}\n"), A, None),
+            2,
+            col,
+            what,
+        );
+    }
+    at(
+        &error("GOTO/1,x,3\n", A, None),
+        1,
+        8,
+        "expected a number after GOTO/, got \"x\"",
+    );
+    at(&error("GOTO/1, 2,  y\n", A, None), 1, 13, "got \"y\"");
+    at(&error("GOTO/1,2,3,0,0,1,x\n", A, None), 1, 18, "got 7");
+    at(
+        &error("GOTO/1,0,0\nGODLTA/\n", A, None),
+        2,
+        8,
+        "expected a number after GODLTA/, got \"\"",
+    );
+    at(
+        &error("$$ a comment\n10,20,30\n", A, None),
+        2,
+        1,
+        "expected an APT statement such as GOTO/x,y,z,i,j,k, got \"10\"",
+    );
+}
+
 #[test]
 fn rapid_is_one_shot_and_from_godlta_move_the_tool() {
     let text =
