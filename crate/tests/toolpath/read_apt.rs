@@ -457,6 +457,26 @@ fn numbers_ranges_and_columns() {
         8,
         "expected a number after GODLTA/, got \"\"",
     );
+    // CIRCLE/'s fields (up to 12 numbers): each column, and a 13th.
+    // Found by cargo-mutants: `all_numbers`'s offsets (`+`, `-` swapped) and the 13th field's
+    // (`==` as `!=`) survived.
+    for (args, col, what) in [
+        ("0,0,x", 12, "expected a number after CIRCLE/, got \"x\""),
+        ("0, 0,  y", 15, "got \"y\""),
+        (
+            "0,0,0,1,2",
+            8,
+            "or 7 and more (centre, axis, radius), got 5",
+        ),
+        ("0,0,0,0,0,1,10,0,0,0,0,0,7", 33, "got 13"),
+    ] {
+        at(
+            &error(&format!("GOTO/1,0,0\nCIRCLE/{args}\n"), A, None),
+            2,
+            col,
+            what,
+        );
+    }
     at(
         &error("$$ a comment\n10,20,30\n", A, None),
         2,
