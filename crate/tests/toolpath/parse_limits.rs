@@ -58,7 +58,7 @@ fn an_apt_major_word_is_letters_before_a_slash() {
             "TOOL PATH/VARIABLE_CONTOUR,TOOL,BPR-SNR-323S32\n",
             Format::Apt,
         ),
-        ("END-OF-PATH/\nGOTO/1,2,3\n", Format::Apt),
+        ("END-OF-PATH/\n", Format::Apt),
         ("(DATE 12/01/2026)\nG0 X1 Y2 Z3\n", Format::Nc),
         ("N10 G0 X1 Y2 Z3 (FIXTURE A/B)\n", Format::Nc),
         ("12/3,4,5,0,0,1\n", Format::Csv),

@@ -337,12 +337,13 @@ fn a_goto_follows_the_circle_within_its_tolerance_from_the_axis() {
     );
 }
 
-/// `UNITS/` keeps what the reader holds where it physically is: the last position (a
+/// `UNITS/` keeps what the reader holds where it physically is: the FROM/ point `GOHOME`
+/// returns to, the last position (a
 /// `GODLTA/` after it moves from there: 25.4 mm = 1 in, + 1 in = 50.8 mm) and a circle not yet
 /// followed (centre 25.4 mm = 1 in, radius 1 in: the `GOTO/1,1,0` in inches is on it, a quarter
-/// turn of 89 chords). `FEDRAT/…,IPR` implies inches as `IPM` does.
-// Found by cargo-mutants: the position's and the circle's conversion (`* k` as `/ k`, `+ k`)
-// and `IPR` (`||` as `&&`) survived.
+/// turn of 89 chords). `FEDRAT/…,IPR` implies inches as `IPM` does, `MMPR` millimetres.
+// Found by cargo-mutants: the position's, the home's and the circle's conversion (`* k` as
+// `/ k`, `+ k`) and `IPR`, `MMPR` (`||` as `&&`) survived.
 #[test]
 fn units_keep_the_position_and_the_circle_held_and_ipr_is_inches() {
     let (p, _) = read_all("GOTO/25.4,0,0\nUNITS/INCHES\nGODLTA/1,0,0\n", A, None);
@@ -362,6 +363,15 @@ fn units_keep_the_position_and_the_circle_held_and_ipr_is_inches() {
         &Vector3::new(25.4, 25.4, 0.0),
         1e-12,
         "end",
+    );
+    // GOHOME after a unit change returns to the FROM/ point where it physically is.
+    let (p, _) = read_all("FROM/25.4,0,0\nGOTO/0,0,0\nUNITS/INCHES\nGOHOME\n", A, None);
+    close_vec(&p[2].tip, &Vector3::new(25.4, 0.0, 0.0), 1e-12, "GOHOME");
+    let (_, r) = read_all("GOTO/1,0,0\nFEDRAT/0.1,MMPR\n", A, None);
+    assert_eq!(
+        r.unit_reason,
+        "millimetres: FEDRAT/MMPR (a feed in millimetres) on line 2 (the file states no length \
+         unit; change it beside the file if this is wrong)"
     );
     let (p, r) = read_all("GOTO/1,0,0\nFEDRAT/0.004,IPR\n", A, None);
     assert_eq!(r.unit, LengthUnit::Inch);
