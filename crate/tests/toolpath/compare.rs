@@ -10,7 +10,11 @@ use common::toolpath::tilted;
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::{analyse, compare, follow, machine_of_type, refine, slerp};
+use fiveaxis::toolpath::read::Motion;
+use fiveaxis::toolpath::{
+    analyse, analyse_path, compare, follow, follow_commands, machine_of_type, refine, refine_path,
+    slerp, Commands, Path,
+};
 use nalgebra::Vector3;
 use serde_json::json;
 
@@ -520,4 +524,173 @@ fn a_path_from_javascript_is_checked_number_by_number() {
     assert_eq!(ok.tips[1], Vector3::new(10.0, 0.0, 0.0));
     assert_eq!(ok.commands.as_ref().unwrap().0[1], [10.0, 5.0]);
     assert_eq!(ok.commands.unwrap().1, rtype("CAZ"));
+}
+
+/// A program's commands are followed to the ends of their travel, and within the travel's
+/// tolerance (10⁻⁹ rad) beyond: A from −120° to 30°, commanded at 30°, −120° and 30° + 5·10⁻⁸°
+/// (8.7·10⁻¹⁰ rad); 2·10⁻⁷° (3.5·10⁻⁹ rad) beyond either end is outside, and the message says
+/// where.
+// Found by cargo-mutants: the travel's tolerance (`lo − tol` as `lo + tol`, `hi + tol` as
+// `hi − tol`, `hi · tol`) survived.
+#[test]
+fn commands_are_followed_to_the_ends_of_their_travel() {
+    let m = machine_of_type(
+        &machine(json!({"rotary": {"mFrom": -120, "mTo": 30}})),
+        rtype("CAZ"),
+    )
+    .build()
+    .unwrap();
+    let inside = [[0.0, 30.0], [10.0, -120.0], [0.0, 30.0 + 5e-8]];
+    let f = follow_commands(&m, &inside);
+    assert!(f.unreachable.is_none(), "{:?}", f.unreachable);
+    let m_deg: Vec<f64> = inside.iter().map(|a| a[1].to_radians()).collect();
+    assert_eq!(f.m, m_deg);
+    for (a, end) in [(30.0 + 2e-7, "30"), (-120.0 - 2e-7, "-120")] {
+        let f = follow_commands(&m, &[[0.0, 0.0], [0.0, a]]);
+        let (at, why) = f.unreachable.unwrap();
+        assert_eq!((at, f.m.len()), (1, 1), "{a}");
+        assert!(
+            why.starts_with(&format!(
+                "commanded A = {end}°, outside the travel of A (-120° to 30°)"
+            )),
+            "{why}"
+        );
+    }
+}
+
+/// The rapids of a path on one machine, by their commands (C/A, L = 100 mm): K turning 20° at
+/// A = 25° (a cone: δ > 0), A turning −15° alone (a great circle), a rapid that turns nothing,
+/// and the first rapid again. Three swing the rotary axes; the largest swing of K is 20°, of
+/// M 15°; the largest δ is the first of the two equal ones; each rapid move lists its segment,
+/// its signed turns and its δ, against dense sampling of the move.
+// Found by cargo-mutants: the rapids' swings (`||` as `&&`, `>` as `==` or `<`), M's swing (`−`
+// as `+`), the first of equal maxima (`>` as `>=`) and `rapid_moves` (its turns, or none)
+// survived.
+#[test]
+fn the_rapids_are_counted_with_their_swings_and_listed() {
+    let t = rtype("CAZ");
+    let m = machine_of_type(&machine(json!({})), t).build().unwrap();
+    let deg = [
+        [0.0, 25.0],
+        [20.0, 25.0],
+        [20.0, 25.0],
+        [20.0, 10.0],
+        [20.0, 10.0],
+        [0.0, 25.0],
+        [20.0, 25.0],
+    ];
+    let motions = [
+        Motion::Feed,
+        Motion::Rapid,
+        Motion::Feed,
+        Motion::Rapid,
+        Motion::Rapid,
+        Motion::Feed,
+        Motion::Rapid,
+    ];
+    let axes: Vec<Vector3<f64>> = deg
+        .iter()
+        .map(|a| common::toolpath::caz(a[0], a[1]))
+        .collect();
+    let path = Path {
+        axes: &axes,
+        motions: Some(&motions),
+        commands: Some(Commands {
+            angles: &deg,
+            rtype: t,
+        }),
+    };
+    let a = analyse_path(&m, &path, 100.0, 0.01).unwrap();
+    let r = &a.summary.rapids;
+    assert_eq!((r.count, r.swings), (4, 3));
+    assert!(
+        (r.k_swing - 20f64.to_radians()).abs() < 1e-15,
+        "{}",
+        r.k_swing
+    );
+    assert!(
+        (r.m_swing - 15f64.to_radians()).abs() < 1e-15,
+        "{}",
+        r.m_swing
+    );
+    let rad = |x: f64| x.to_radians();
+    let cone = dense_delta(
+        t,
+        (1.0, 1.0),
+        (0.0, rad(25.0)),
+        (rad(20.0), rad(25.0)),
+        100.0,
+    );
+    assert!(cone > 0.1, "{cone}");
+    assert!(
+        (r.max - cone).abs() < 1e-4 * cone,
+        "{} against {cone}",
+        r.max
+    );
+    assert_eq!(r.max_segment, 0);
+    let moves: Vec<_> = a
+        .rapid_moves()
+        .iter()
+        .map(|v| {
+            (
+                v.segment,
+                v.k_turn.to_degrees().round(),
+                v.m_turn.to_degrees().round(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        moves,
+        [
+            (0, 20.0, 0.0),
+            (2, 0.0, -15.0),
+            (3, 0.0, 0.0),
+            (5, 20.0, 0.0)
+        ]
+    );
+    let ex: Vec<f64> = a.rapid_moves().iter().map(|v| v.excursion).collect();
+    assert_eq!(ex[0], r.max);
+    assert_eq!(ex[3], ex[0]);
+    // The great circle's δ is 0 to rounding; the move that turns nothing measures the chord
+    // |P − V₀| as √(2 − 2 P·V₀), which the rounding of |V₀|² (10⁻¹⁶) makes √(2·10⁻¹⁶)·L ≈ 1.5 nm.
+    assert!(ex[1] < 1e-9 && ex[2] < 2e-6, "{ex:?}");
+}
+
+/// Refining a path the program commands keeps the program's commands: C commanded from 0° to
+/// 350° at A = 30° in one cutting block swings C round though the tool turns 10° the other way;
+/// pieces that follow the tool (C to −10°) would not be the program's, so the segment is left as
+/// it is and listed. A tool axis of zero is refused with the point's path.
+// Found by cargo-mutants: the check that the pieces end at the commanded angles (the guard as
+// `true`, `&&` as `||`) and the point's index in an error (`i + 1` as `i · 1`) survived.
+#[test]
+fn refining_keeps_the_program_s_commands() {
+    let t = rtype("CAZ");
+    let m = machine_of_type(&machine(json!({})), t).build().unwrap();
+    let deg = [[0.0, 30.0], [350.0, 30.0]];
+    let axes: Vec<Vector3<f64>> = deg
+        .iter()
+        .map(|a| common::toolpath::caz(a[0], a[1]))
+        .collect();
+    let path = Path {
+        axes: &axes,
+        motions: None,
+        commands: Some(Commands {
+            angles: &deg,
+            rtype: t,
+        }),
+    };
+    let tips = [Vector3::zeros(), Vector3::x()];
+    let r = refine_path(&m, &tips, &path, 100.0, 0.01).unwrap();
+    assert_eq!((r.added, r.unfixed.clone()), (0, vec![0]));
+    assert_eq!(r.k, [0.0, 350f64.to_radians()]);
+    let tips = [Vector3::zeros(); 3];
+    let e = refine(
+        &m,
+        &tips,
+        &[Vector3::z(), Vector3::x(), Vector3::zeros()],
+        100.0,
+        0.01,
+    )
+    .unwrap_err();
+    assert_eq!(e.field, "points[2]", "{e}");
 }
