@@ -9,9 +9,10 @@ use common::toolpath::tilted;
 use fiveaxis::machine::Machine;
 use fiveaxis::rotary::{Pose, RotaryType};
 use fiveaxis::schema::Inputs;
-use fiveaxis::toolpath::read::Format;
+use fiveaxis::toolpath::read::{AptFrameChoice, Format, Motion, ReadOptions, UnitChoice};
 use fiveaxis::toolpath::{
-    analyse, arc_distance, machine_of_type, refine, slerp, ToolpathCase, ToolpathReadInput,
+    analyse, analyse_path, arc_distance, machine_of_type, refine, slerp, Commands, Path,
+    ToolpathCase, ToolpathReadInput,
 };
 use nalgebra::Vector3;
 use serde_json::json;
@@ -295,4 +296,68 @@ fn refined_tips_are_the_given_ones_and_equal_steps_between_them() {
     assert_eq!(err.field, "points");
     let err = refine(&m, &tips, &axes[..2], 200.0, 0.01).unwrap_err();
     assert_eq!(err.field, "points");
+}
+
+/// A toolpath input checks its machine as it is read (a travel of A from 30° to −10° is
+/// refused at `machine.rotary.mTo`), the reader's options are the ones given, and a path's
+/// motions and commands must be one per point and finite, each refused with its field.
+// Found by cargo-mutants: the inputs' checks (`check` as `Ok(())`), `options` (as the
+// defaults) and `Path::check` survived: the binding's tests call them only under WebAssembly.
+#[test]
+fn toolpath_inputs_check_their_machine_options_and_path() {
+    let bad = json!({ "rotary": { "mFrom": 30, "mTo": -10 } });
+    let e = ToolpathReadInput::read(&json!({ "machine": bad })).unwrap_err();
+    assert_eq!(e.field, "machine.rotary.mTo", "{e}");
+    let e = ToolpathCase::read(&json!({ "machine": bad })).unwrap_err();
+    assert_eq!(e.field, "machine.rotary.mTo", "{e}");
+    let o = ToolpathReadInput::read(&json!({
+        "unit": "inch", "chordTolerance": 0.005, "aptFrame": "ignore"
+    }))
+    .unwrap()
+    .options();
+    assert_eq!(
+        o,
+        ReadOptions {
+            unit: UnitChoice::Inch,
+            chord_tolerance: 0.005,
+            apt_frame: AptFrameChoice::Ignore
+        }
+    );
+    let m = Machine::standard().unwrap().build().unwrap();
+    let axes = [Vector3::z(), Vector3::new(0.0, 0.1, 1.0).normalize()];
+    let rtype = m.layout.rtype;
+    let refused = |path: Path, field: &str| {
+        let e = analyse_path(&m, &path, 100.0, 0.01).unwrap_err();
+        assert_eq!(e.field, field, "{e}");
+    };
+    refused(
+        Path {
+            axes: &axes,
+            motions: Some(&[Motion::Feed]),
+            commands: None,
+        },
+        "motions",
+    );
+    refused(
+        Path {
+            axes: &axes,
+            motions: None,
+            commands: Some(Commands {
+                angles: &[[0.0, 0.0]],
+                rtype,
+            }),
+        },
+        "angles",
+    );
+    refused(
+        Path {
+            axes: &axes,
+            motions: None,
+            commands: Some(Commands {
+                angles: &[[0.0, 0.0], [f64::NAN, 0.0]],
+                rtype,
+            }),
+        },
+        "angles[1]",
+    );
 }
