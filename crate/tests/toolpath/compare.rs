@@ -560,7 +560,7 @@ fn commands_are_followed_to_the_ends_of_their_travel() {
 
 /// The rapids of a path on one machine, by their commands (C/A, L = 100 mm): K turning 20° at
 /// A = 25° (a cone: δ > 0), A turning −15° alone (a great circle), a rapid that turns nothing,
-/// and the first rapid again. Three swing the rotary axes; the largest swing of K is 20°, of
+/// and the first two rapids again. Four swing the rotary axes; the largest swing of K is 20°, of
 /// M 15°; the largest δ is the first of the two equal ones; each rapid move lists its segment,
 /// its signed turns and its δ, against dense sampling of the move.
 // Found by cargo-mutants: the rapids' swings (`||` as `&&`, `>` as `==` or `<`), M's swing (`−`
@@ -578,6 +578,7 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
         [20.0, 10.0],
         [0.0, 25.0],
         [20.0, 25.0],
+        [20.0, 10.0],
     ];
     let motions = [
         Motion::Feed,
@@ -586,6 +587,7 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
         Motion::Rapid,
         Motion::Rapid,
         Motion::Feed,
+        Motion::Rapid,
         Motion::Rapid,
     ];
     let axes: Vec<Vector3<f64>> = deg
@@ -602,7 +604,7 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
     };
     let a = analyse_path(&m, &path, 100.0, 0.01).unwrap();
     let r = &a.summary.rapids;
-    assert_eq!((r.count, r.swings), (4, 3));
+    assert_eq!((r.count, r.swings), (5, 4));
     assert!(
         (r.k_swing - 20f64.to_radians()).abs() < 1e-15,
         "{}",
@@ -645,7 +647,8 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
             (0, 20.0, 0.0),
             (2, 0.0, -15.0),
             (3, 0.0, 0.0),
-            (5, 20.0, 0.0)
+            (5, 20.0, 0.0),
+            (6, 0.0, -15.0)
         ]
     );
     let ex: Vec<f64> = a.rapid_moves().iter().map(|v| v.excursion).collect();
