@@ -543,8 +543,8 @@ fn commands_are_followed_to_the_ends_of_their_travel() {
     let inside = [[0.0, 30.0], [10.0, -120.0], [0.0, 30.0 + 5e-8]];
     let f = follow_commands(&m, &inside);
     assert!(f.unreachable.is_none(), "{:?}", f.unreachable);
-    let m_deg: Vec<f64> = inside.iter().map(|a| a[1].to_radians()).collect();
-    assert_eq!(f.m, m_deg);
+    let m_rad: Vec<f64> = inside.iter().map(|a| a[1].to_radians()).collect();
+    assert_eq!(f.m, m_rad);
     for (a, end) in [(30.0 + 2e-7, "30"), (-120.0 - 2e-7, "-120")] {
         let f = follow_commands(&m, &[[0.0, 0.0], [0.0, a]]);
         let (at, why) = f.unreachable.unwrap();
@@ -655,7 +655,7 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
     assert_eq!(ex[0], r.max);
     assert_eq!(ex[3], ex[0]);
     // The great circle's δ is 0 to rounding; the move that turns nothing measures the chord
-    // |P − V₀| as √(2 − 2 P·V₀), which the rounding of |V₀|² (10⁻¹⁶) makes √(2·10⁻¹⁶)·L ≈ 1.5 nm.
+    // |P − V₀| as √(2 − 2 P·V₀), which the rounding of |V₀|² (10⁻¹⁶) makes √(2·10⁻¹⁶)·L ≈ 1.4 nm.
     assert!(ex[1] < 1e-9 && ex[2] < 2e-6, "{ex:?}");
 }
 

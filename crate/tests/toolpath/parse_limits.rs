@@ -33,6 +33,8 @@ fn the_first_telling_line_decides_the_format() {
     let cases = [
         ("PARTNO my part\n", Format::Apt),
         ("PPRINT made by hand\n", Format::Apt),
+        // Creo's REMARK before numbers: the REMARK decides.
+        ("REMARK x\n1,2,3\n", Format::Apt),
         ("pprint lower case\n", Format::Apt),
         ("FEDRAT 100\nN10 G1 X1\n", Format::Nc),
         ("GOTO next\nN10 G1 X1\n", Format::Nc),
@@ -88,6 +90,22 @@ fn comments_and_lines_after_the_first_detect_lines_decide_nothing() {
     let comments = |n: usize| format!("{}N10 G1 X1\n", "# x\n".repeat(n - 1));
     assert_eq!(Format::detect(&comments(DETECT_LINES)), Format::Nc);
     assert_eq!(Format::detect(&comments(DETECT_LINES + 1)), Format::Csv);
+    // Lines are counted as the readers count them: `\r\n` (Windows), `\r` and `\n` each end
+    // one line, so a Windows file's line 2000 still decides.
+    for end in ["\r\n", "\r", "\n"] {
+        let at = |n: usize| format!("{}G1 X1{end}", end.repeat(n - 1));
+        assert_eq!(Format::detect(&at(DETECT_LINES)), Format::Nc, "{end:?}");
+        assert_eq!(
+            Format::detect(&at(DETECT_LINES + 1)),
+            Format::Csv,
+            "{end:?}"
+        );
+    }
+    // `\r\r\n` is two line ends (a `\r`, then a `\r\n`).
+    let mixed = format!("{}G1 X1\n", "\r\r\n".repeat(DETECT_LINES / 2));
+    assert_eq!(Format::detect(&mixed), Format::Csv);
+    let mixed = format!("{}G1 X1\n", "\r\r\n".repeat(DETECT_LINES / 2 - 1));
+    assert_eq!(Format::detect(&mixed), Format::Nc);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -387,10 +387,11 @@ fn units_keep_the_position_and_the_circle_held_and_ipr_is_inches() {
 /// The numbers of a statement and their limits: a point beyond ±100 000 mm is refused at its
 /// line, after the output frame is applied (50 000 mm in an MSYS/ frame 60 000 mm along X is
 /// 110 000 mm); 100 000 mm itself is within. A `CIRCLE/` radius must be above 0 and its centre
-/// within the range. An error names the column of the field that is wrong, and a 7th number
-/// of a `GOTO/` is one too many, whatever it is; a statement with no numbers where one is
-/// needed names its empty field. A line of numbers after a comment that does not end in `$` is
-/// no statement.
+/// within the range. An error names the column of the field that is wrong (a `CIRCLE/`'s
+/// radius or centre: the start of its arguments, column 8, as the circle is read whole), and a
+/// 7th number of a `GOTO/` is one too many, whatever it is; a statement with no numbers where
+/// one is needed names its empty field. A line of numbers after a comment that does not end in
+/// a single `$` (none, or `$$` closing it) is no statement.
 // Found by cargo-mutants: the range checks (`>` as `>=`, `==`; `||` as `&&`), the fields'
 // offsets (`+` as `-`), the count of numbers read (`<` as `<=`) and a comment's continuation
 // (`continues` always true) survived.
@@ -487,12 +488,14 @@ fn numbers_ranges_and_columns() {
             what,
         );
     }
-    at(
-        &error("$$ a comment\n10,20,30\n", A, None),
-        2,
-        1,
-        "expected an APT statement such as GOTO/x,y,z,i,j,k, got \"10\"",
-    );
+    for text in ["$$ a comment\n10,20,30\n", "$$ --- $$\n10,20,30\n"] {
+        at(
+            &error(text, A, None),
+            2,
+            1,
+            "expected an APT statement such as GOTO/x,y,z,i,j,k, got \"10\"",
+        );
+    }
 }
 
 #[test]

@@ -333,6 +333,19 @@ fn tcp_switched_off_with_the_axes_turned_is_noted() {
             "FUNCTION RESET TCPM",
             5,
         ),
+        // In a block that moves in machine coordinates (M91), M129 still acts.
+        (
+            &[
+                "L X+0 Y+0 Z+0 R0 FMAX",
+                "M128",
+                "L A+10 C+30 F500",
+                "L Z+100 R0 FMAX M91 M129",
+                "L X+10 Y+0 Z+50 F500",
+            ][..],
+            5,
+            "M129",
+            6,
+        ),
     ] {
         let (_, r) = read_all(&program(blocks), H, Some(&m));
         let n = note(&r, "switches tool-centre-point control off");

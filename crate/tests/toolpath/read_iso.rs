@@ -207,7 +207,20 @@ fn tool_centre_point_control_is_reported_where_it_is_switched_on() {
     // Without it, rotary axes turning are noted: X Y Z are then the machine's positions.
     let (_, r) = read_all("G0 X0 Y0 Z0 C0 A0\nG1 C10 A10\n", Format::Nc, Some(&m));
     assert_eq!(r.tcp, None);
-    assert_eq!(note(&r, "without tool-centre-point control").line, 2);
+    assert_eq!(
+        note(&r, "turn while tool-centre-point control is off").line,
+        2
+    );
+    // So is an arc whose chords turn C a whole turn, though it ends where C is at 0°.
+    let (_, r) = read_all(
+        "G0 X0 Y0 Z0 C0 A0\nG2 X10 Y0 I5 J0 C360\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert_eq!(
+        note(&r, "turn while tool-centre-point control is off").line,
+        2
+    );
     // Turned where X Y Z are not known, the note waits for a point: none when tool-centre-point
     // control is switched on first (`G0 B-22.201 C1.05` then `G234`, as NX's Haas post writes
     // it), nor when the point is in a tilted plane; else it names the first turn's line.
@@ -310,11 +323,40 @@ fn tool_centre_point_control_switched_off_with_the_axes_turned_is_noted() {
         "G43.4 H1\nG0 X0 Y0 Z0 C0 A0\nG49\nG1 X10\n",
         // No point after it.
         "G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nM30\n",
-        // In a tilted working plane the tilt sets the axes.
+        // In a tilted working plane the tilt sets the axes, turned by the rotary words or not.
         "G68.2 X0 Y0 Z0 I0 J30 K0\nG53.1\nG43.4 H1\nG0 X0 Y0 Z0\nG49\nG1 X10\n",
+        "G68.2 X0 Y0 Z0 I0 J30 K0\nG53.1\nG43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nG1 X10\n",
     ] {
-        assert_eq!(tcp_notes(text), [], "{text:?}");
+        let notes = tcp_notes(text);
+        assert!(
+            notes.iter().all(|n| !n.1.contains("control off")),
+            "{text:?}: {notes:?}"
+        );
     }
+    let only = |text: &str| {
+        let notes = tcp_notes(text);
+        let off: Vec<_> = notes
+            .iter()
+            .filter(|n| n.1.contains("control off"))
+            .collect();
+        assert_eq!(off.len(), 1, "{text:?}: {notes:?}");
+        off[0].clone()
+    };
+    // Switched off in the tilted plane with the axes turned, the points after the plane's
+    // cancel (G69) are the machine's: the note waits for the first of them.
+    let (line, said) = only(
+        "G68.2 X0 Y0 Z0 I0 J30 K0\nG53.1\nG43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG49\nG1 X10\nG69\n\
+         G1 X20\n",
+    );
+    assert!(line == 5 && said.contains("line 8 moves"), "{line} {said}");
+    // M129 acts at the end of its block (iTNC 530 DIN/ISO p.290): its block's move is still
+    // under the control, the next one is not.
+    let (line, said) = only("G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG1 X5 M129\nG1 X10\n");
+    assert!(line == 3 && said.contains("line 4 moves"), "{line} {said}");
+    // An arc's chords carry the angles between its ends: one that turns from 30° to 0° after
+    // the control is off is noted though it ends at 0°.
+    let (line, said) = only("G43.4 H1\nG0 X0 Y0 Z0 C30 A0\nG49\nG2 X10 Y0 I5 J0 C0\n");
+    assert!(line == 3 && said.contains("line 4 moves"), "{line} {said}");
     // Turned without the control and back at 0° before any point: the point is right, no note.
     assert_eq!(
         tcp_notes("G28 X0 Y0 Z0\nG0 C10 A5\nG0 C0 A0\nG0 X0 Y0 Z0\n"),

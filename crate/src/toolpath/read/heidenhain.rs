@@ -669,13 +669,13 @@ impl Heidenhain {
                 };
                 log.note("hei-machine", NoteKind::Break, no, || format!("line {no}: {what}, to positions the file does not relate to the part: the path breaks until each axis is given again"));
             }
-            return Ok(());
+        } else {
+            core.execute(&b, loc, log, out)?;
         }
-        core.execute(&b, loc, log, out)?;
         if tcp_off {
             core.set_tcp(false, no, "M129", log);
         }
-        if cycle_call {
+        if cycle_call && !(machine || retract) {
             self.cycle_called(no, log, " at the block's end point");
         }
         Ok(())

@@ -291,8 +291,27 @@ impl Iso {
         self.words(core, toks, &loc, no, log, out)
     }
 
-    /// The words of one block.
+    /// The words of one block. `M129` switches tool-centre-point control off at the end of its
+    /// block (iTNC 530 DIN/ISO p.290): the block's own move is still under it.
     fn words(
+        &mut self,
+        core: &mut Core,
+        toks: Vec<Tok>,
+        loc: &Loc,
+        no: u32,
+        log: &mut Log,
+        out: &mut Vec<Point>,
+    ) -> Result<()> {
+        let m129 = toks.iter().any(|t| t.letter == 'M' && g10(t.value) == 1290);
+        self.block_words(core, toks, loc, no, log, out)?;
+        if m129 {
+            core.set_tcp(false, no, "M129", log);
+        }
+        Ok(())
+    }
+
+    /// [`Iso::words`] but `M129`.
+    fn block_words(
         &mut self,
         core: &mut Core,
         toks: Vec<Tok>,
@@ -532,7 +551,7 @@ impl Iso {
                     log.skip("program ends (M2, M30, M99)", no);
                 }
                 1280 => core.set_tcp(true, no, "M128", log),
-                1290 => core.set_tcp(false, no, "M129", log),
+                1290 => {} // at the end of the block (`words`)
                 // LinuxCNC's switchable-kinematics configurations (configs/sim/axis/vismach/
                 // 5axis demos): `M428 ;TCP:xyzac`, `M429 ;Restore Trivkins`.
                 4280 => core.set_tcp(

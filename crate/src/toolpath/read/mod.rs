@@ -140,20 +140,24 @@ impl Format {
     /// [`DETECT_LINES`] lines decide). Lines are read in order:
     /// * the first telling line decides between APT, NC and CSV: a `$$` comment or an APT
     ///   statement (a word of two or more letters, spaces allowed, followed by `/`: `GOTO/`,
-    ///   `TOOL PATH/`; or `RAPID`, `FINI`, `MULTAX`, `PARTNO …` alone) is APT; a line
-    ///   starting with `%`, `(`, `;`, a block number or a letter and a number (`N10`, `G90`,
-    ///   `O1000`) is NC; a line starting with a digit, sign or point is CSV, unless it is a
-    ///   Heidenhain block (`0 BEGIN PGM`, `12 L X+10 FMAX`);
+    ///   `TOOL PATH/`; or `RAPID`, `FINI`, `MULTAX` alone, `PARTNO`, `PPRINT` or `REMARK` and
+    ///   text) is APT; a line starting with `%`, `(`, `;`, a block number or a letter and a
+    ///   number (`N10`, `G90`, `O1000`) is NC; a line starting with a digit, sign or point is
+    ///   CSV, unless it is a Heidenhain block (`0 BEGIN PGM`, `12 L X+10 FMAX`);
     /// * NC text is then Heidenhain when any line is a Heidenhain statement (`BEGIN PGM`,
     ///   `TOOL CALL`, `CYCL DEF`, an `L`, `C`, `CC` or `CR` block, `FMAX`), Siemens when any line
     ///   holds a keyword only Sinumerik uses (`TRAORI`, `TRAFOOF`, `DEF REAL`, `R1=`, `MSG(`,
     ///   `CYCLE800(`, `AROT`, `G500`, `%_N_`, `X=` assignments …), else ISO.
     ///
     /// Blank lines, `#` comments and CSV headers decide nothing; without a telling line the
-    /// answer is [`Format::Csv`].
+    /// answer is [`Format::Csv`]. A line ends at `\n`, `\r` or both (`\r\n` is one end, as the
+    /// readers count lines).
     pub fn detect(first_text: &str) -> Format {
         let mut nc = false;
-        for (n, raw) in first_text.split(['\n', '\r']).enumerate() {
+        let lines = first_text
+            .split('\n')
+            .flat_map(|l| l.strip_suffix('\r').unwrap_or(l).split('\r'));
+        for (n, raw) in lines.enumerate() {
             let l = raw.trim_start_matches('\u{feff}').trim();
             if n >= DETECT_LINES {
                 break;

@@ -359,8 +359,8 @@ impl Core {
     }
 
     /// Switches tool-centre-point control on or off (`what` on `line`, for the report and the
-    /// notes). Switched off with the rotary axes turned (outside a tilted working plane), the
-    /// points after it are the machine's positions until the control is on again or the axes
+    /// notes). Switched off with the rotary axes turned, the points after it (outside a tilted
+    /// working plane) are the machine's positions until the control is on again or the axes
     /// are back at 0°: the first one reached that way is noted.
     pub fn set_tcp(&mut self, on: bool, line: u32, what: &str, log: &mut Log) {
         if on && !self.tcp && log.tcp.is_none() {
@@ -368,7 +368,7 @@ impl Core {
         }
         if on {
             self.untracked = None;
-        } else if self.tcp && !self.tilted && turned(self.pos[3], self.pos[4]) {
+        } else if self.tcp && turned(self.pos[3], self.pos[4]) {
             let angles = [self.pos[3], self.pos[4]];
             self.untracked = Some(Untracked::Off(line, what.to_string(), angles));
         }
@@ -473,10 +473,15 @@ impl Core {
         // control on (`G0 B-22.2 C1.05` then `G234`), with X Y Z not yet given; at 0° the
         // machine's frame is the workpiece's. In a tilted working plane the points are in the
         // plane's frame, and the turn its setting.
-        let reached = self
-            .untracked
-            .take()
-            .filter(|_| !self.tilted && turned(new[3], new[4]));
+        // An arc's chords carry angles between its ends: one that turns is noted even when it
+        // ends at 0°. In the tilted plane the pending note waits for the plane's cancel.
+        let reached = if self.tilted {
+            None
+        } else {
+            self.untracked
+                .take()
+                .filter(|_| turned(new[3], new[4]) || (arc_mode && rotary_moves))
+        };
         let [kl, ml] = self.letters;
         let then =
             "X Y Z are then the machine's axis positions, not the tool tip on the part. The \
@@ -485,8 +490,9 @@ impl Core {
         match reached {
             Some(Untracked::Turned(line)) => log.note("no-tcp", NoteKind::Tcp, line, || {
                 format!(
-                    "line {line}: the rotary axes ({kl}, {ml}) turn without tool-centre-point \
-                     control (no G43.4, G234, TRAORI, M128 or FUNCTION TCPM before it): {then}"
+                    "line {line}: the rotary axes ({kl}, {ml}) turn while tool-centre-point \
+                     control is off (G43.4, G234, TRAORI, M128 or FUNCTION TCPM switch it on): \
+                     {then}"
                 )
             }),
             Some(Untracked::Off(line, what, [k, m])) => {
@@ -494,8 +500,8 @@ impl Core {
                 log.note("tcp-off", NoteKind::Tcp, line, || {
                     format!(
                         "line {line}: {what} switches tool-centre-point control off with the \
-                         rotary axes turned ({kl} {}°, {ml} {}°), and line {moved} moves before \
-                         it is on again or the axes are back at 0°: {then}",
+                         rotary axes turned ({kl} {}°, {ml} {}°), and line {moved} moves with \
+                         the control off and the axes still turned: {then}",
                         round(k),
                         round(m)
                     )
