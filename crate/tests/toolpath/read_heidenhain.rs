@@ -358,8 +358,25 @@ fn tcp_switched_off_with_the_axes_turned_is_noted() {
             n.text
         );
     }
-    let (_, r) = read_all(
-        &program(&[
+    // Switched off in a tilted plane with the axes turned: noted after PLANE RESET STAY (the
+    // axes stay turned), not after PLANE RESET TURN or MOVE (the control turns them back to 0°:
+    // TNC 640 User's Manual, PLANE RESET).
+    let tilted = |reset: &str| {
+        program(&[
+            "L X+0 Y+0 Z+100 R0 FMAX",
+            "M128",
+            "PLANE SPATIAL SPA+30 SPB+0 SPC+0 STAY",
+            "L A+30 C+0 F500",
+            "M129",
+            reset,
+            "L X+10 Y+0 Z+100 R0 FMAX",
+        ])
+    };
+    let (_, r) = read_all(&tilted("PLANE RESET STAY"), H, Some(&m));
+    let n = note(&r, "switches tool-centre-point control off");
+    assert!(n.line == 6 && n.text.contains("line 8 moves"), "{}", n.text);
+    for text in [
+        program(&[
             "L X+0 Y+0 Z+0 R0 FMAX",
             "M128",
             "L A+10 C+30 F500",
@@ -367,14 +384,30 @@ fn tcp_switched_off_with_the_axes_turned_is_noted() {
             "L A+0 C+0 R0 FMAX",
             "L X+10 F500",
         ]),
+        tilted("PLANE RESET TURN FMAX"),
+        tilted("PLANE RESET MOVE DIST50 FMAX"),
+    ] {
+        let (_, r) = read_all(&text, H, Some(&m));
+        assert!(
+            r.notes
+                .iter()
+                .all(|n| n.kind != NoteKind::Tcp || n.text.contains("tilted")),
+            "{text}: {:?}",
+            r.notes
+        );
+    }
+    // From 0° after PLANE RESET TURN, an incremental turn starts at 0°.
+    let (p, _) = read_all(
+        &program(&[
+            "L X+0 Y+0 Z+0 A+10 C+30 R0 FMAX",
+            "PLANE SPATIAL SPA+30 SPB+0 SPC+0 STAY",
+            "PLANE RESET TURN FMAX",
+            "L IC+10 X+1 R0 FMAX",
+        ]),
         H,
         Some(&m),
     );
-    assert!(
-        r.notes.iter().all(|n| n.kind != NoteKind::Tcp),
-        "{:?}",
-        r.notes
-    );
+    assert_eq!(p.last().unwrap().angles, Some([10.0, 0.0]));
 }
 
 #[test]

@@ -75,7 +75,7 @@ use nalgebra::Vector3;
 /// Whether a (trimmed) line is an APT statement, for [`super::Format::detect`]: a `$$`
 /// comment, a major word of two or more letters (spaces and `-` allowed) followed by `/`, or a
 /// word that stands alone in APT (`RAPID`, `FINI` or `MULTAX`, and `PARTNO`, `PPRINT` or
-/// `REMARK` followed by text).
+/// `REMARK`, alone or followed by text).
 pub(super) fn is_statement(l: &str) -> bool {
     if l.starts_with("$$") {
         return true;

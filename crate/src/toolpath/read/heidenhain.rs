@@ -33,7 +33,8 @@
 //!   around the A axis, then B, and then C"), `PLANE EULER EULPR EULNU EULROT` (Z, X′, Z″),
 //!   `PLANE VECTOR BX BY BZ NX NY NZ` (base vector the x axis, normal the tool axis),
 //!   `PLANE RELATIV SPA|SPB|SPC` (one more turn about the tilted axis), `PLANE RESET`. In a tilted
-//!   plane the tool axis is its z axis.
+//!   plane the tool axis is its z axis. `PLANE RESET MOVE` or `TURN` turns the rotary axes back
+//!   to 0° (`STAY` leaves them).
 //! * `M91`/`M92` (machine coordinates) and `M140` (retract along the tool axis): the axes go
 //!   where the file does not say; the path breaks until they are given again (a note).
 //! * `CALL LBL n` (a subprogram up to `LBL 0`) and `CALL LBL n REP m` (repeats the part from
@@ -1112,7 +1113,13 @@ impl Heidenhain {
         };
         let deg = |x: f64| x.to_radians();
         let r = match kind {
-            "RESET" => None,
+            "RESET" => {
+                if words.iter().any(|w| matches!(*w, "MOVE" | "TURN")) {
+                    core.pos[3] = 0.0;
+                    core.pos[4] = 0.0;
+                }
+                None
+            }
             "SPATIAL" => {
                 let (a, b, c) = (need("SPA")?, need("SPB")?, need("SPC")?);
                 Some(rotation(Axis::Z, deg(c)) * rotation(Axis::Y, deg(b)) * rotation(Axis::X, deg(a)))

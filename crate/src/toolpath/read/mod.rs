@@ -141,7 +141,7 @@ impl Format {
     /// * the first telling line decides between APT, NC and CSV: a `$$` comment or an APT
     ///   statement (a word of two or more letters, spaces allowed, followed by `/`: `GOTO/`,
     ///   `TOOL PATH/`; or `RAPID`, `FINI`, `MULTAX` alone, `PARTNO`, `PPRINT` or `REMARK` and
-    ///   text) is APT; a line starting with `%`, `(`, `;`, a block number or a letter and a
+    ///   any text) is APT; a line starting with `%`, `(`, `;`, a block number or a letter and a
     ///   number (`N10`, `G90`, `O1000`) is NC; a line starting with a digit, sign or point is
     ///   CSV, unless it is a Heidenhain block (`0 BEGIN PGM`, `12 L X+10 FMAX`);
     /// * NC text is then Heidenhain when any line is a Heidenhain statement (`BEGIN PGM`,
@@ -150,8 +150,8 @@ impl Format {
     ///   `CYCLE800(`, `AROT`, `G500`, `%_N_`, `X=` assignments …), else ISO.
     ///
     /// Blank lines, `#` comments and CSV headers decide nothing; without a telling line the
-    /// answer is [`Format::Csv`]. A line ends at `\n`, `\r` or both (`\r\n` is one end, as the
-    /// readers count lines).
+    /// answer is [`Format::Csv`]. A line ends at `\n` or `\r`, and a `\r` followed by `\n` is
+    /// one end, as the readers count lines.
     pub fn detect(first_text: &str) -> Format {
         let mut nc = false;
         let lines = first_text

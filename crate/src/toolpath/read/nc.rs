@@ -201,8 +201,9 @@ pub(super) struct Core {
     /// Heidenhain M126 is on.
     pub shortest: bool,
     /// Why the next point reached without tool-centre-point control may be the machine's
-    /// position and not the tip on the part, until a point is reached (then the reader says so,
-    /// when the rotary axes are turned there) or the control is switched on first.
+    /// position and not the tip on the part, until a point is reached outside a tilted plane
+    /// (then the reader says so, when the rotary axes are turned there or an arc turns them on
+    /// its way) or the control is switched on first.
     pub untracked: Option<Untracked>,
 }
 
@@ -491,7 +492,7 @@ impl Core {
             Some(Untracked::Turned(line)) => log.note("no-tcp", NoteKind::Tcp, line, || {
                 format!(
                     "line {line}: the rotary axes ({kl}, {ml}) turn while tool-centre-point \
-                     control is off (G43.4, G234, TRAORI, M128 or FUNCTION TCPM switch it on): \
+                     control is off (G43.4, G43.5, G234, TRAORI, M128, FUNCTION TCPM … switch it on): \
                      {then}"
                 )
             }),
@@ -501,7 +502,7 @@ impl Core {
                     format!(
                         "line {line}: {what} switches tool-centre-point control off with the \
                          rotary axes turned ({kl} {}°, {ml} {}°), and line {moved} moves with \
-                         the control off and the axes still turned: {then}",
+                         the control off and the axes turned: {then}",
                         round(k),
                         round(m)
                     )
