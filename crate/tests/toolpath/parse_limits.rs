@@ -224,6 +224,26 @@ fn points_scaled_by_a_later_unit_hint_are_checked_against_the_range() {
     );
 }
 
+// Found by cargo-mutants: the index of a scaled point in the caller's vector (`i - first` as
+// `i + first`) survived: every test held all the points, so that `first` was 0.
+/// A caller that hands on the points of each chunk (the page's worker) and keeps only the
+/// latest still gets those it holds scaled at the end: the points it holds are the file's last
+/// ones, indexed from the first it still holds.
+#[test]
+fn points_still_held_are_scaled_when_the_caller_drained_the_earlier_ones() {
+    let mut p = Parser::new(Format::Apt, None, ReadOptions::default()).unwrap();
+    let mut out = Vec::new();
+    p.feed("GOTO/1,0,0\nGOTO/2,0,0\n", &mut out).unwrap();
+    assert_eq!(out.len(), 2);
+    out.clear();
+    p.feed("GOTO/3,0,0\nGOTO/4,0,0\nFEDRAT/IPM,10\n", &mut out)
+        .unwrap();
+    let r = p.finish(&mut out).unwrap();
+    assert_eq!(r.unit, fiveaxis::toolpath::read::LengthUnit::Inch);
+    let x: Vec<f64> = out.iter().map(|q| q.tip.x).collect();
+    assert_eq!(x, [3.0 * 25.4, 4.0 * 25.4]);
+}
+
 // Found by cargo-mutants: `Parser::count`'s limit (`>` as `>=` or `==`) survived.
 /// A file may give [`MAX_POINTS`] points, not one more: the count is of every point read, so a
 /// caller that drains its vector between chunks (as the page's worker does) meets it too.

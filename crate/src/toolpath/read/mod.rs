@@ -890,7 +890,7 @@ impl Parser {
     /// Reads the last line (if the text does not end with a line end) and ends the file: the
     /// report. A statement still waiting for its continuation, or a file without any point, is
     /// an error. Points read where the file states no unit are scaled to the unit decided now
-    /// (module docs): `out` must still hold them.
+    /// (module docs): `out` must still hold them (points handed on before stay as read).
     pub fn finish(&mut self, out: &mut Vec<Point>) -> Result<Report> {
         let tail = self.decoder.finish();
         if !tail.is_empty() {
