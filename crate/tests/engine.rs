@@ -104,6 +104,7 @@ mod toolpath {
     mod read_frame;
     mod read_heidenhain;
     mod read_iso;
+    mod read_nc;
     mod read_siemens;
     mod real_files;
 }

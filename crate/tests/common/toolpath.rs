@@ -121,3 +121,14 @@ pub fn skipped(report: &fiveaxis::toolpath::read::Report, part: &str) -> u32 {
         .map(|s| s.count)
         .sum()
 }
+
+/// A Heidenhain conversational program of `blocks` between `BEGIN PGM T MM` (block 0) and
+/// `END PGM T MM`, numbered from 1: block `n` is the file's line `n + 1`.
+pub fn heidenhain_program(blocks: &[&str]) -> String {
+    let mut s = String::from("0 BEGIN PGM T MM\n");
+    for (i, b) in blocks.iter().enumerate() {
+        s.push_str(&format!("{} {b}\n", i + 1));
+    }
+    s.push_str(&format!("{} END PGM T MM\n", blocks.len() + 1));
+    s
+}

@@ -11,22 +11,15 @@
 #![allow(clippy::unwrap_used)]
 use crate::common;
 
-use common::toolpath::{at, caz, caz_head, chords, close_vec, error, note, read_all, skipped};
+use common::toolpath::{
+    at, caz, caz_head, chords, close_vec, error, heidenhain_program as program, note, read_all,
+    skipped,
+};
 use fiveaxis::toolpath::read::{Format, LengthUnit, Motion, NoteKind};
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 const H: Format = Format::Heidenhain;
-
-/// The program `blocks` between `BEGIN PGM T MM` and `END PGM T MM`, numbered from 0.
-fn program(blocks: &[&str]) -> String {
-    let mut s = String::from("0 BEGIN PGM T MM\n");
-    for (i, b) in blocks.iter().enumerate() {
-        s.push_str(&format!("{} {b}\n", i + 1));
-    }
-    s.push_str(&format!("{} END PGM T MM\n", blocks.len() + 1));
-    s
-}
 
 #[test]
 fn l_blocks_with_fmax_f_incremental_and_signed_words() {

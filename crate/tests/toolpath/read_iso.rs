@@ -211,6 +211,20 @@ fn tool_centre_point_control_is_reported_where_it_is_switched_on() {
         note(&r, "turn while tool-centre-point control is off").line,
         2
     );
+    // Within 10⁻⁹° of a whole turn, either side, is the zero pose: no note.
+    // Found by cargo-mutants: `turned`'s upper bound (`360 − 1e-9` as `360 + 1e-9`) survived.
+    for c in ["C-0.0000000001", "C359.9999999999", "C0.0000000001"] {
+        let (_, r) = read_all(
+            &format!("G0 X0 Y0 Z0 C0 A0\nG1 {c} A0\n"),
+            Format::Nc,
+            Some(&m),
+        );
+        assert!(
+            r.notes.iter().all(|n| n.kind != NoteKind::Tcp),
+            "{c}: {:?}",
+            r.notes
+        );
+    }
     // So is an arc whose chords turn C a whole turn, though it ends where C is at 0°.
     let (_, r) = read_all(
         "G0 X0 Y0 Z0 C0 A0\nG2 X10 Y0 I5 J0 C360\n",
@@ -803,4 +817,31 @@ fn a_heidenhain_din_iso_program_reads_absolute_modal_centres_and_its_cycles() {
     assert_eq!(skipped(&r, "cycle definitions and their Q parameters"), 3);
     assert_eq!(note(&r, "M99 calls the cycle").line, 12);
     assert_eq!(note(&r, "HEIDENHAIN DIN/ISO").line, 1);
+}
+
+// Found by cargo-mutants: `Nc::line`'s end of the program (the dialect test's `!` deleted, and
+// the blank-line test's) survived: no test wrote blocks after M30.
+/// After `M30` (end of program) nothing is read: a block after it gives no point, and each line
+/// of text after it is counted as skipped, blank lines not; whether the lines come after a `%`
+/// (read as they come) or without one (held until the file's end, then read), and in Siemens.
+#[test]
+fn nothing_after_the_program_s_end_is_read() {
+    let m = caz_head();
+    for (text, format) in [
+        ("%\nG0 X1 Y2 Z3\nM30\nG0 X5 Y5 Z5\n\nG1 X6\n", Format::Nc),
+        ("G0 X1 Y2 Z3\nM30\nG0 X5 Y5 Z5\n\nG1 X6\n", Format::Nc),
+        (
+            "N10 G0 X1 Y2 Z3\nN20 M30\nN30 G0 X5 Y5 Z5\n\nN40 G1 X6\n",
+            Format::Siemens,
+        ),
+    ] {
+        let (p, r) = read_all(text, format, Some(&m));
+        assert_eq!(p.len(), 1, "{text:?}");
+        assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0));
+        assert_eq!(
+            skipped(&r, "text after the end of the program"),
+            2,
+            "{text:?}"
+        );
+    }
 }

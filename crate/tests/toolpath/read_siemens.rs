@@ -176,6 +176,48 @@ fn g70_is_inches_and_a3_b3_c3_give_the_tool_vector() {
     let s = 0.5f64.sqrt();
     close_vec(&p[1].axis, &Vector3::new(s, 0.0, s), 1e-15, "A3 C3");
     assert_eq!(p[1].angles, None);
+    // A block of a tool vector alone turns the tool about its tip: a point where it was.
+    // Found by cargo-mutants: `Block::moves` with `vector && sweep` survived.
+    let (p, _) = read_all(
+        "TRAORI\nG1 X1 Y2 Z3 A3=0 B3=0 C3=1 F100\nA3=0 B3=0.6 C3=0.8\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 2);
+    assert_eq!((p[1].line, p[1].tip), (3, Vector3::new(1.0, 2.0, 3.0)));
+    close_vec(&p[1].axis, &Vector3::new(0.0, 0.6, 0.8), 1e-15, "B3 C3");
+}
+
+// Found by cargo-mutants: every operator of `Way::reach`'s positive and negative turns survived
+// (no test had written ACP or ACN).
+/// `ACP(a)` and `ACN(a)` go to the position `a` (modulo 360°) turning positively or negatively
+/// from where the axis is (840D sl Programming Manual, "Absolute dimensions for rotary axes (DC,
+/// ACP, ACN)"); already there, the axis stays. Each angle below is counted by hand along the
+/// turn: from 350°, +20° to 10° is 370°; from 370°, 10° is already reached; +340° to 350° is
+/// 710°; +20° to 10° is 730°. From 10°, −20° to 350° is −10°; there already; −340° to 10° is
+/// −350°; −20° to 350° is −370°; then ACP(100): +110° is −260°.
+#[test]
+fn acp_and_acn_turn_positively_and_negatively_to_the_position() {
+    let m = caz_head();
+    let c_of = |blocks: &str| {
+        let text = format!("N10 TRAORI\n{blocks}");
+        let (p, _) = read_all(&text, S, Some(&m));
+        p.iter().map(|q| q.angles.unwrap()[0]).collect::<Vec<_>>()
+    };
+    assert_eq!(
+        c_of(
+            "N20 G0 X0 Y0 Z0 A0 C350\nN30 C=ACP(10)\nN40 C=ACP(10)\nN50 C=ACP(350)\nN60 \
+             C=ACP(10)\n"
+        ),
+        [350.0, 370.0, 370.0, 710.0, 730.0]
+    );
+    assert_eq!(
+        c_of(
+            "N20 G0 X0 Y0 Z0 A0 C10\nN30 C=ACN(350)\nN40 C=ACN(350)\nN50 C=ACN(10)\nN60 \
+             C=ACN(350)\nN70 C=ACP(100)\n"
+        ),
+        [10.0, -10.0, -10.0, -350.0, -370.0, -260.0]
+    );
 }
 
 #[test]

@@ -909,7 +909,8 @@ impl Heidenhain {
                 let t = core.tangent.ok_or_else(|| {
                     loc.err(
                         at,
-                        "CT continues tangentially from the move before, but there is none",
+                        "CT continues tangentially from the move before, but there is none, or it started \
+                         where the tool's position is not known (after M91, M92 or M140)",
                     )
                 })?;
                 let plane = plane_of_arc(&b, plane_of_pole.or(self.tool_plane));

@@ -193,7 +193,7 @@ pub(super) struct Core {
     pub break_next: bool,
     /// The program has ended (`M30`, `M2`, `END PGM`): the rest is not read.
     pub ended: bool,
-    /// The direction of the last move at its end (program frame), for tangential arcs.
+    /// The last move's direction at its end (program frame; none from an unknown start), for CT.
     pub tangent: Option<Vector3<f64>>,
     /// K and M reach absolute commands the shorter way round: the machine's rollover for K;
     /// Heidenhain's M126 for both.
@@ -534,12 +534,12 @@ impl Core {
         } else {
             Motion::Feed
         };
-        let line = loc.line_of(b.at);
+        let (line, from_known) = (loc.line_of(b.at), start_known.iter().all(|&k| k));
         let p0 = Vector3::new(start[0], start[1], start[2]);
         let mut p1 = Vector3::new(new[0], new[1], new[2]);
         if motion != Motion::Arc {
-            if start_known.iter().all(|&k| k) && (p1 - p0).norm() > 0.0 {
-                self.tangent = Some((p1 - p0).normalize());
+            if !from_known || (p1 - p0).norm() > 0.0 {
+                self.tangent = from_known.then(|| (p1 - p0).normalize());
             }
             return self.emit(&p1, [new[3], new[4]], motion, line, log, out);
         }
