@@ -173,13 +173,18 @@ fn ct_after_a_line_away_from_the_origin() {
 /// follows the same circle; so about a centre away from the origin, (20, 30).
 #[test]
 fn ct_after_an_arc_continues_its_direction() {
+    // On the circle, and the quarter from the start to the end (the points on the side of the
+    // chord away from the centre), not the three quarters the other way round.
     let on_circle = |text: &str, line: u32, centre: Vector3<f64>, radius: f64| {
         let (p, _) = read(text, Format::Heidenhain);
         let arc: Vec<_> = p.iter().filter(|q| q.line == line).collect();
         assert!(arc.len() > 2, "{text}");
+        let (start, end) = (p[p.len() - arc.len() - 1].tip, arc.last().unwrap().tip);
+        let middle = (start + end) / 2.0 - centre;
         for q in arc {
             let r = (q.tip - centre).norm();
             assert!((r - radius).abs() < 1e-9, "{text}: {:?}", q.tip);
+            assert!((q.tip - centre).dot(&middle) > 0.0, "{text}: {:?}", q.tip);
         }
     };
     // Clockwise about (0, 0) from (0, 10) to (10, 0): at the end heading −Y; CT to (0, −10):
@@ -347,4 +352,21 @@ fn ct_after_a_move_from_an_unknown_position_is_refused() {
     );
     assert!(e.starts_with("line 6"), "{e}");
     assert!(e.contains("where the tool's position is not known"), "{e}");
+}
+
+// Found by cargo-mutants: a missing word of an absolute centre taken as 0 (the match guard as
+// `false`) survived.
+/// An absolute centre with a word missing (Siemens `I=AC(5)` alone: J is then 0 incremental,
+/// 840D sl Programming Manual, "Circular interpolation") lies at the start's coordinate on that
+/// axis: from (0, 5) to (10, 5) clockwise about (5, 5), radius 5 (about (5, 0) the ends are
+/// √50 away too, so only the points tell).
+#[test]
+fn an_absolute_centre_s_missing_word_is_the_start_s_coordinate() {
+    let (p, _) = read("G0 X0 Y5 Z0\nG2 X10 Y5 I=AC(5) F100\n", Format::Siemens);
+    let arc: Vec<_> = p.iter().filter(|q| q.line == 2).collect();
+    assert!(arc.len() > 4);
+    for q in arc {
+        let r = (q.tip - Vector3::new(5.0, 5.0, 0.0)).norm();
+        assert!((r - 5.0).abs() < 1e-9, "{:?}", q.tip);
+    }
 }
