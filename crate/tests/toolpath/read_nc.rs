@@ -18,6 +18,21 @@ fn read(text: &str, format: Format) -> (Vec<Point>, Report) {
     read_all(text, format, Some(&caz_head()))
 }
 
+/// The points of `line`, more than two, each `radius` from `centre` (to 10⁻⁹ mm).
+fn on_circle(p: &[Point], line: u32, centre: Vector3<f64>, radius: f64) -> Vec<&Point> {
+    let arc: Vec<_> = p.iter().filter(|q| q.line == line).collect();
+    assert!(arc.len() > 2, "{} points on line {line}", arc.len());
+    for q in &arc {
+        let r = (q.tip - centre).norm();
+        assert!(
+            (r - radius).abs() < 1e-9,
+            "line {line}: {:?} is {r} from the centre",
+            q.tip
+        );
+    }
+    arc
+}
+
 /// The notes of `kind`: (line, text).
 fn notes(r: &Report, kind: NoteKind) -> Vec<(u32, String)> {
     r.notes
@@ -140,12 +155,7 @@ fn a_move_of_zero_length_keeps_the_tangent() {
         &heidenhain(&["L X+0 Y+0 Z+0 R0 F100", "L X+10", "L X+10", "CT X+20 Y+10"]),
         Format::Heidenhain,
     );
-    let arc: Vec<_> = p.iter().filter(|q| q.line == 5).collect();
-    assert!(arc.len() > 2);
-    for q in arc {
-        let r = (q.tip - Vector3::new(10.0, 10.0, 0.0)).norm();
-        assert!((r - 10.0).abs() < 1e-9, "{:?}", q.tip);
-    }
+    on_circle(&p, 5, Vector3::new(10.0, 10.0, 0.0), 10.0);
 }
 
 // Found by cargo-mutants: the tangent of a line as `p1 + p0` survived (every CT test's line
@@ -158,12 +168,7 @@ fn ct_after_a_line_away_from_the_origin() {
         &heidenhain(&["L X+0 Y+10 Z+0 R0 F100", "L X+10", "CT X+20 Y+20"]),
         Format::Heidenhain,
     );
-    let arc: Vec<_> = p.iter().filter(|q| q.line == 4).collect();
-    assert!(arc.len() > 2);
-    for q in arc {
-        let r = (q.tip - Vector3::new(10.0, 20.0, 0.0)).norm();
-        assert!((r - 10.0).abs() < 1e-9, "{:?}", q.tip);
-    }
+    on_circle(&p, 4, Vector3::new(10.0, 20.0, 0.0), 10.0);
 }
 
 // Found by cargo-mutants: an arc's end tangent (its sign for a clockwise arc, the radial from
@@ -175,21 +180,18 @@ fn ct_after_a_line_away_from_the_origin() {
 fn ct_after_an_arc_continues_its_direction() {
     // On the circle, and the quarter from the start to the end (the points on the side of the
     // chord away from the centre), not the three quarters the other way round.
-    let on_circle = |text: &str, line: u32, centre: Vector3<f64>, radius: f64| {
+    let quarter = |text: &str, line: u32, centre: Vector3<f64>, radius: f64| {
         let (p, _) = read(text, Format::Heidenhain);
-        let arc: Vec<_> = p.iter().filter(|q| q.line == line).collect();
-        assert!(arc.len() > 2, "{text}");
+        let arc = on_circle(&p, line, centre, radius);
         let (start, end) = (p[p.len() - arc.len() - 1].tip, arc.last().unwrap().tip);
         let middle = (start + end) / 2.0 - centre;
         for q in arc {
-            let r = (q.tip - centre).norm();
-            assert!((r - radius).abs() < 1e-9, "{text}: {:?}", q.tip);
             assert!((q.tip - centre).dot(&middle) > 0.0, "{text}: {:?}", q.tip);
         }
     };
     // Clockwise about (0, 0) from (0, 10) to (10, 0): at the end heading −Y; CT to (0, −10):
     // the same circle.
-    on_circle(
+    quarter(
         &heidenhain(&[
             "CC X+0 Y+0",
             "L X+0 Y+10 Z+0 R0 F100",
@@ -202,7 +204,7 @@ fn ct_after_an_arc_continues_its_direction() {
     );
     // Counter-clockwise about (0, 0) from (10, 0) to (0, 10): heading −X; CT to (−10, 0): the
     // same circle.
-    on_circle(
+    quarter(
         &heidenhain(&[
             "CC X+0 Y+0",
             "L X+10 Y+0 Z+0 R0 F100",
@@ -215,7 +217,7 @@ fn ct_after_an_arc_continues_its_direction() {
     );
     // About a centre away from the origin: CC (20, 30), from (20, 40) clockwise to (30, 30),
     // then CT to (20, 20).
-    on_circle(
+    quarter(
         &heidenhain(&[
             "CC X+20 Y+30",
             "L X+20 Y+40 Z+0 R0 F100",
@@ -363,10 +365,5 @@ fn ct_after_a_move_from_an_unknown_position_is_refused() {
 #[test]
 fn an_absolute_centre_s_missing_word_is_the_start_s_coordinate() {
     let (p, _) = read("G0 X0 Y5 Z0\nG2 X10 Y5 I=AC(5) F100\n", Format::Siemens);
-    let arc: Vec<_> = p.iter().filter(|q| q.line == 2).collect();
-    assert!(arc.len() > 4);
-    for q in arc {
-        let r = (q.tip - Vector3::new(5.0, 5.0, 0.0)).norm();
-        assert!((r - 5.0).abs() < 1e-9, "{:?}", q.tip);
-    }
+    on_circle(&p, 2, Vector3::new(5.0, 5.0, 0.0), 5.0);
 }
