@@ -26,6 +26,11 @@ fn rtype(name: &str) -> RotaryType {
     RotaryType::parse(name).unwrap()
 }
 
+/// The model of the machine `inputs` (JSON) with rotary-axis type `t`.
+fn model(inputs: serde_json::Value, t: RotaryType) -> fiveaxis::machine::Model {
+    machine_of_type(&machine(inputs), t).build().unwrap()
+}
+
 /// δ of the linear interpolation of the commands from `(k0, m0)` to `(k1, m1)` (rad) on `t`,
 /// by dense sampling (2001 points) of the distance of `L·P(u)` from the plane of its ends:
 /// independent of the engine's exact maximum.
@@ -84,9 +89,7 @@ fn a_path_past_the_pole_flags_a_pole_and_a_flip_there_and_a_path_far_from_it_non
     // CAZ: K = C about Z, so the pole is the vertical tool. A tilt sweep from −20° to +20° that
     // passes 0.2° beside the vertical, in 1° steps: C must turn by far more than the tool does
     // next to the vertical.
-    let m = machine_of_type(&machine(json!({})), rtype("CAZ"))
-        .build()
-        .unwrap();
+    let m = model(json!({}), rtype("CAZ"));
     let near = sweep_past_vertical(30.0, 0.2, -20.0, 20.0, 1.0);
     let a = analyse(&m, &near, 100.0, 0.01).unwrap();
     let flagged: Vec<usize> = (0..a.segments.len())
@@ -105,9 +108,7 @@ fn a_path_past_the_pole_flags_a_pole_and_a_flip_there_and_a_path_far_from_it_non
     let b = analyse(&m, &far, 100.0, 0.01).unwrap();
     assert_eq!((b.summary.flips, b.summary.poles), (0, 0));
     // The same near-pole sweep on a type whose pole is elsewhere (ABZ: K = A about X) flags nothing.
-    let abz = machine_of_type(&machine(json!({})), rtype("ABZ"))
-        .build()
-        .unwrap();
+    let abz = model(json!({}), rtype("ABZ"));
     let c = analyse(&abz, &near, 100.0, 0.01).unwrap();
     assert_eq!((c.summary.flips, c.summary.poles), (0, 0));
 }
@@ -115,9 +116,7 @@ fn a_path_past_the_pole_flags_a_pole_and_a_flip_there_and_a_path_far_from_it_non
 #[test]
 fn following_reproduces_every_tool_axis_and_moves_the_axes_continuously() {
     let endless = json!({"rotary": {"kFrom": -3600, "kTo": 3600}});
-    let m = machine_of_type(&machine(endless), rtype("CBZ"))
-        .build()
-        .unwrap();
+    let m = model(endless, rtype("CBZ"));
     // A cone around Z at 30°, two turns of the azimuth in 3° steps.
     let path: Vec<Vector3<f64>> = (0..=240).map(|i| tilted(30.0, 3.0 * i as f64)).collect();
     let f = follow(&m, &path).unwrap();
@@ -140,12 +139,7 @@ fn following_reproduces_every_tool_axis_and_moves_the_axes_continuously() {
 fn the_end_of_the_travel_unwinds_the_rotary_table_and_is_flagged() {
     // C travels ±200° only. Round the cone, at C = 200° the nearest way on is the other branch
     // (C − 180°, B reversed): a flip at azimuth 201°, 381° and 561° in two turns.
-    let m = machine_of_type(
-        &machine(json!({"rotary": {"kFrom": -200, "kTo": 200}})),
-        rtype("CBZ"),
-    )
-    .build()
-    .unwrap();
+    let m = model(json!({"rotary": {"kFrom": -200, "kTo": 200}}), rtype("CBZ"));
     let path: Vec<Vector3<f64>> = (0..=240).map(|i| tilted(30.0, 3.0 * i as f64)).collect();
     let a = analyse(&m, &path, 100.0, 0.01).unwrap();
     assert!(a.following.unreachable.is_none());
@@ -189,12 +183,7 @@ fn the_end_of_the_travel_unwinds_the_rotary_table_and_is_flagged() {
 fn a_tilt_beyond_the_travel_stops_the_path_at_that_point() {
     // B tilts from −10° to 40°: a path tilting to 45° on the far side cannot be followed beyond
     // the first point tilting more than 40° (either solution needs |B| > 40° or B < −10°).
-    let m = machine_of_type(
-        &machine(json!({"rotary": {"mFrom": -10, "mTo": 40}})),
-        rtype("CBZ"),
-    )
-    .build()
-    .unwrap();
+    let m = model(json!({"rotary": {"mFrom": -10, "mTo": 40}}), rtype("CBZ"));
     let path: Vec<Vector3<f64>> = (0..=9).map(|i| tilted(5.0 * i as f64, 0.0)).collect();
     let a = analyse(&m, &path, 100.0, 0.01).unwrap();
     let (at, why) = a.following.unreachable.clone().unwrap();
@@ -224,9 +213,7 @@ fn a_tilt_beyond_the_travel_stops_the_path_at_that_point() {
 
 #[test]
 fn the_statistics_are_those_of_the_segments() {
-    let m = machine_of_type(&machine(json!({})), rtype("CAY"))
-        .build()
-        .unwrap();
+    let m = model(json!({}), rtype("CAY"));
     let path: Vec<Vector3<f64>> = (0..=60)
         .map(|i| tilted(10.0 + i as f64 * 0.7, 5.0 * i as f64))
         .collect();
@@ -263,7 +250,7 @@ fn the_statistics_are_those_of_the_segments() {
 #[test]
 fn refining_keeps_every_piece_within_the_tolerance_with_the_fewest_points() {
     let t = rtype("CBZ");
-    let m = machine_of_type(&machine(json!({})), t).build().unwrap();
+    let m = model(json!({}), t);
     // Segments of different lengths: the tilt and azimuth grow in uneven steps.
     let steps = [0.5, 4.0, 1.0, 9.0, 0.2, 15.0, 2.0];
     let mut axes = vec![tilted(20.0, 0.0)];
@@ -534,12 +521,7 @@ fn a_path_from_javascript_is_checked_number_by_number() {
 // `hi − tol`, `hi · tol`) survived.
 #[test]
 fn commands_are_followed_to_the_ends_of_their_travel() {
-    let m = machine_of_type(
-        &machine(json!({"rotary": {"mFrom": -120, "mTo": 30}})),
-        rtype("CAZ"),
-    )
-    .build()
-    .unwrap();
+    let m = model(json!({"rotary": {"mFrom": -120, "mTo": 30}}), rtype("CAZ"));
     let inside = [[0.0, 30.0], [10.0, -120.0], [0.0, 30.0 + 5e-8]];
     let f = follow_commands(&m, &inside);
     assert!(f.unreachable.is_none(), "{:?}", f.unreachable);
@@ -569,7 +551,7 @@ fn commands_are_followed_to_the_ends_of_their_travel() {
 #[test]
 fn the_rapids_are_counted_with_their_swings_and_listed() {
     let t = rtype("CAZ");
-    let m = machine_of_type(&machine(json!({})), t).build().unwrap();
+    let m = model(json!({}), t);
     let deg = [
         [0.0, 25.0],
         [20.0, 25.0],
@@ -668,7 +650,7 @@ fn the_rapids_are_counted_with_their_swings_and_listed() {
 #[test]
 fn refining_keeps_the_program_s_commands() {
     let t = rtype("CAZ");
-    let m = machine_of_type(&machine(json!({})), t).build().unwrap();
+    let m = model(json!({}), t);
     let deg = [[0.0, 30.0], [350.0, 30.0]];
     let axes: Vec<Vector3<f64>> = deg
         .iter()
