@@ -5,10 +5,16 @@
 //   node scripts/mutants-ledger.mjs merge <scope dir>      add <scope dir>/mutants.out/outcomes.json
 //   node scripts/mutants-ledger.mjs summary <scope dir> <scope> <equivalents file>
 //   node scripts/mutants-ledger.mjs list <scope dir> done|survivors <equivalents file>
+//   node scripts/mutants-ledger.mjs prune <scope dir> <names file>
 //
 // `list done` prints the mutants whose outcome is settled (caught, unviable, timed out, or
 // missed but listed as equivalent), `list survivors` the missed ones not listed: the mutants a
 // resumed first pass leaves out, and those a second pass runs again.
+//
+// `prune` drops from the ledger the mutants the tree no longer has (the names file is
+// `cargo mutants --list` of the scope now): a name carries its line and column, so after an
+// edit the mutants of the edited lines, and those of every line it shifted, get new names and
+// a resumed run tests them again, and the old names are not counted.
 //
 // `summary` prints the scope's counts and each survivor that mutants-equivalent.txt does not
 // explain, and exits 1 when there is one. A timeout (the mutant made a test run past
@@ -18,7 +24,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 
 const [cmd, dir, scope, equivalentsFile] = process.argv.slice(2);
-// `list` takes (dir, which, equivalents): `scope` holds `which` there.
+// `list` takes (dir, which, equivalents) and `prune` (dir, names file): `scope` holds the second there.
 const ledgerPath = join(dir, 'ledger.json');
 const ledger = existsSync(ledgerPath) ? JSON.parse(readFileSync(ledgerPath, 'utf8')) : {};
 
@@ -46,6 +52,12 @@ if (cmd === 'list') {
     }
     writeFileSync(ledgerPath, JSON.stringify(ledger, null, 1));
   }
+} else if (cmd === 'prune') {
+  const now = new Set(readFileSync(scope, 'utf8').split('\n').filter(Boolean));
+  const gone = Object.keys(ledger).filter((name) => !now.has(name));
+  for (const name of gone) delete ledger[name];
+  writeFileSync(ledgerPath, JSON.stringify(ledger, null, 1));
+  console.log(`[mutants] ${gone.length} mutants of the ledger are no longer in the tree (edited or moved lines): tested again`);
 } else if (cmd === 'summary') {
   const explained = explainedIn(equivalentsFile);
   const by = { CaughtMutant: 0, MissedMutant: 0, Unviable: 0, Timeout: 0 };
@@ -64,6 +76,6 @@ if (cmd === 'list') {
   );
   process.exit(unexplained.length === 0 ? 0 : 1);
 } else {
-  console.error('usage: mutants-ledger.mjs merge <dir> | summary <dir> <scope> <equivalents> | list <dir> done|survivors <equivalents>');
+  console.error('usage: mutants-ledger.mjs merge <dir> | summary <dir> <scope> <equivalents> | list <dir> done|survivors <equivalents> | prune <dir> <names file>');
   process.exit(2);
 }

@@ -19,8 +19,9 @@
 #
 # Results: each cargo-mutants run writes mutants.out/<scope>/mutants.out/ (outcomes.json, a
 # log per mutant); mutants.out/<scope>/ledger.json keeps every mutant's latest outcome over the
-# passes and resumed runs (scripts/mutants-ledger.mjs). `resume` trusts the ledger's mutant
-# names, which carry line numbers: after editing a scope's source files, run it afresh.
+# passes and resumed runs (scripts/mutants-ledger.mjs). `resume` first drops the ledger's
+# mutants the tree no longer has (a name carries its line and column: after an edit, those of
+# the edited lines and of every line it shifted are new names, tested again).
 #
 # The summary counts each scope's missed mutants that are listed in mutants-equivalent.txt (one
 # line per mutant exactly as cargo-mutants prints it, then ` # why it is equivalent`), and exits
@@ -136,6 +137,8 @@ for s in "${scopes[@]}"; do
     node scripts/mutants-ledger.mjs merge "$out"
   fi
   if [ "$resume" = 1 ] && [ -f "$out/ledger.json" ]; then
+    cargo mutants --list "${args[@]}" >"$out/names.txt"
+    node scripts/mutants-ledger.mjs prune "$out" "$out/names.txt"
     mapfile -t resumed < <(regexes --exclude-re done)
     say "scope $s: resuming ($(($(printf '%s\n' "${resumed[@]}" | grep -c '^\^' || true))) mutants settled before are left out)"
   else

@@ -143,6 +143,15 @@ fn an_arc_whose_end_is_off_its_circle_is_refused_with_a_hint() {
         Some(&m),
     );
     assert!(p[1..].iter().all(|q| (q.tip.norm() - 10.0).abs() < 1e-9));
+    // Found by cargo-mutants (the match arms of G17 and G91.1 deleted survived): no test went back.
+    // G91.1 after G90.1, and G17 after G18, restore the centre from the start and the XY plane:
+    // from (10, 0) about (10, 0) + (−10, 0) = (0, 0), a quarter of radius 10 in XY. (Read as
+    // absolute, the centre (−10, 0) is 20 from the start; in ZX, the end is 0 from it.)
+    for prefix in ["G90.1\nG91.1\n", "G18\nG17\n"] {
+        let text = format!("{prefix}G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0\n");
+        let (p, _) = read_all(&text, Format::Nc, Some(&m));
+        assert!(p[1..].iter().all(|q| (q.tip.norm() - 10.0).abs() < 1e-9 && q.tip.z == 0.0));
+    }
     at(
         &error("G0 X0 Y0 Z0\nG2 X10 Y0\n", Format::Nc, Some(&m)),
         2,
@@ -579,6 +588,37 @@ fn text_before_the_first_percent_and_after_the_second_is_not_read() {
     assert_eq!(p.len(), 1);
 }
 
+// Found by cargo-mutants: `Iso::line`'s test of the lines before the first `%` (the program
+// name's `&&`, and "only settings before it") survived: no test had a one-line listing header,
+// nor blocks after a closing `%` that ends a program without a leader.
+/// The lines before the first `%` are a listing header unless every one is a block (the first
+/// may be the program's name, `OName`): a header of one line that is no block is skipped, not
+/// read as a block; blocks ended by a `%` that moved the tool are the whole program, and what
+/// follows that `%` is not read.
+#[test]
+fn a_header_line_is_skipped_and_blocks_closed_by_a_percent_end_the_program() {
+    let m = caz_head();
+    // "PART 7 ROUGHING" is no block (P, A, R letters with no numbers) and not a name (no O).
+    let (p, r) = read_all("PART 7 ROUGHING
+%
+G0 X1 Y2 Z3
+", Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0));
+    assert_eq!(skipped(&r, "before the first %"), 1);
+    // The first line a name (NX's Haas posts): the lines are the program, the `%` its end.
+    let (p, r) = read_all("OFinal ToolPath
+G0 X1 Y2 Z3
+%
+", Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!(skipped(&r, "before the first %"), 0);
+    // Blocks that moved the tool, then `%`: the program ends there; the block after is text.
+    let (p, r) = read_all("G0 X0 Y0 Z0\nG1 X1\n%\nG1 X5\n", Format::Nc, Some(&m));
+    assert_eq!(p.iter().map(|q| q.tip.x).collect::<Vec<_>>(), [0.0, 1.0]);
+    assert_eq!(skipped(&r, "after the end of the program"), 1);
+}
+
 #[test]
 fn drilling_cycles_give_their_positions_as_rapids() {
     let m = caz_head();
@@ -619,6 +659,17 @@ fn words_that_change_no_geometry_are_skipped_and_counted() {
     assert_eq!(note(&r, "G300").line, 2);
 }
 
+// Found by cargo-mutants: the block's position (`Block::at`, its first word) deleted survived:
+// every refused arc started in column 1.
+/// A refused arc names its block's first word: after two spaces of indent, column 3.
+#[test]
+fn a_refused_arc_points_at_its_block_s_first_word() {
+    let m = caz_head();
+    // From (0, 0) about (5, 0), r = 5, to (20, 0), 15 from the centre: not on the circle.
+    let e = error("  G0 X0 Y0 Z0\n  G3 X20 Y0 I5 J0\n", Format::Nc, Some(&m));
+    at(&e, 2, 3, "not on its circle");
+}
+
 #[test]
 fn macros_subprograms_and_o_words_are_refused_with_their_construct() {
     let m = caz_head();
@@ -634,6 +685,9 @@ fn macros_subprograms_and_o_words_are_refused_with_their_construct() {
         ("G65 P9000 A1\n", 1, 1, "G65/G66 call a macro"),
         ("G16\n", 1, 1, "polar coordinates"),
         ("G51 X0 Y0 P2\n", 1, 1, "scales or mirrors"),
+        // FANUC 30i: G68.3 and G68.4 take the plane from the tool axis the machine holds.
+        ("G68.3 X0 Y0 Z0\n", 1, 1, "G68.3/G68.4 define the working plane"),
+        ("G68.4 X0 Y0 Z0\n", 1, 1, "G68.3/G68.4 define the working plane"),
         ("G10 L2 P1 X0\n", 1, 1, "G10 L2/L20"),
         ("G0 U5\n", 1, 4, "U is an axis the calculator does not read"),
         (
@@ -817,6 +871,42 @@ fn a_heidenhain_din_iso_program_reads_absolute_modal_centres_and_its_cycles() {
     assert_eq!(skipped(&r, "cycle definitions and their Q parameters"), 3);
     assert_eq!(note(&r, "M99 calls the cycle").line, 12);
     assert_eq!(note(&r, "HEIDENHAIN DIN/ISO").line, 1);
+}
+
+// Found by cargo-mutants: `Iso::heidenhain_header`'s G70 (its guards, the unit's reason) and the
+// count of blocks in DIN/ISO and of a name survived: every DIN/ISO test program was in G71, and no
+// test counted their blocks.
+/// `%NAME G70 *` opens a DIN/ISO program in inches (TNC 640 DIN/ISO manual): X1 is 25.4 mm, and
+/// the reason names G70. A cycle's definition, its Q parameters and the program's name (`OName`)
+/// are blocks (the report's count of statements with something in them), the `%` lines are not;
+/// a comment that holds `=` does not make its block a Q parameter.
+#[test]
+fn a_din_iso_program_in_inches_and_the_count_of_its_blocks() {
+    let m = caz_head();
+    let text = "%T G70 *\n\
+                N10 G200 DRILLING *\n\
+                N20 Q200=2 *\n\
+                N30 G00 X1 Y2 Z0 (DEPTH=5) *\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    assert_eq!(r.unit, LengthUnit::Inch);
+    assert!(r.unit_reason.contains("G70"), "{}", r.unit_reason);
+    assert_eq!(p.len(), 1);
+    close_vec(&p[0].tip, &Vector3::new(25.4, 50.8, 0.0), 1e-12, "inches");
+    assert_eq!(r.blocks, 3);
+    // In millimetres, the reason names G71.
+    let (_, r) = read_all("%T G71 *\nN10 G00 X1 Y2 Z0 *\n", Format::Nc, Some(&m));
+    assert_eq!(r.unit, LengthUnit::Mm);
+    assert!(r.unit_reason.contains("G71"), "{}", r.unit_reason);
+    // A `%` with a name and no unit opens no DIN/ISO program: its I J are from the start (ISO).
+    let (p, r) = read_all(
+        "%T\nG0 X10 Y0 Z0\nG3 X-10 Y0 I-10 J0\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert!(r.notes.iter().all(|n| !n.text.contains("DIN/ISO")));
+    assert!(p.iter().all(|q| (q.tip.norm() - 10.0).abs() < 1e-9));
+    let (_, r) = read_all("%\nOName\nG0 X0 Y0 Z0\n", Format::Nc, Some(&m));
+    assert_eq!(r.blocks, 2);
 }
 
 // Found by cargo-mutants: `Nc::line`'s end of the program (the dialect test's `!` deleted, and
