@@ -150,7 +150,9 @@ fn an_arc_whose_end_is_off_its_circle_is_refused_with_a_hint() {
     for prefix in ["G90.1\nG91.1\n", "G18\nG17\n"] {
         let text = format!("{prefix}G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0\n");
         let (p, _) = read_all(&text, Format::Nc, Some(&m));
-        assert!(p[1..].iter().all(|q| (q.tip.norm() - 10.0).abs() < 1e-9 && q.tip.z == 0.0));
+        assert!(p[1..]
+            .iter()
+            .all(|q| (q.tip.norm() - 10.0).abs() < 1e-9 && q.tip.z == 0.0));
     }
     at(
         &error("G0 X0 Y0 Z0\nG2 X10 Y0\n", Format::Nc, Some(&m)),
@@ -599,18 +601,26 @@ fn text_before_the_first_percent_and_after_the_second_is_not_read() {
 fn a_header_line_is_skipped_and_blocks_closed_by_a_percent_end_the_program() {
     let m = caz_head();
     // "PART 7 ROUGHING" is no block (P, A, R letters with no numbers) and not a name (no O).
-    let (p, r) = read_all("PART 7 ROUGHING
+    let (p, r) = read_all(
+        "PART 7 ROUGHING
 %
 G0 X1 Y2 Z3
-", Format::Nc, Some(&m));
+",
+        Format::Nc,
+        Some(&m),
+    );
     assert_eq!(p.len(), 1);
     assert_eq!(p[0].tip, Vector3::new(1.0, 2.0, 3.0));
     assert_eq!(skipped(&r, "before the first %"), 1);
     // The first line a name (NX's Haas posts): the lines are the program, the `%` its end.
-    let (p, r) = read_all("OFinal ToolPath
+    let (p, r) = read_all(
+        "OFinal ToolPath
 G0 X1 Y2 Z3
 %
-", Format::Nc, Some(&m));
+",
+        Format::Nc,
+        Some(&m),
+    );
     assert_eq!(p.len(), 1);
     assert_eq!(skipped(&r, "before the first %"), 0);
     // Blocks that moved the tool, then `%`: the program ends there; the block after is text.
@@ -686,8 +696,18 @@ fn macros_subprograms_and_o_words_are_refused_with_their_construct() {
         ("G16\n", 1, 1, "polar coordinates"),
         ("G51 X0 Y0 P2\n", 1, 1, "scales or mirrors"),
         // FANUC 30i: G68.3 and G68.4 take the plane from the tool axis the machine holds.
-        ("G68.3 X0 Y0 Z0\n", 1, 1, "G68.3/G68.4 define the working plane"),
-        ("G68.4 X0 Y0 Z0\n", 1, 1, "G68.3/G68.4 define the working plane"),
+        (
+            "G68.3 X0 Y0 Z0\n",
+            1,
+            1,
+            "G68.3/G68.4 define the working plane",
+        ),
+        (
+            "G68.4 X0 Y0 Z0\n",
+            1,
+            1,
+            "G68.3/G68.4 define the working plane",
+        ),
         ("G10 L2 P1 X0\n", 1, 1, "G10 L2/L20"),
         ("G0 U5\n", 1, 4, "U is an axis the calculator does not read"),
         (
