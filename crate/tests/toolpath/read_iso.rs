@@ -629,6 +629,24 @@ G0 X1 Y2 Z3
     assert_eq!(skipped(&r, "after the end of the program"), 1);
 }
 
+// Found by cargo-mutants: G41/G42's arm deleted survived (no test wrote cutter compensation).
+/// G41 and G42 offset the path by the tool radius, which the file does not state (Fanuc, Haas,
+/// LinuxCNC "cutter radius compensation"): the points are read as programmed and the report says
+/// so, on the line where it is switched on, as a partial reading (not as an unknown code).
+#[test]
+fn cutter_compensation_is_noted_and_the_points_are_as_programmed() {
+    let m = caz_head();
+    for g in ["G41", "G42"] {
+        let text = format!("G0 X0 Y0 Z0\n{g} D1 G1 X10\nG40 X20\n");
+        let (p, r) = read_all(&text, Format::Nc, Some(&m));
+        assert_eq!(p.iter().map(|q| q.tip.x).collect::<Vec<_>>(), [0.0, 10.0, 20.0]);
+        let n = note(&r, "cutter compensation");
+        assert_eq!((n.line, n.kind), (2, NoteKind::Partial), "{g}");
+        assert!(n.text.contains(g), "{}", n.text);
+        assert!(r.notes.iter().all(|n| !n.text.contains("not a code the reader knows")));
+    }
+}
+
 #[test]
 fn drilling_cycles_give_their_positions_as_rapids() {
     let m = caz_head();
