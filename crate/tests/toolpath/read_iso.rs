@@ -639,11 +639,17 @@ fn cutter_compensation_is_noted_and_the_points_are_as_programmed() {
     for g in ["G41", "G42"] {
         let text = format!("G0 X0 Y0 Z0\n{g} D1 G1 X10\nG40 X20\n");
         let (p, r) = read_all(&text, Format::Nc, Some(&m));
-        assert_eq!(p.iter().map(|q| q.tip.x).collect::<Vec<_>>(), [0.0, 10.0, 20.0]);
+        assert_eq!(
+            p.iter().map(|q| q.tip.x).collect::<Vec<_>>(),
+            [0.0, 10.0, 20.0]
+        );
         let n = note(&r, "cutter compensation");
         assert_eq!((n.line, n.kind), (2, NoteKind::Partial), "{g}");
         assert!(n.text.contains(g), "{}", n.text);
-        assert!(r.notes.iter().all(|n| !n.text.contains("not a code the reader knows")));
+        assert!(r
+            .notes
+            .iter()
+            .all(|n| !n.text.contains("not a code the reader knows")));
     }
 }
 
@@ -664,6 +670,20 @@ fn drilling_cycles_give_their_positions_as_rapids() {
         ]
     );
     assert_eq!(note(&r, "drilling cycle G81").kind, NoteKind::Partial);
+    // Found by cargo-mutants (G80's arm deleted survived: the test's G0 after G80 also ends the
+    // cycle). G80 alone ends it: the next block's Z is the tool's again, in the motion mode of
+    // before the cycle (G0), and G80 is a known code.
+    let text = "G0 X0 Y0 Z10\nG81 X5 Y5 Z-3 R2 F100\nG80\nX10 Z-1\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    let last = p.last().unwrap();
+    assert_eq!(
+        (last.tip, last.motion),
+        (Vector3::new(10.0, 5.0, -1.0), Motion::Rapid)
+    );
+    assert!(r
+        .notes
+        .iter()
+        .all(|n| !n.text.contains("not a code the reader knows")));
 }
 
 #[test]
