@@ -62,6 +62,27 @@ fn g0_g1_and_g3_give_rapid_feed_and_arc_points() {
     assert!(r.unit_reason.contains("G21 on line 3"), "{}", r.unit_reason);
 }
 
+// Found by cargo-mutants: P never read as turns (its guard false) survived.
+/// LinuxCNC: "P … the number of turns" of G2/G3. A full circle with P3 turns three times,
+/// descending in a helix: 6π of radius 10 in the chords of 1 µm, Z from 0 to −3 (−1 a turn).
+#[test]
+fn p_gives_an_arc_s_number_of_turns() {
+    let m = caz_head();
+    let (p, _) = read_all(
+        "G0 X10 Y0 Z0\nG2 X10 Y0 Z-3 I-10 J0 P3\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert_eq!(p.len() - 1, chords(10.0, 6.0 * PI, 0.001));
+    assert!(p.iter().all(|q| (q.tip.xy().norm() - 10.0).abs() < 1e-9));
+    close_vec(
+        &p.last().unwrap().tip,
+        &Vector3::new(10.0, 0.0, -3.0),
+        1e-9,
+        "end",
+    );
+}
+
 #[test]
 fn g2_turns_clockwise_and_r_picks_the_short_or_the_long_arc() {
     let m = caz_head();
@@ -378,6 +399,10 @@ fn tool_centre_point_control_switched_off_with_the_axes_turned_is_noted() {
     // under the control, the next one is not.
     let (line, said) = only("G43.4 H1\nG0 X0 Y0 Z0 C30 A-20\nG1 X5 M129\nG1 X10\n");
     assert!(line == 3 && said.contains("line 4 moves"), "{line} {said}");
+    // LinuxCNC's M428 switches its tool-centre-point kinematics on, M429 off (a survivor of
+    // toolpath/read/iso: M429's arm deleted).
+    let (line, said) = only("M428\nG0 X0 Y0 Z0 C30 A-20\nM429\nG1 X10\n");
+    assert!(line == 3 && said.contains("line 4 moves"), "{line} {said}");
     // An arc's chords carry the angles between its ends: one that turns from 30° to 0° after
     // the control is off is noted though it ends at 0°.
     let (line, said) = only("G43.4 H1\nG0 X0 Y0 Z0 C30 A0\nG49\nG2 X10 Y0 I5 J0 C0\n");
@@ -483,6 +508,12 @@ fn g52_and_g92_shift_the_program_origin() {
     // G92 X0 Y0 at (10, 20): the current point is now (0, 0), so X1 Y1 is (11, 21).
     let (p, _) = read_all("G0 X10 Y20 Z5\nG92 X0 Y0\nG1 X1 Y1\n", Format::Nc, Some(&m));
     assert_eq!(p[1].tip, Vector3::new(11.0, 21.0, 5.0));
+    // G92.1 and G92.2 cancel it (a survivor: their arm deleted): X1 Y1 is (1, 1) again.
+    for cancel in ["G92.1", "G92.2"] {
+        let text = format!("G0 X10 Y20 Z5\nG92 X0 Y0\n{cancel}\nG1 X1 Y1\n");
+        let (p, _) = read_all(&text, Format::Nc, Some(&m));
+        assert_eq!(p[1].tip, Vector3::new(1.0, 1.0, 5.0), "{cancel}");
+    }
     // Where the position is not known, G92 cannot be applied.
     at(
         &error("X1\nG92 X0 Y0\n", Format::Nc, Some(&m)),
@@ -705,6 +736,24 @@ fn words_that_change_no_geometry_are_skipped_and_counted() {
     let (_, r) = read_all("G0 X0 Y0 Z0\nG300\n", Format::Nc, Some(&m));
     assert_eq!(skipped(&r, "does not know"), 1);
     assert_eq!(note(&r, "G300").line, 2);
+    // Found by cargo-mutants (their arms deleted survived): M5, M0, M1, G53.6 and M129 are known
+    // codes, counted under their own kinds, not as other M-functions or unknown G-codes.
+    let (_, r) = read_all(
+        "G0 X0 Y0 Z0\nM5\nM0\nM1\nG53.6\nM129\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert_eq!(skipped(&r, "spindle (M3, M4, M5)"), 1);
+    assert_eq!(skipped(&r, "program stops"), 2);
+    assert_eq!(skipped(&r, "tool axis direction control"), 1);
+    assert_eq!(skipped(&r, "other M-functions"), 0);
+    assert_eq!(skipped(&r, "does not know"), 0);
+    // In ISO (not DIN/ISO), M99 ends the program (Fanuc: the end of a subprogram, or the main
+    // program's loop back, read as its end); only a HEIDENHAIN DIN/ISO program calls a cycle.
+    let (p, r) = read_all("G0 X0 Y0 Z0\nM99\nG0 X5\n", Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!(skipped(&r, "program ends"), 1);
+    assert!(r.notes.iter().all(|n| !n.text.contains("calls the cycle")));
 }
 
 // Found by cargo-mutants: the block's position (`Block::at`, its first word) deleted survived:
@@ -831,6 +880,19 @@ fn g154_p_is_a_work_offset_and_g50_1_cancels() {
         NoteKind::Break
     );
     assert_eq!(skipped(&r, "G50, G50.1"), 1);
+    // The P word names the offset of G54.1 and G154 (a survivor: P read for neither): P2 after
+    // P1 is another offset, P1 again the same.
+    for g in ["G54.1", "G154"] {
+        for (then, breaks) in [("P2", true), ("P1", false)] {
+            let text = format!("{g} P1\nG0 X0 Y0 Z10\n{g} {then}\nG0 X1\n");
+            let (_, r) = read_all(&text, Format::Nc, Some(&m));
+            let said = r
+                .notes
+                .iter()
+                .any(|n| n.text.contains("another work offset"));
+            assert_eq!(said, breaks, "{text:?}");
+        }
+    }
     // G51.1 mirrors: still refused.
     at(&error("G51.1 X0\n", Format::Nc, Some(&m)), 1, 1, "mirrors");
 }
@@ -929,6 +991,13 @@ fn a_heidenhain_din_iso_program_reads_absolute_modal_centres_and_its_cycles() {
     assert_eq!(skipped(&r, "cycle definitions and their Q parameters"), 3);
     assert_eq!(note(&r, "M99 calls the cycle").line, 12);
     assert_eq!(note(&r, "HEIDENHAIN DIN/ISO").line, 1);
+    // M91 (iTNC 530 DIN/ISO: coordinates of the machine's datum) moves its axes off the part's
+    // frame: the path breaks there (a survivor: M91's arm deleted).
+    let text = "%T G71 *\nN10 G00 X0 Y0 Z0 *\nN20 G00 Z100 M91 *\nN30 G01 X5 Z0 *\n";
+    let (p, r) = read_all(text, Format::Nc, Some(&m));
+    let n = note(&r, "M91 moves Z in machine coordinates");
+    assert_eq!((n.line, n.kind), (3, NoteKind::Break));
+    assert_eq!(p.iter().map(|q| q.line).collect::<Vec<_>>(), [2, 4]);
 }
 
 // Found by cargo-mutants: `Iso::heidenhain_header`'s G70 (its guards, the unit's reason) and the
