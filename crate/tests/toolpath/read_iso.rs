@@ -609,6 +609,10 @@ fn text_before_the_first_percent_and_after_the_second_is_not_read() {
     assert_eq!(skipped(&r, "before the first %"), 2);
     assert_eq!(skipped(&r, "after the end"), 1);
     assert_eq!(skipped(&r, "program numbers"), 1);
+    // Settings alone before a `%` (no point yet): that `%` starts the program after all (a
+    // survivor: a block without a point counted as one).
+    let (p, _) = read_all("G21 G90\n%\nG0 X1 Y2 Z3\n%\n", Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1);
     // Blocks before a closing % (no leader): read.
     let (p, _) = read_all("G0 X0 Y0 Z0\nG1 X1\n%\n", Format::Nc, Some(&m));
     assert_eq!(p.len(), 2);
@@ -759,6 +763,40 @@ fn words_that_change_no_geometry_are_skipped_and_counted() {
 // Found by cargo-mutants: the block's position (`Block::at`, its first word) deleted survived:
 // every refused arc started in column 1.
 /// A refused arc names its block's first word: after two spaces of indent, column 3.
+// Found by cargo-mutants: three `&&` of `Iso::block_words` made `||` survived (G43.5's I J K
+// in an arc, the DIN/ISO modal centre in ISO and in a block without axes).
+/// The centre of an arc is the arc's own: after G43.5 (whose I J K are the tool axis in a
+/// line) an arc's I J K are still its centre; in ISO an arc without I J K or R has none (the
+/// last centre stays only in DIN/ISO); in DIN/ISO a block with neither axes nor R (a feed alone)
+/// makes no full circle about the last centre.
+#[test]
+fn an_arc_s_centre_is_its_own_in_iso_and_modal_only_where_it_moves_in_din_iso() {
+    let m = caz_head();
+    let (p, _) = read_all(
+        "G43.5 H1\nG0 X10 Y0 Z0 I0 J0 K1\nG3 X0 Y10 I-10 J0\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1 + chords(10.0, FRAC_PI_2, 0.001));
+    assert!(p.iter().all(|q| (q.tip.norm() - 10.0).abs() < 1e-9));
+    // ISO: the second arc names no centre (from (0, 10), (−10, 10) would fit, r = 10).
+    at(
+        &error(
+            "G0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0\nG3 X-10 Y0\n",
+            Format::Nc,
+            Some(&m),
+        ),
+        3,
+        1,
+        "an arc needs its centre",
+    );
+    // DIN/ISO: the quarter about (0, 0), then a feed alone: no move.
+    let text = "%T G71 *\nN10 G00 X10 Y0 Z0 *\nN20 G03 X0 Y10 I0 J0 *\nN30 F200 *\n";
+    let (p, _) = read_all(text, Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1 + chords(10.0, FRAC_PI_2, 0.001));
+    assert_eq!(p.last().unwrap().line, 3);
+}
+
 #[test]
 fn a_refused_arc_points_at_its_block_s_first_word() {
     let m = caz_head();
@@ -927,6 +965,21 @@ fn a_g99_cycle_ends_on_its_r_plane() {
     let g98 = g99.replace("G99", "G98");
     let (p, _) = read_all(&g98, Format::Nc, Some(&m));
     assert!(p.iter().all(|q| q.tip.z == 50.0));
+    // The way up to R is a rapid even in feed mode (a survivor: the retract's rapid deleted).
+    let (p, _) = read_all(
+        "G90 G21\nG1 X0 Y0 Z50 F500\nG99 G81 X10 Y0 Z-5 R2 F100\n",
+        Format::Nc,
+        Some(&m),
+    );
+    let moves: Vec<_> = p.iter().map(|q| (q.tip.z, q.motion)).collect();
+    assert_eq!(
+        moves,
+        [
+            (50.0, Motion::Feed),
+            (50.0, Motion::Rapid),
+            (2.0, Motion::Rapid)
+        ]
+    );
 }
 
 /// In a tilted plane (G68.2) with G43.4 on, a block that turns the rotary axes gives the tool
