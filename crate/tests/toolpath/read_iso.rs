@@ -561,6 +561,51 @@ fn g68_turns_the_program_counter_clockwise_about_its_centre() {
     );
 }
 
+// Found by cargo-mutants: the unit's scale in G52, G92 and G68.2 (`*` and `/` swapped), G92's
+// `pos − value` made `+`, G52's note only for a zero shift, and G68 I J K's `centre − R·centre`
+// made `+` survived: every test of them was in millimetres, set values of 0, or turned about
+// the origin.
+/// The frames of G52, G92, G68 and G68.2 in inches are placed in inches: X1 is 25.4 mm (the
+/// notes give the file's numbers). G92 X5 at X10: the position is now 5, the origin 5 along
+/// +X. G68 about the axis I J K through (10, 0, 0): that centre stays where it is.
+#[test]
+fn frames_set_in_inches_and_off_the_origin_are_placed_right() {
+    let m = caz_head();
+    let inch = |x: f64| x * 25.4;
+    // G52 X1: X1 is 2 in from the origin; the note gives the shift (1, 0, 0).
+    let (p, r) = read_all(
+        "G20\nG0 X0 Y0 Z0\nG52 X1 Y0 Z0\nG1 X1\nG52 X0\n",
+        Format::Nc,
+        Some(&m),
+    );
+    close_vec(&p[1].tip, &Vector3::new(inch(2.0), 0.0, 0.0), 1e-9, "G52");
+    assert!(note(&r, "G52").text.contains("(1, 0, 0)"), "{:?}", r.notes);
+    // G92 X5 at X10 (inches): X5 is the tool's place, so X6 is 11 in, and the origin moved 5.
+    let (p, r) = read_all("G20\nG0 X10 Y0 Z0\nG92 X5\nG1 X6\n", Format::Nc, Some(&m));
+    close_vec(&p[1].tip, &Vector3::new(inch(11.0), 0.0, 0.0), 1e-9, "G92");
+    assert!(note(&r, "G92").text.contains("(5, 0, 0)"), "{:?}", r.notes);
+    // G68 about +Z through (10, 0, 0) by 90°: (10, 0) stays, (20, 0) goes to (10, 10).
+    let (p, _) = read_all(
+        "G0 X0 Y0 Z0\nG68 X10 Y0 Z0 I0 J0 K1 R90\nG1 X10 Y0\nX20\n",
+        Format::Nc,
+        Some(&m),
+    );
+    close_vec(
+        &p[1].tip,
+        &Vector3::new(10.0, 0.0, 0.0),
+        1e-12,
+        "the centre",
+    );
+    close_vec(&p[2].tip, &Vector3::new(10.0, 10.0, 0.0), 1e-12, "turned");
+    // G68.2 X1 (inches) with no turn: the plane's origin is 1 in along +X.
+    let (p, _) = read_all(
+        "G20\nG68.2 X1 Y0 Z0 I0 J0 K0\nG0 X0 Y0 Z0\n",
+        Format::Nc,
+        Some(&m),
+    );
+    close_vec(&p[0].tip, &Vector3::new(inch(1.0), 0.0, 0.0), 1e-9, "G68.2");
+}
+
 #[test]
 fn g68_2_tilts_the_plane_by_euler_angles_z_x_z() {
     let m = caz_head();
