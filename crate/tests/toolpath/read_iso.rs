@@ -887,9 +887,18 @@ fn macros_subprograms_and_o_words_are_refused_with_their_construct() {
             "expected a rotary axis of this machine (C or A), got B",
         ),
         ("TRAORI\n", 1, 1, "is not ISO G-code"),
+        // Found by cargo-mutants: a `[` not after a letter, and a `:` after the first word.
+        ("G0 X1 [X+1]\n", 1, 7, "expression"),
+        ("G0 X1 :5\n", 1, 7, "expected a word"),
     ] {
         at(&error(text, Format::Nc, Some(&m)), line, column, part);
     }
+    // `:1000` opens a block as a program number (ISO 6983's `:`), and a comment left open runs
+    // to the line's end.
+    let (p, r) = read_all(":1000\nG0 X1 Y0 Z0 (open\n", Format::Nc, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!(p[0].tip, Vector3::new(1.0, 0.0, 0.0));
+    assert_eq!(r.blocks, 1);
 }
 
 #[test]
