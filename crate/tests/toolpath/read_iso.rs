@@ -1098,6 +1098,18 @@ fn a_heidenhain_din_iso_program_reads_absolute_modal_centres_and_its_cycles() {
     assert_eq!(skipped(&r, "cycle definitions and their Q parameters"), 3);
     assert_eq!(note(&r, "M99 calls the cycle").line, 12);
     assert_eq!(note(&r, "HEIDENHAIN DIN/ISO").line, 1);
+    // A cycle's number alone (`G200`, no name after it) is a cycle definition too (found by
+    // cargo-mutants: the length's `>` made `>=` survived, and `body[1..4]` sliced a character
+    // in two: `G20é` panicked).
+    let (_, r) = read_all(
+        "%T G71 *\nN10 G200 *\nN20 G00 X0 Y0 Z0 *\n",
+        Format::Nc,
+        Some(&m),
+    );
+    assert_eq!(skipped(&r, "cycle definitions"), 1);
+    assert_eq!(skipped(&r, "does not know"), 0);
+    let e = error("%T G71 *\nN10 G20\u{e9} *\n", Format::Nc, Some(&m));
+    at(&e, 2, 8, "expected a word");
     // M91 (iTNC 530 DIN/ISO: coordinates of the machine's datum) moves its axes off the part's
     // frame: the path breaks there (a survivor: M91's arm deleted).
     let text = "%T G71 *\nN10 G00 X0 Y0 Z0 *\nN20 G00 Z100 M91 *\nN30 G01 X5 Z0 *\n";

@@ -257,10 +257,10 @@ impl Iso {
                 .trim_start_matches(|c: char| c == 'N' || c.is_ascii_digit())
                 .trim_start();
             let is_q = body.starts_with(['Q', 'q']) && body.contains('=');
-            let cycle = body.len() > 4
-                && body.starts_with(['G', 'g'])
-                && body[1..4].bytes().all(|c| c.is_ascii_digit())
-                && body[1..2] == *"2";
+            // `G200 DRILLING`, or `G200` alone: G and three digits from 2 (read as bytes).
+            let digits = body.as_bytes().get(1..4);
+            let cycle = body.starts_with(['G', 'g'])
+                && digits.is_some_and(|d| d[0] == b'2' && d.iter().all(u8::is_ascii_digit));
             if body.starts_with('%') {
                 // `N99999999 %NAME G71 *`: the end of the program.
                 core.ended = true;
