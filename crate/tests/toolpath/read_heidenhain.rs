@@ -764,6 +764,22 @@ fn m140_preset_select_f_max_and_what_is_refused() {
     }
 }
 
+// Found by cargo-mutants: the `!more` of an empty line survived (a lone `~` started a block
+// on its own line, so a point's line was the `~`'s).
+/// A block continued with `~` is one block on the line of its first words: a line holding only
+/// a comment and `~` before it is not where the block is.
+#[test]
+fn a_block_continued_with_a_tilde_is_on_the_line_of_its_words() {
+    let m = caz_head();
+    // Line 2 a comment and `~`; block 1 on lines 3 and 4 (a continued line has no number).
+    let text = "0 BEGIN PGM T MM\n; next~\n1 L X+5 Y+0~\nZ+0 R0 FMAX\n2 END PGM T MM\n";
+    let (p, r) = read_all(text, H, Some(&m));
+    assert_eq!(p.len(), 1);
+    assert_eq!((p[0].line, p[0].tip), (3, Vector3::new(5.0, 0.0, 0.0)));
+    // BEGIN PGM, the L block (over two lines) and END PGM.
+    assert_eq!(r.blocks, 3);
+}
+
 /// Detection looks at statements, not comments: a Fanuc program with `(TOOL CALL T1 …)` and a
 /// Sinumerik one starting `;TOOL CALL T1` are not Heidenhain.
 #[test]
@@ -780,4 +796,21 @@ fn detection_ignores_keywords_in_comments() {
         Format::detect("1 TOOL CALL 5 Z S3000\n"),
         Format::Heidenhain
     );
+}
+
+// Found by cargo-mutants: `heidenhain::is_statement`'s `||`, `==` and `!` survived: no test
+// detected a file by a CYCL DEF, an FMAX or a numbered block alone.
+/// Each of the documented telling lines alone makes a file Heidenhain (`Format::detect`'s
+/// doc): a numbered `CYCL DEF`, an unnumbered block with `FMAX`, a numbered `L` block with a feed.
+/// A block's number is followed by a space (TNC: `12 L X+10`): `12L X+10` is no Heidenhain block.
+#[test]
+fn one_telling_line_makes_a_file_heidenhain() {
+    for text in [
+        "5 CYCL DEF 200 DRILLING\n",
+        "L X+10 Y+0 R0 FMAX\n",
+        "12 L X+10 Y+0 R0 F100\n",
+    ] {
+        assert_eq!(Format::detect(text), Format::Heidenhain, "{text:?}");
+    }
+    assert_ne!(Format::detect("12L X+10 Y+0\n"), Format::Heidenhain);
 }

@@ -181,8 +181,8 @@ impl Heidenhain {
                 }
             }
             None => {
-                if t.trim().is_empty() && !more {
-                    return Ok(());
+                if t.trim().is_empty() {
+                    return Ok(()); // blank, or a lone `~`: a block starts with its words
                 }
                 if more {
                     self.pending = Some((no, t.to_string()));
