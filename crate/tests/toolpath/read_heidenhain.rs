@@ -511,6 +511,27 @@ fn labels_are_called_and_repeated() {
         3,
         "no label 5",
     );
+    // Found by cargo-mutants (`Heidenhain::run_from`'s end of a subprogram: `>` made `>=`, two
+    // `&&` made `||`). LBL 0 ends a subprogram only when it is called: met in the main
+    // program's own run it is a label like any other; a label inside the subprogram (LBL 2)
+    // does not end it.
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "LBL 0",
+        "CALL LBL 1",
+        "M30",
+        "LBL 1",
+        "L X+5",
+        "LBL 2",
+        "L X+6",
+        "LBL 0",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    let x: Vec<(u32, f64)> = p.iter().map(|q| (q.line, q.tip.x)).collect();
+    assert_eq!(x, [(2, 0.0), (7, 5.0), (9, 6.0)]);
+    // A program without END PGM ends with its last block.
+    let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+1 Y+0 Z+0 R0 FMAX\n", H, Some(&m));
+    assert_eq!(p.len(), 1);
 }
 
 #[test]
@@ -660,12 +681,16 @@ fn call_lbl_rep_in_the_stored_form_n_slash_n() {
         let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
         assert_eq!(xs, [0.0, 10.0, 20.0, 30.0], "{rep}");
     }
-    let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", "CALL LBL 1 REP X"]);
-    let e = error(&text, H, Some(&m));
-    assert!(
-        e.contains("REP must be followed by the number of repeats"),
-        "{e}"
-    );
+    // A repeat count is a whole number of 0 or more (a survivor: `&&` made `||` let 2.5 and
+    // −1 through).
+    for bad in ["REP X", "REP 2.5", "REP -1"] {
+        let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", &format!("CALL LBL 1 {bad}")]);
+        let e = error(&text, H, Some(&m));
+        assert!(
+            e.contains("REP must be followed by the number of repeats"),
+            "{bad}: {e}"
+        );
+    }
     // An empty section repeated 4 000 000 000 times: clamped to the TNC's 65 534 and ended.
     let text = program(&["L X+0 Y+0 Z+0 FMAX", "LBL 1", "CALL LBL 1 REP 4000000000"]);
     let (p, _) = read_all(&text, H, Some(&m));
