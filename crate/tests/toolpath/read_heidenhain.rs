@@ -691,6 +691,10 @@ fn call_lbl_rep_in_the_stored_form_n_slash_n() {
             "{bad}: {e}"
         );
     }
+    // The refusal points at REP: block 3 is line 4, "3 CALL LBL 1 REP X" has R at column 14
+    // (a survivor: each `+` of the column's sum).
+    let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", "CALL LBL 1 REP X"]);
+    at(&error(&text, H, Some(&m)), 4, 14, "REP must be followed");
     // An empty section repeated 4 000 000 000 times: clamped to the TNC's 65 534 and ended.
     let text = program(&["L X+0 Y+0 Z+0 FMAX", "LBL 1", "CALL LBL 1 REP 4000000000"]);
     let (p, _) = read_all(&text, H, Some(&m));
