@@ -695,6 +695,22 @@ fn call_lbl_rep_in_the_stored_form_n_slash_n() {
     // (a survivor: each `+` of the column's sum).
     let text = program(&["LBL 1", "L X+0 Y+0 Z+0 FMAX", "CALL LBL 1 REP X"]);
     at(&error(&text, H, Some(&m)), 4, 14, "REP must be followed");
+    // REP to a label after the call: there is no part before it to repeat; the label is run
+    // once as a subprogram, to its LBL 0 (a survivor: the guard `at < i` made true).
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "CALL LBL 1 REP 2",
+        "M30",
+        "LBL 1",
+        "L IX+10 F500",
+        "LBL 0",
+        "LBL 2",
+        "L X+99 FMAX",
+        "LBL 0",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
+    assert_eq!(xs, [0.0, 10.0]);
     // An empty section repeated 4 000 000 000 times: clamped to the TNC's 65 534 and ended.
     let text = program(&["L X+0 Y+0 Z+0 FMAX", "LBL 1", "CALL LBL 1 REP 4000000000"]);
     let (p, _) = read_all(&text, H, Some(&m));

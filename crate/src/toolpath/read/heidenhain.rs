@@ -38,7 +38,7 @@
 //! * `M91`/`M92` (machine coordinates) and `M140` (retract along the tool axis): the axes go
 //!   where the file does not say; the path breaks until they are given again (a note).
 //! * `CALL LBL n` (a subprogram up to `LBL 0`) and `CALL LBL n REP m` (repeats the part from
-//!   `LBL n` to the call), nested up to 8 deep.
+//!   `LBL n` to the call; a label after the call is run once, as a subprogram), 8 deep at most.
 //! * Cycles called at positions (`CYCL CALL`, `CYCL CALL POS`, `M99`, `M89`): the positions are
 //!   read, the cycle's own moves are not drawn (a note).
 //!
