@@ -677,10 +677,27 @@ fn call_lbl_rep_in_the_stored_form_n_slash_n() {
             "L IX+10 F500",
             &format!("CALL LBL 1 {rep}"),
         ]);
-        let (p, _) = read_all(&text, H, Some(&m));
+        let (p, r) = read_all(&text, H, Some(&m));
         let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
         assert_eq!(xs, [0.0, 10.0, 20.0, 30.0], "{rep}");
+        // The repeats start after the label: LBL 1 is met once (a survivor: `at + 1` made `at`).
+        assert_eq!(skipped(&r, "labels (LBL)"), 1, "{rep}");
     }
+    // A repeated section that calls a subprogram: one level deeper, not past the limit (a
+    // survivor: the repeat's `depth + 1` made `- 1`).
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "LBL 1",
+        "CALL LBL 2",
+        "CALL LBL 1 REP 1",
+        "M30",
+        "LBL 2",
+        "L IX+10 F500",
+        "LBL 0",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    let xs: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
+    assert_eq!(xs, [0.0, 10.0, 20.0]);
     // A repeat count is a whole number of 0 or more (a survivor: `&&` made `||` let 2.5 and
     // −1 through).
     for bad in ["REP X", "REP 2.5", "REP -1"] {
