@@ -489,7 +489,10 @@ fn labels_are_called_and_repeated() {
                 10 L Y+10\n\
                 11 LBL 0\n\
                 12 END PGM LBL MM\n";
-    let (p, _) = read_all(text, H, Some(&m));
+    let (p, r) = read_all(text, H, Some(&m));
+    // Only LBL 2, met in order, is a skipped label: a call starts after its label (a survivor:
+    // the subprogram's `at + 1` made `at`), and LBL 0 ends the subprogram.
+    assert_eq!(skipped(&r, "labels (LBL)"), 1);
     // The subprogram (lines 10, 11), back to line 4, then line 6 three times (once in order,
     // twice repeated).
     let x: Vec<(u32, f64)> = p.iter().map(|q| (q.line, q.tip.x)).collect();
@@ -529,6 +532,29 @@ fn labels_are_called_and_repeated() {
     let (p, _) = read_all(&text, H, Some(&m));
     let x: Vec<(u32, f64)> = p.iter().map(|q| (q.line, q.tip.x)).collect();
     assert_eq!(x, [(2, 0.0), (7, 5.0), (9, 6.0)]);
+    // A subprogram calling another (survivors: the call's `depth + 1` made `- 1` or `* 1`).
+    let text = program(&[
+        "CALL LBL 1",
+        "M30",
+        "LBL 1",
+        "CALL LBL 2",
+        "LBL 0",
+        "LBL 2",
+        "L X+5 Y+0 Z+0 R0 FMAX",
+        "LBL 0",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    assert_eq!(p.iter().map(|q| q.tip.x).collect::<Vec<_>>(), [5.0]);
+    // Sections repeated inside each other nine deep: LBL 1 … LBL 9, then CALL LBL 9 REP 1 …
+    // CALL LBL 1 REP 1; the call of LBL 9 inside LBL 1's repeat is the ninth level, past the
+    // eight the reader follows (a survivor: the repeat's `depth + 1` made `* 1`).
+    let mut blocks: Vec<String> = vec!["L X+0 Y+0 Z+0 R0 FMAX".into()];
+    blocks.extend((1..=9).map(|n| format!("LBL {n}")));
+    blocks.push("L IX+1 F500".into());
+    blocks.extend((1..=9).rev().map(|n| format!("CALL LBL {n} REP 1")));
+    let blocks: Vec<&str> = blocks.iter().map(String::as_str).collect();
+    let e = error(&program(&blocks), H, Some(&m));
+    assert!(e.contains("labels call each other more than 8 deep"), "{e}");
     // A program without END PGM ends with its last block.
     let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+1 Y+0 Z+0 R0 FMAX\n", H, Some(&m));
     assert_eq!(p.len(), 1);
