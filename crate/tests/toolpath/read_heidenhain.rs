@@ -555,6 +555,36 @@ fn labels_are_called_and_repeated() {
     let blocks: Vec<&str> = blocks.iter().map(String::as_str).collect();
     let e = error(&program(&blocks), H, Some(&m));
     assert!(e.contains("labels call each other more than 8 deep"), "{e}");
+    // Two repeats inside each other, 65 534 passes each, empty: 4.3·10⁹ passes, past the 5·10⁷
+    // blocks a program may run; refused at the outer call, not run for minutes (a survivor:
+    // `count_run` made `Ok(())`).
+    let text = program(&[
+        "L X+0 Y+0 Z+0 R0 FMAX",
+        "LBL 1",
+        "LBL 2",
+        "CALL LBL 2 REP 65534",
+        "CALL LBL 1 REP 65534",
+    ]);
+    let e = error(&text, H, Some(&m));
+    assert!(e.contains("runs more than 50000000 blocks"), "{e}");
+    // At the limit exactly: each block run counts once and each pass of a repeat once more.
+    // BEGIN PGM, two L, two LBL and END PGM are 6; `CALL LBL 2 REP a` is 1 + a (its passes
+    // are empty); `CALL LBL 1 REP b` is 1 + b·(3 + a) (a pass runs LBL 2 and the inner call).
+    // With a = 1192, b = 41 840: 8 + 1192 + 41 840 · 1195 = 50 000 000, allowed; b = 41 841
+    // is 1195 more, refused.
+    for (b, refused) in [(41_840, false), (41_841, true)] {
+        let rep = format!("CALL LBL 1 REP {b}");
+        let blocks = [
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "L X+1",
+            "LBL 1",
+            "LBL 2",
+            "CALL LBL 2 REP 1192",
+            &rep,
+        ];
+        let r = fiveaxis::toolpath::read::read(&program(&blocks), H, Some(&m), Default::default());
+        assert_eq!(r.is_err(), refused, "REP {b}");
+    }
     // A program without END PGM ends with its last block.
     let (p, _) = read_all("0 BEGIN PGM T MM\n1 L X+1 Y+0 Z+0 R0 FMAX\n", H, Some(&m));
     assert_eq!(p.len(), 1);
