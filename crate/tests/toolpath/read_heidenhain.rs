@@ -882,6 +882,34 @@ fn m140_preset_select_f_max_and_what_is_refused() {
     }
 }
 
+// Found by cargo-mutants: the arms of TCH and of SEL … settings deleted, and the guards of
+// TRANS DATUM and of M-functions made true, survived.
+/// A touch-probe cycle is noted (its moves are not drawn); SEL, DECLARE, SPEC and a PRESET
+/// that is not SELECT, COPY or SET are settings, skipped and counted; a TRANS other than TRANS
+/// DATUM, and a word the reader does not know, are refused as statements it does not know.
+#[test]
+fn probe_cycles_settings_and_unknown_statements() {
+    let m = caz_head();
+    let text = program(&[
+        "TCH PROBE 400 BASIC ROTATION",
+        "SEL TABLE \"TNC:\\T.D\"",
+        "DECLARE STRING QS1 = \"A\"",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    assert_eq!(p.len(), 1);
+    let n = note(&r, "touch-probe cycle");
+    assert_eq!((n.line, n.kind), (2, NoteKind::Partial));
+    assert_eq!(skipped(&r, "settings (SEL, DECLARE, PRESET"), 2);
+    for stmt in ["TRANS MIRROR X", "FOO 5"] {
+        let e = error(&program(&[stmt, "L X+0 Y+0 Z+0 R0 FMAX"]), H, Some(&m));
+        assert!(
+            e.starts_with("line 2") && e.contains("is not a Heidenhain statement the reader knows"),
+            "{stmt}: {e}"
+        );
+    }
+}
+
 // Found by cargo-mutants: the `!more` of an empty line survived (a lone `~` started a block
 // on its own line, so a point's line was the `~`'s).
 /// A block continued with `~` is one block on the line of its first words: a line holding only
