@@ -883,10 +883,11 @@ fn m140_preset_select_f_max_and_what_is_refused() {
 }
 
 // Found by cargo-mutants: the arms of TCH and of SEL … settings deleted, and the guards of
-// TRANS DATUM and of M-functions made true, survived.
-/// A touch-probe cycle is noted (its moves are not drawn); SEL, DECLARE, SPEC and a PRESET
-/// that is not SELECT, COPY or SET are settings, skipped and counted; a TRANS other than TRANS
-/// DATUM, and a word the reader does not know, are refused as statements it does not know.
+// TRANS DATUM, of Q assignments (`&&` as `||`) and of M-functions made true, survived.
+/// A touch-probe cycle is noted (its moves are not drawn); SEL and DECLARE are settings,
+/// skipped and counted; a TRANS other than TRANS DATUM, a word the reader does not know, a
+/// block of a feed alone (a feed is a word of a move, TOOL CALL or M block), a Q parameter
+/// without `=` and an unknown word with one are refused as statements it does not know.
 #[test]
 fn probe_cycles_settings_and_unknown_statements() {
     let m = caz_head();
@@ -900,8 +901,8 @@ fn probe_cycles_settings_and_unknown_statements() {
     assert_eq!(p.len(), 1);
     let n = note(&r, "touch-probe cycle");
     assert_eq!((n.line, n.kind), (2, NoteKind::Partial));
-    assert_eq!(skipped(&r, "settings (SEL, DECLARE, PRESET"), 2);
-    for stmt in ["TRANS MIRROR X", "FOO 5"] {
+    assert_eq!(skipped(&r, "settings (SEL, DECLARE"), 2);
+    for stmt in ["TRANS MIRROR X", "FOO 5", "F500", "FMAX", "Q5", "FOO = 5"] {
         let e = error(&program(&[stmt, "L X+0 Y+0 Z+0 R0 FMAX"]), H, Some(&m));
         assert!(
             e.starts_with("line 2") && e.contains("is not a Heidenhain statement the reader knows"),
@@ -959,4 +960,124 @@ fn one_telling_line_makes_a_file_heidenhain() {
         assert_eq!(Format::detect(text), Format::Heidenhain, "{text:?}");
     }
     assert_ne!(Format::detect("12L X+10 Y+0\n"), Format::Heidenhain);
+}
+
+// Found by cargo-mutants: PRESET's guard made true and its `||` as `&&` survived.
+/// The four preset functions of the NC program each break the path at their line (the preset
+/// they select or change is in the preset table, not the file); any other PRESET word is
+/// refused, named.
+#[test]
+fn each_preset_function_breaks_the_path_and_another_is_refused() {
+    let m = caz_head();
+    for f in [
+        "SELECT #5",
+        "COPY #1 TO #3",
+        "SET #3 X+10",
+        "CORRECT #3 X+0.1",
+        "select #2",
+    ] {
+        let text = program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            &format!("PRESET {f}"),
+            "L X+5 F100",
+        ]);
+        let (p, r) = read_all(&text, H, Some(&m));
+        let n = note(&r, "selects or changes a preset");
+        assert_eq!((n.line, n.kind), (3, NoteKind::Break), "PRESET {f}");
+        // The feed move after the break is reached across an unknown datum: drawn as a rapid.
+        assert_eq!(p.len(), 2, "PRESET {f}: {p:?}");
+        assert_eq!((p[1].line, p[1].motion), (4, Motion::Rapid), "PRESET {f}");
+    }
+    let e = error(
+        &program(&["PRESET TABLE #5", "L X+0 Y+0 Z+0 R0 FMAX"]),
+        H,
+        Some(&m),
+    );
+    assert!(
+        e.starts_with("line 2") && e.contains("is not a preset function the reader knows"),
+        "{e}"
+    );
+}
+
+// Found by cargo-mutants: the axis letters of TOOL CALL deleted survived (the tool axis set
+// nothing the tests read).
+/// Cycle 10 ROTATION turns about the tool axis of the last TOOL CALL: ROT+90 takes the first
+/// axis of the working plane to the second (X to Y about Z, Y to Z about X, Z to X about Y).
+#[test]
+fn rotation_turns_about_the_tool_axis_of_the_last_tool_call() {
+    let m = caz_head();
+    // Each case: the tool calls, then the expected image of the point (10, 0, 0) and of
+    // (0, 10, 0) under ROT+90 about that axis: R_Z(90°)(10,0,0) = (0,10,0);
+    // R_X(90°)(0,10,0) = (0,0,10); R_Y(90°)(10,0,0) = (0,0,-10).
+    for (calls, from, to) in [
+        (
+            vec!["TOOL CALL 1 Z S5000"],
+            [10.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0],
+        ),
+        (
+            vec!["TOOL CALL 1 X S5000"],
+            [0.0, 10.0, 0.0],
+            [0.0, 0.0, 10.0],
+        ),
+        (
+            vec!["TOOL CALL 1 Y S5000"],
+            [10.0, 0.0, 0.0],
+            [0.0, 0.0, -10.0],
+        ),
+        (
+            vec!["TOOL CALL 1 X", "TOOL CALL 2 Z"],
+            [10.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0],
+        ),
+        (
+            vec!["TOOL CALL 1 Z", "TOOL CALL \"MILL\" Y"],
+            [10.0, 0.0, 0.0],
+            [0.0, 0.0, -10.0],
+        ),
+    ] {
+        let mv = format!("L X{:+} Y{:+} Z{:+} R0 FMAX", from[0], from[1], from[2]);
+        let mut blocks = calls.clone();
+        blocks.extend(["CYCL DEF 10.0 ROTATION", "CYCL DEF 10.1 ROT+90", &mv]);
+        let (p, _) = read_all(&program(&blocks), H, Some(&m));
+        close_vec(&p[0].tip, &Vector3::from(to), 1e-12, &format!("{calls:?}"));
+    }
+}
+
+// Found by cargo-mutants: TRANS DATUM's `i < 3` as `i <= 3` survived (no axis has index 3:
+// the rotary and parallel axes' words were dropped without a word).
+/// A datum shift of a rotary axis is refused, named, by both datum shifts (a parallel axis, U V
+/// W, is refused as an axis the calculator does not read); a shift of X, Y and Z is applied.
+#[test]
+fn a_datum_shift_of_a_rotary_axis_is_refused() {
+    let m = caz_head();
+    for (shift, word) in [
+        (vec!["TRANS DATUM AXIS X+10 C+90"], "C+90"),
+        (vec!["TRANS DATUM AXIS IA+5"], "IA+5"),
+        (
+            vec!["CYCL DEF 7.0 DATUM SHIFT", "CYCL DEF 7.1 B+30"],
+            "B+30",
+        ),
+        (
+            vec!["CYCL DEF 7.0 DATUM SHIFT", "CYCL DEF 7.1 IC-45"],
+            "IC-45",
+        ),
+    ] {
+        let mut blocks = shift.clone();
+        blocks.push("L X+0 Y+0 Z+0 R0 FMAX");
+        let e = error(&program(&blocks), H, Some(&m));
+        let line = shift.len() + 1;
+        assert!(
+            e.starts_with(&format!("line {line}"))
+                && e.contains(word)
+                && e.contains("shifts a rotary axis"),
+            "{shift:?}: {e}"
+        );
+    }
+    let (p, _) = read_all(
+        &program(&["TRANS DATUM AXIS X+10 Y-5 Z+2", "L X+0 Y+0 Z+0 R0 FMAX"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p[0].tip, Vector3::new(10.0, -5.0, 2.0));
 }

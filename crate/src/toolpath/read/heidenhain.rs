@@ -45,14 +45,18 @@
 //! # Skipped and counted
 //! `TOOL CALL`, `TOOL DEF`, `BLK FORM`, feeds, M-functions, radius compensation `RL`/`RR` (a
 //! note), cycle definitions and their `Q` parameter lines, `CYCL DEF 32` (tolerance), `LBL`,
-//! `STOP`, `FUNCTION` settings, other Q-parameter assignments.
+//! `STOP`, `FUNCTION` settings, `SEL`, `DECLARE`, `SPEC`, `PATTERN`, other Q-parameter
+//! assignments. `PRESET SELECT`, `COPY`, `SET` and `CORRECT` change the preset by values the
+//! file does not state: the path breaks there (a note).
 //!
 //! # Refused, with the line and why (when the block is run)
 //! `APPR`/`DEP` (approach contours the control builds), `RND`/`CHF` (corner roundings),
 //! FK free contours (`FPOL`, `FL`, `FC` …), `LP`/`CTP` polar moves, `CYCL DEF 19` (its angles
 //! depend on the machine's configuration), `CYCL DEF 8`, `11`, `26` (mirror, scaling),
 //! `PLANE PROJECTED`, `POINTS`, `AXIAL`, `CALL PGM`, `FN 9`–`FN 12` jumps, coordinates from Q
-//! parameters that are computed or undefined, a rotary word that is not one of the machine's.
+//! parameters that are computed or undefined, a rotary word that is not one of the machine's,
+//! a datum shift of a rotary axis (`CYCL DEF 7.1 C+90`, `TRANS DATUM AXIS C+90`),
+//! another `PRESET` function, and any other statement.
 
 use super::frame::Frame;
 use super::lex::{number, shown, Loc, Seg};
@@ -314,9 +318,7 @@ impl Heidenhain {
     /// Counts one block (or one pass of a repeat) run, against [`MAX_RUN`], and the points so
     /// far against [`super::MAX_POINTS`].
     fn count_run(&mut self, line: u32, points: usize) -> Result<()> {
-        if points as u64 > super::MAX_POINTS {
-            return Err(super::too_many(line));
-        }
+        super::within_points(points as u64, line)?;
         self.run += 1;
         if self.run > MAX_RUN {
             return Err(Error::field(super::FIELD, format!("line {line}: the program runs more than {MAX_RUN} blocks (a label calling itself?)")));
@@ -395,14 +397,7 @@ impl Heidenhain {
                     self.update_frame(core);
                     return Ok(());
                 }
-                let mut shifts = Vec::new();
-                for w in &words[2..] {
-                    if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
-                        if i < 3 {
-                            shifts.push((i, inc, v));
-                        }
-                    }
-                }
+                let shifts = self.datum_words(&words[2..], "TRANS DATUM", loc, at)?;
                 self.shift_datum(core, &shifts, "TRANS DATUM", no, log);
                 Ok(())
             }
@@ -426,13 +421,21 @@ impl Heidenhain {
                 log.note("hei-probe", NoteKind::Partial, no, || format!("line {no}: a touch-probe cycle: its probing moves are not drawn"));
                 Ok(())
             }
-            "PRESET" if u.starts_with("PRESET SELECT") || u.starts_with("PRESET COPY") || u.starts_with("PRESET SET") => {
+            // The NC functions of the preset table: SELECT activates a row, COPY copies one
+            // (and may activate it), SET writes one, CORRECT offsets the active one ("offsets
+            // the entered value against the actual table value", TNC7 manual 81762x-17). Each
+            // may move the datum by values the file does not state: the path breaks there.
+            "PRESET" => {
+                let what = words.get(1).map(|w| w.to_ascii_uppercase()).unwrap_or_default();
+                if !matches!(what.as_str(), "SELECT" | "COPY" | "SET" | "CORRECT") {
+                    return refuse(format!("{} is not a preset function the reader knows (SELECT, COPY, SET, CORRECT)", shown(body)));
+                }
                 core.break_next = true;
-                log.note("hei-preset", NoteKind::Break, no, || format!("line {no}: {} selects or changes a preset, whose place the file does not state: the path breaks there", words.iter().take(2).copied().collect::<Vec<_>>().join(" ")));
+                log.note("hei-preset", NoteKind::Break, no, || format!("line {no}: PRESET {what} selects or changes a preset, whose place the file does not state: the path breaks there"));
                 Ok(())
             }
-            "SEL" | "DECLARE" | "SPEC" | "PRESET" | "PATTERN" | "FUNCTION PROG" => {
-                log.skip("settings (SEL, DECLARE, PRESET …)", no);
+            "SEL" | "DECLARE" | "SPEC" | "PATTERN" => {
+                log.skip("settings (SEL, DECLARE, SPEC, PATTERN)", no);
                 Ok(())
             }
             f if f.starts_with('Q') && u.contains('=') => {
@@ -1001,17 +1004,10 @@ impl Heidenhain {
                 if minor == "0" {
                     return Ok(());
                 }
-                let mut shifts = Vec::new();
-                for w in &words {
-                    if w.starts_with('#') {
-                        return Err(loc.err(at, "CYCL DEF 7 with a datum table line (#) shifts by values the file does not state; post the program with the shift written out"));
-                    }
-                    if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
-                        if i < 3 {
-                            shifts.push((i, inc, v));
-                        }
-                    }
+                if words.iter().any(|w| w.starts_with('#')) {
+                    return Err(loc.err(at, "CYCL DEF 7 with a datum table line (#) shifts by values the file does not state; post the program with the shift written out"));
                 }
+                let shifts = self.datum_words(&words, "CYCL DEF 7 DATUM SHIFT", loc, at)?;
                 self.shift_datum(core, &shifts, "CYCL DEF 7 DATUM SHIFT", no, log);
                 Ok(())
             }
@@ -1217,6 +1213,30 @@ impl Heidenhain {
 
     /// A datum shift (`TRANS DATUM`, cycle 7): each `(axis, incremental, value)`. Programmed in
     /// a tilted plane it is along the plane's axes, else along the workpiece's.
+    /// The shifts a datum shift's words give: `(axis 0..3 for X Y Z, incremental, value)`. A
+    /// shift of a rotary axis (`C+90`: the control turns the axis's zero) is refused, not
+    /// dropped: the reader moves the workpiece frame along X, Y and Z only. (A parallel axis,
+    /// U V W, is refused by [`Self::axis_value`].)
+    fn datum_words(
+        &self,
+        words: &[&str],
+        what: &str,
+        loc: &Loc,
+        at: usize,
+    ) -> Result<Vec<(usize, bool, f64)>> {
+        let mut shifts = Vec::new();
+        for w in words {
+            if let Some((i, inc, v)) = self.axis_value(w, loc, at)? {
+                // X Y Z are 0 1 2; the rotary axes come after.
+                if i > 2 {
+                    return Err(loc.err(at, format!("{what} {} shifts a rotary axis, which the reader does not apply; post the program with that axis's positions written with the shift", shown(w))));
+                }
+                shifts.push((i, inc, v));
+            }
+        }
+        Ok(shifts)
+    }
+
     fn shift_datum(
         &mut self,
         core: &mut Core,

@@ -994,9 +994,7 @@ impl Parser {
         }
         let from = self.points;
         self.points += new as u64;
-        if self.points > MAX_POINTS {
-            return Err(too_many(self.line));
-        }
+        within_points(self.points, self.line)?;
         let (mm, stated) = self.log.scale();
         if !stated {
             self.log.unstated_points(from, self.points, mm);
@@ -1005,12 +1003,16 @@ impl Parser {
     }
 }
 
-/// The error of a file that gives more than [`MAX_POINTS`] points.
-pub(super) fn too_many(line: u32) -> Error {
-    Error::field(
-        FIELD,
-        format!("line {line}: the file gives more than {MAX_POINTS} points (with its arcs and repeats); read a part of the program at a time"),
-    )
+/// Refuses a file at `line` once it has given `points` points, more than [`MAX_POINTS`] (the
+/// one limit of every reader: the parser's count, and a reader's own while it runs repeats).
+pub(super) fn within_points(points: u64, line: u32) -> Result<()> {
+    if points > MAX_POINTS {
+        return Err(Error::field(
+            FIELD,
+            format!("line {line}: the file gives more than {MAX_POINTS} points (with its arcs and repeats); read a part of the program at a time"),
+        ));
+    }
+    Ok(())
 }
 
 /// The error of a line longer than [`MAX_LINE`], whether it came whole or in pieces.
