@@ -399,3 +399,44 @@ fn decimal_numbers_with_a_sign_and_one_point() {
     assert_eq!(p[0].angles, Some([12.125, -0.5]));
     at(&error("G1 X1.2.3\n", S, Some(&m)), 1, 8, "got \".\"");
 }
+
+// Found by cargo-mutants: the comment rule of `siemens::is_statement` (its depth and its count
+// of a name's leading letters) survived: no test decided a file by a call's parentheses.
+/// Detection: an ISO comment `( … )` decides nothing, nested or not, and what follows its `)`
+/// does; a `(` after a name of two or more letters (`MSG(`, `CYCLE800(`, `IC(`) is a Sinumerik
+/// call, not a comment, and `MSG(` alone makes a file Sinumerik; so do `DEF REAL`/`DEF INT`, a
+/// keyword as a whole word and an address followed by `=`.
+#[test]
+fn detection_reads_iso_comments_apart_from_sinumerik_calls() {
+    let cases = [
+        // A comment after a block number holds a Sinumerik keyword: still ISO.
+        ("N1(CYCLE800 TRAORI)\nG1 X1\n", Format::Nc),
+        // Nested parentheses: the keyword after the inner `)` is still in the comment.
+        ("N1(SEE(1) TRAORI)\nG1 X1\n", Format::Nc),
+        ("N1(X(1) TRAORI)\nG1 X1\n", Format::Nc),
+        // After the comment's `)`, the keyword is code.
+        ("N1 (NOTE) TRAORI\nG1 X1\n", Format::Siemens),
+        ("N1 (A(B)) TRAORI\nG1 X1\n", Format::Siemens),
+        // Sinumerik's message call, alone.
+        ("N20 MSG(\"ROUGHING\")\nG1 X1\n", Format::Siemens),
+        ("MSG(\"A\")\n", Format::Siemens),
+        // A two-letter function's argument is code: `R1=` inside `IC(…)` decides.
+        ("G1 Y IC(R1=5)\n", Format::Siemens),
+        // MSG with a space before its `(` (which alone would open an ISO comment).
+        ("N20 MSG (\"A\")\n", Format::Siemens),
+        // Variable definitions, each alone.
+        ("DEF REAL R_1\n", Format::Siemens),
+        ("N5 DEF INT COUNT\n", Format::Siemens),
+        // A keyword is a whole word, wherever it stands; `_` joins a word.
+        ("N30 TRAORI\n", Format::Siemens),
+        ("N30 G1 X1 MY_TRAORI\n", Format::Nc),
+        // An address with `=`: before a sign, after a space.
+        ("G1 X=-5\n", Format::Siemens),
+        ("G1 X =5\n", Format::Siemens),
+        // A line that starts with `=` names no address (and does not stop detection).
+        ("=5\nG1 X1\n", Format::Nc),
+    ];
+    for (text, format) in cases {
+        assert_eq!(Format::detect(text), format, "{text:?}");
+    }
+}
