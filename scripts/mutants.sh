@@ -19,7 +19,8 @@
 #
 # Results: each cargo-mutants run writes mutants.out/<scope>/mutants.out/ (outcomes.json, a
 # log per mutant); mutants.out/<scope>/ledger.json keeps every mutant's latest outcome over the
-# passes and resumed runs (scripts/mutants-ledger.mjs). `resume` first drops the ledger's
+# passes and resumed runs (scripts/mutants-ledger.mjs); the ledgers are committed (.gitignore
+# keeps them), so that a run stopped on one machine resumes on another. `resume` first drops the ledger's
 # mutants the tree no longer has (a name carries its line and column: after an edit, those of
 # the edited lines and of every line it shifted are new names, tested again).
 #
