@@ -1081,3 +1081,20 @@ fn a_datum_shift_of_a_rotary_axis_is_refused() {
     );
     assert_eq!(p[0].tip, Vector3::new(10.0, -5.0, 2.0));
 }
+
+// Found by cargo-mutants: the `at` of the arc's block deleted survived (column 1 for every arc
+// error).
+/// An arc's error names the column of its statement, after the block number: here an arc
+/// whose end is off its circle.
+#[test]
+fn an_arc_error_names_the_column_of_its_statement() {
+    let m = caz_head();
+    // From (10, 0) about (0, 0) to (0, 20): 10 mm from the centre at the start, 20 at the end.
+    let text = program(&["L X+10 Y+0 Z+0 R0 FMAX", "CC X+0 Y+0", "C X+0 Y+20 DR+"]);
+    at(
+        &error(&text, H, Some(&m)),
+        4,
+        3,
+        "the arc's end is not on its circle",
+    );
+}
