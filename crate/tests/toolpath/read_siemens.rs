@@ -433,10 +433,51 @@ fn detection_reads_iso_comments_apart_from_sinumerik_calls() {
         // An address with `=`: before a sign, after a space.
         ("G1 X=-5\n", Format::Siemens),
         ("G1 X =5\n", Format::Siemens),
-        // A line that starts with `=` names no address (and does not stop detection).
+        // A line that starts with `=` names no address (and does not stop detection), first or
+        // after an ISO line.
         ("=5\nG1 X1\n", Format::Nc),
+        ("G1 X1\n=5\n", Format::Nc),
+        // Fanuc macro B assignments are ISO: `#100=` and `#[#100] =` name no address.
+        ("N10 #100=5\nG1 X1\n", Format::Nc),
+        ("N10 #[#100] = 5\nG1 X1\n", Format::Nc),
+        // A `)` that closes nothing is kept: what follows it is code.
+        ("G1 X1 ) TRAORI\n", Format::Siemens),
     ];
     for (text, format) in cases {
         assert_eq!(Format::detect(text), format, "{text:?}");
     }
+}
+
+// Found by cargo-mutants: in `Siemens::line`, the block count (`+=` as `-=`, `*=`), the block's
+// `at`, and the arms of TURN, AR and F S T D deleted survived.
+/// A block's count, its error column, TURN's extra full circles, AR refused, and feeds given
+/// as `F=`/`S=` skipped as feeds.
+#[test]
+fn block_count_arc_column_turn_ar_and_feeds_by_assignment() {
+    let m = caz_head();
+    // Blocks: the move, the DEF, the move, M30 (the comment and the blank line are none).
+    let text =
+        "N10 G0 X0 Y0 Z0\nN20 DEF REAL R_A=5\n; a comment\n\nN30 G1 X5 F=1000 S=2000\nN40 M30\n";
+    let (_, r) = read_all(text, S, Some(&m));
+    assert_eq!(r.blocks, 4);
+    // One skip per word: F= and S=.
+    assert_eq!(skipped(&r, "feeds, speeds and tools"), 2);
+    // The arc's error is at its first word, after three blanks: column 4. From (10, 0) about
+    // (0, 0) to (0, 20): 10 mm from the centre at the start, 20 at the end.
+    let e = error(
+        "G17 G0 X10 Y0 Z0\n   G2 X0 Y20 I=AC(0) J=AC(0)\n",
+        S,
+        Some(&m),
+    );
+    at(&e, 2, 4, "the arc's end is not on its circle");
+    // TURN=1: one full circle more than the arc from (10, 0) back to (10, 0), so two turns of
+    // radius 10: 4π·10 ≈ 125.66 mm of chords (each a little shorter than its arc).
+    let (p, _) = read_all("G17 G0 X10 Y0 Z0\nG3 X10 Y0 I-10 J0 TURN=1\n", S, Some(&m));
+    let length: f64 = p.windows(2).map(|w| (w[1].tip - w[0].tip).norm()).sum();
+    assert!(
+        length > 125.0 && length < 4.0 * std::f64::consts::PI * 10.0,
+        "{length}"
+    );
+    let e = error("G17 G0 X10 Y0 Z0\nG3 X0 Y10 AR=90\n", S, Some(&m));
+    at(&e, 2, 11, "AR= gives an arc by its opening angle");
 }
