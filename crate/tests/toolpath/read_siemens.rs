@@ -481,3 +481,16 @@ fn block_count_arc_column_turn_ar_and_feeds_by_assignment() {
     let e = error("G17 G0 X10 Y0 Z0\nG3 X0 Y10 AR=90\n", S, Some(&m));
     at(&e, 2, 11, "AR= gives an arc by its opening angle");
 }
+
+// Found by cargo-mutants: the arms of RET and of program flow among a block's words deleted
+// survived.
+/// RET (a subprogram's end) ends the reading; a flow keyword after other words of its block is
+/// refused as program flow, at its column.
+#[test]
+fn ret_ends_the_program_and_flow_after_other_words_is_refused() {
+    let m = caz_head();
+    let (p, _) = read_all("G0 X0 Y0 Z0\nRET\nG0 X5 Y0 Z0\n", S, Some(&m));
+    assert_eq!(p.len(), 1, "{p:?}");
+    let e = error("G0 X0 Y0 Z0 GOTOF END\nEND:\n", S, Some(&m));
+    at(&e, 1, 13, "GOTOF is program flow");
+}
