@@ -494,3 +494,73 @@ fn ret_ends_the_program_and_flow_after_other_words_is_refused() {
     let e = error("G0 X0 Y0 Z0 GOTOF END\nEND:\n", S, Some(&m));
     at(&e, 1, 13, "GOTOF is program flow");
 }
+
+// Found by cargo-mutants: the G-code arms of `Siemens::word` (G17 G18 G19, G90 G91, G53 G153,
+// G41 G42, G110–G112), the work offset's `&&`, `any_point`'s `>`, and the refusing arms of
+// words after the first (CIP, CT, PCALL, PROC) deleted survived.
+/// The G codes that set the plane, the distance mode and machine coordinates; radius
+/// compensation noted; polar poles refused; a work offset breaks the path only when it
+/// changes after a point; CIP, CT, a call and PROC refused with their own reasons.
+#[test]
+fn plane_distance_machine_offset_and_refused_words() {
+    let m = caz_head();
+    // A quarter circle of radius 10 about the origin in each plane, the plane switched back
+    // and forth: every chord point has its third coordinate 0 and lies 10 from the origin.
+    let text = "G0 X10 Y0 Z0\nG18 G3 X0 Z-10 I-10 K0\nG0 X0 Y10 Z0\nG19 G3 Y0 Z10 J-10 K0\n\
+                G0 X10 Y0 Z0\nG17 G3 X0 Y10 I-10 J0\n";
+    let (p, _) = read_all(text, S, Some(&m));
+    for (lines, third) in [(2, 1), (4, 0), (6, 2)] {
+        let arc: Vec<_> = p.iter().filter(|q| q.line == lines).collect();
+        assert!(arc.len() > 2, "line {lines}: {p:?}");
+        for q in arc {
+            assert!(q.tip[third].abs() < 1e-9, "line {lines}: {:?}", q.tip);
+            assert!(
+                (q.tip.norm() - 10.0).abs() < 1e-9,
+                "line {lines}: {:?}",
+                q.tip
+            );
+        }
+    }
+    // G91 adds, G90 states.
+    let (p, _) = read_all("G0 X1 Y0 Z0\nG91 G0 X5\nG90 G0 X5\n", S, Some(&m));
+    let x: Vec<f64> = p.iter().map(|q| q.tip.x).collect();
+    assert_eq!(x, [1.0, 6.0, 5.0]);
+    // G53 and G153: the block moves in machine coordinates, not a point of the part.
+    for g in ["G53", "G153"] {
+        let text = format!("G0 X0 Y0 Z0\n{g} G0 Z100\nG0 X5 Y0 Z0\n");
+        let (p, _) = read_all(&text, S, Some(&m));
+        assert!(p.iter().all(|q| q.tip.z == 0.0), "{g}: {p:?}");
+    }
+    for g in ["G41", "G42"] {
+        let (_, r) = read_all(&format!("G0 X0 Y0 Z0\n{g} G1 X5\n"), S, Some(&m));
+        assert_eq!(note(&r, "radius compensation").line, 2, "{g}");
+    }
+    for g in ["G110", "G111", "G112"] {
+        let e = error(&format!("G0 X0 Y0 Z0\n{g} X0 Y0\n"), S, Some(&m));
+        assert!(e.contains("sets a pole for polar coordinates"), "{g}: {e}");
+    }
+    // A work offset: the first one before any point, the same one again, and the first one
+    // after points break nothing; another one after a point breaks the path.
+    for (text, breaks) in [
+        ("G54\nG17 G90\nG55\nG0 X0 Y0 Z0\n", false),
+        ("G0 X0 Y0 Z0\nG54\nG0 X5 Y0 Z0\n", false),
+        ("G54 G0 X0 Y0 Z0\nG54 G0 X5 Y0 Z0\n", false),
+        ("G54 G0 X0 Y0 Z0\nG55 G0 X5 Y0 Z0\n", true),
+    ] {
+        let (_, r) = read_all(text, S, Some(&m));
+        let noted = r
+            .notes
+            .iter()
+            .any(|n| n.text.contains("selects another work offset"));
+        assert_eq!(noted, breaks, "{text:?}");
+    }
+    for (block, part) in [
+        ("CIP X10 Y10 I1=5 J1=5", "through an intermediate point"),
+        ("CT X10 Y10", "tangential arc"),
+        ("G0 X0 PCALL SUB", "calls a subprogram"),
+        ("G0 X0 PROC", "PROC starts a subprogram"),
+    ] {
+        let e = error(&format!("G0 X0 Y0 Z0\n{block}\n"), S, Some(&m));
+        assert!(e.starts_with("line 2") && e.contains(part), "{block}: {e}");
+    }
+}
