@@ -564,3 +564,17 @@ fn plane_distance_machine_offset_and_refused_words() {
         assert!(e.starts_with("line 2") && e.contains(part), "{block}: {e}");
     }
 }
+
+// Found by cargo-mutants: an error's column inside `IC(…)` (`+` as `*`) and a variable
+// assigned another's plain value (its match arm deleted) survived.
+/// A variable assigned the value of a variable that holds a plain number holds that number;
+/// an undefined variable inside `IC(…)` is named at its own column.
+#[test]
+fn a_variable_copies_a_plain_value_and_an_error_inside_ic_names_its_column() {
+    let m = caz_head();
+    let (p, _) = read_all("R1=5\nR2=R1\nG0 X=R2 Y0 Z0\n", S, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(5.0, 0.0, 0.0));
+    // `G1 X=IC(R9)`: R9 starts at column 9.
+    let e = error("G0 X0 Y0 Z0\nG1 X=IC(R9)\n", S, Some(&m));
+    at(&e, 2, 9, "R9");
+}
