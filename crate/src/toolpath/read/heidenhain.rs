@@ -1211,8 +1211,6 @@ impl Heidenhain {
         }
     }
 
-    /// A datum shift (`TRANS DATUM`, cycle 7): each `(axis, incremental, value)`. Programmed in
-    /// a tilted plane it is along the plane's axes, else along the workpiece's.
     /// The shifts a datum shift's words give: `(axis 0..3 for X Y Z, incremental, value)`. A
     /// shift of a rotary axis (`C+90`: the control turns the axis's zero) is refused, not
     /// dropped: the reader moves the workpiece frame along X, Y and Z only. (A parallel axis,
@@ -1237,6 +1235,8 @@ impl Heidenhain {
         Ok(shifts)
     }
 
+    /// A datum shift (`TRANS DATUM`, cycle 7): each `(axis, incremental, value)`. Programmed in
+    /// a tilted plane it is along the plane's axes, else along the workpiece's.
     fn shift_datum(
         &mut self,
         core: &mut Core,
