@@ -1098,3 +1098,317 @@ fn an_arc_error_names_the_column_of_its_statement() {
         "the arc's end is not on its circle",
     );
 }
+
+// Found by cargo-mutants: the arm of U V W deleted survived (the word was then dropped from
+// the L block without a word).
+/// A parallel axis U, V or W in a straight line, absolute or incremental, is refused at its
+/// line as an axis the calculator does not read, not dropped.
+#[test]
+fn a_parallel_axis_in_a_line_is_refused() {
+    let m = caz_head();
+    for word in ["U+5", "V-2", "W+0", "IW+1"] {
+        let text = program(&["L X+0 Y+0 Z+0 R0 FMAX", &format!("L X+10 {word} F500")]);
+        let e = error(&text, H, Some(&m));
+        let letter = word.trim_start_matches('I').chars().next().unwrap();
+        assert!(
+            e.starts_with("line 3")
+                && e.contains(&format!("{letter} is an axis the calculator does not read")),
+            "{word}: {e}"
+        );
+    }
+}
+
+/// The commanded C and A angles of the last point.
+fn last_angles(p: &[fiveaxis::toolpath::read::Point]) -> [f64; 2] {
+    p.last().and_then(|q| q.angles).unwrap()
+}
+
+// Found by cargo-mutants: in an L block, the arms of M126, M127, M128, M30/M2, M140 and of RL/RR
+// deleted survived (the tests gave these functions in blocks of their own), and M91's rotary
+// words' update (`==` as `!=`, `+` as `-` or `*`).
+/// M-functions written in a straight-line block act as in a block of their own (TNC 620
+/// User's Manual, M126 "shortest-path traverse of rotary axes", M128, M140, M30): M126 turns
+/// C from 0° to 350° the short way (to −10°), M127 the literal way; M128 switches on
+/// tool-centre-point control at its line; M30 ends the program; M140 retracts and breaks the
+/// path. RL or RR is noted as radius compensation. A rotary word in an M91 block is the
+/// axis's position afterwards: C+90 from 10° is 90°, IC+90 is 100°.
+#[test]
+fn m_functions_in_a_line_block() {
+    let m = caz_head();
+    let start = "L X+0 Y+0 Z+0 A+0 C+0 R0 FMAX";
+    // In the L block or in a block of its own, before the move.
+    for (blocks, c) in [
+        (vec!["L C+350 F500 M126"], -10.0),
+        (vec!["M126", "L C+350 F500"], -10.0),
+        (vec!["M126", "L C+350 F500 M127"], 350.0),
+        (vec!["L C+0 F500 M126", "M127", "L C+350 F500"], 350.0),
+    ] {
+        let mut all = vec![start];
+        all.extend(&blocks);
+        let (p, _) = read_all(&program(&all), H, Some(&m));
+        assert!(
+            (last_angles(&p)[0] - c).abs() < 1e-9,
+            "{blocks:?}: {:?}",
+            last_angles(&p)
+        );
+    }
+    let (_, r) = read_all(&program(&[start, "L X+10 F500 M128"]), H, Some(&m));
+    assert_eq!(r.tcp.as_deref(), Some("M128 on line 3"));
+    for end in ["M30", "M2"] {
+        let (p, _) = read_all(
+            &program(&[start, &format!("L X+10 F500 {end}"), "L X+20 F500"]),
+            H,
+            Some(&m),
+        );
+        assert_eq!(p.last().unwrap().tip, Vector3::new(10.0, 0.0, 0.0), "{end}");
+    }
+    let (p, r) = read_all(
+        &program(&[start, "L X+10 R0 FMAX M140 MB MAX"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1);
+    assert_eq!(
+        (
+            note(&r, "M140 retracts").line,
+            note(&r, "M140 retracts").kind
+        ),
+        (3, NoteKind::Break)
+    );
+    for comp in ["RL", "RR"] {
+        let (_, r) = read_all(
+            &program(&[start, &format!("L X+10 {comp} F500")]),
+            H,
+            Some(&m),
+        );
+        assert_eq!(note(&r, "radius compensation").line, 3, "{comp}");
+    }
+    for (rotary, c) in [("C+90", 90.0), ("IC+90", 100.0)] {
+        let text = program(&[
+            "L X+0 Y+0 Z+0 A+0 C+10 R0 FMAX",
+            &format!("L Z+0 {rotary} R0 FMAX M91"),
+            "L X+5 Y+0 Z+0 F500",
+        ]);
+        let (p, _) = read_all(&text, H, Some(&m));
+        assert!(
+            (last_angles(&p)[0] - c).abs() < 1e-9,
+            "{rotary}: {:?}",
+            last_angles(&p)
+        );
+    }
+}
+
+// Found by cargo-mutants: the guard of `F MAX` (a MAX after F) made true survived.
+/// `F MAX` with a space is the rapid FMAX; a MAX after another word leaves the block a feed.
+#[test]
+fn max_is_a_rapid_only_after_f() {
+    let m = caz_head();
+    let start = "L X+0 Y+0 Z+0 R0 FMAX";
+    let (p, _) = read_all(&program(&[start, "L X+10 R0 F MAX"]), H, Some(&m));
+    assert_eq!(p.last().unwrap().motion, Motion::Rapid);
+    let (p, _) = read_all(&program(&[start, "L X+10 R0 F500 MAX"]), H, Some(&m));
+    assert_eq!(p.last().unwrap().motion, Motion::Feed);
+}
+
+// Found by cargo-mutants: M140's own words' guard (`&&` as `||`) survived: with it, MB and MAX
+// were passed over in any M block, and every word after M140.
+/// In a block of M-functions, `MB` and `MAX` belong to M140 (TNC 620 User's Manual, "M140 MB
+/// MAX"): after M140 they are its words and an M-function after them still acts (M30 ends the
+/// program); without M140 they are refused as statements the reader does not know.
+#[test]
+fn mb_and_max_belong_to_m140() {
+    let m = caz_head();
+    let start = "L X+0 Y+0 Z+0 R0 FMAX";
+    let (p, r) = read_all(
+        &program(&[start, "M140 MB MAX M30", "L X+10 Y+0 Z+0 R0 FMAX"]),
+        H,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 1);
+    assert_eq!(note(&r, "M140 retracts").line, 3);
+    for block in ["M3 MB+10", "M3 MAX"] {
+        let e = error(&program(&[start, block]), H, Some(&m));
+        assert!(
+            e.starts_with("line 3") && e.contains("is not a Heidenhain statement"),
+            "{block}: {e}"
+        );
+    }
+}
+
+// Found by cargo-mutants: in a block of M-functions only, the arm of M99/M89 deleted and the
+// feed's length test (`>` as `>=`) survived.
+/// M99 or M89 in a block of its own calls the cycle last defined at the current position (a
+/// note: its moves are not drawn); a feed there is `F` with a value (`M128 F25000`), and a
+/// lone `F` is refused.
+#[test]
+fn a_cycle_called_by_m99_alone_and_a_lone_f_refused() {
+    let m = caz_head();
+    for call in ["M99", "M89"] {
+        let text = program(&["CYCL DEF 200 DRILLING", "L X+10 Y+10 Z+10 R0 FMAX", call]);
+        let (_, r) = read_all(&text, H, Some(&m));
+        let n = note(&r, "is called at the current position");
+        assert_eq!((n.line, n.kind), (4, NoteKind::Partial), "{call}");
+        assert!(n.text.contains("cycle 200"), "{call}: {}", n.text);
+    }
+    let e = error(&program(&["L X+0 Y+0 Z+0 R0 FMAX", "M128 F"]), H, Some(&m));
+    assert!(
+        e.starts_with("line 3") && e.contains("is not a Heidenhain statement"),
+        "{e}"
+    );
+}
+
+// Found by cargo-mutants: in an arc block, FMAX's arm, F MAX's guard (true and false), the
+// lone R's length test, the polar radius's `||`, and the arms of M128, M129 and M30/M2
+// survived (the tests wrote these words in L blocks only).
+/// The words an arc block shares with a line (TNC 620 User's Manual, C with DR±, CR with R±):
+/// FMAX and `F MAX` make the arc a rapid, `F500 MAX` leaves it cut; M128 switches on
+/// tool-centre-point control at its line and M129 off at the end of its block; M30 and M2 end
+/// the program. A lone `R` in CR is no radius (CR then needs one); a polar radius PR or IPR is
+/// refused.
+#[test]
+fn an_arc_block_reads_fmax_and_m_functions() {
+    let m = caz_head();
+    let arc = |words: &str| {
+        program(&[
+            "L X+10 Y+0 Z+0 R0 FMAX",
+            "CC X+0 Y+0",
+            &format!("C X+0 Y+10 DR+ {words}"),
+            "L X+20 Y+0 F500",
+        ])
+    };
+    for (words, motion) in [
+        ("FMAX", Motion::Rapid),
+        ("F MAX", Motion::Rapid),
+        ("F500 MAX", Motion::Arc),
+        ("F500", Motion::Arc),
+    ] {
+        let (p, _) = read_all(&arc(words), H, Some(&m));
+        let on_arc: Vec<_> = p.iter().filter(|q| q.line == 4).collect();
+        assert!(
+            !on_arc.is_empty() && on_arc.iter().all(|q| q.motion == motion),
+            "{words}"
+        );
+    }
+    let (_, r) = read_all(&arc("F500 M128"), H, Some(&m));
+    assert_eq!(r.tcp.as_deref(), Some("M128 on line 4"));
+    for end in ["M30", "M2"] {
+        let (p, _) = read_all(&arc(&format!("F500 {end}")), H, Some(&m));
+        close_vec(
+            &p.last().unwrap().tip,
+            &Vector3::new(0.0, 10.0, 0.0),
+            1e-9,
+            end,
+        );
+    }
+    let text = program(&[
+        "L X+10 Y+0 Z+0 R0 FMAX",
+        "M128",
+        "L A+10 C+30 F500",
+        "CC X+0 Y+0",
+        "C X+0 Y+10 DR+ F500 M129",
+        "L X+10 F500",
+    ]);
+    let (_, r) = read_all(&text, H, Some(&m));
+    let n = note(&r, "switches tool-centre-point control off");
+    assert_eq!((n.kind, n.line), (NoteKind::Tcp, 6));
+    let start = ["L X+10 Y+0 Z+0 R0 FMAX"];
+    let e = error(&program(&[start[0], "CR X+0 Y+10 R DR+"]), H, Some(&m));
+    assert!(
+        e.starts_with("line 3") && e.contains("CR needs its radius"),
+        "{e}"
+    );
+    for pr in ["PR+10", "IPR+5"] {
+        let e = error(
+            &program(&[start[0], "CC X+0 Y+0", &format!("C X+0 Y+10 DR+ {pr}")]),
+            H,
+            Some(&m),
+        );
+        assert!(
+            e.starts_with("line 4") && e.contains("with a polar radius"),
+            "{pr}: {e}"
+        );
+    }
+}
+
+// Found by cargo-mutants: the incremental pole's `+` (as `-` or `*`) and the arms of the XY
+// and YZ planes deleted survived (without a TOOL CALL the default plane is XY).
+/// `CC IX-10 IY+0` from (10, 0) puts the pole at (0, 0); CC's two axes give the arc's plane
+/// whatever the tool axis: X Y after `TOOL CALL 1 X`, Y Z without a TOOL CALL. Each arc's
+/// points are 10 mm from the pole, in its plane.
+#[test]
+fn the_pole_incremental_and_its_plane_from_its_axes() {
+    let m = caz_head();
+    for (blocks, normal) in [
+        (
+            vec![
+                "L X+10 Y+0 Z+0 R0 FMAX",
+                "CC IX-10 IY+0",
+                "C X+0 Y+10 DR+ F500",
+            ],
+            2,
+        ),
+        (
+            vec![
+                "TOOL CALL 1 X S5000",
+                "L X+10 Y+0 Z+0 R0 FMAX",
+                "CC X+0 Y+0",
+                "C X+0 Y+10 DR+ F500",
+            ],
+            2,
+        ),
+        (
+            vec![
+                "L X+0 Y+10 Z+0 R0 FMAX",
+                "CC Y+0 Z+0",
+                "C Y+0 Z+10 DR+ F500",
+            ],
+            0,
+        ),
+    ] {
+        let (p, _) = read_all(&program(&blocks), H, Some(&m));
+        let arc_line = blocks.len() as u32 + 1;
+        let on_arc: Vec<_> = p.iter().filter(|q| q.line == arc_line).collect();
+        assert!(!on_arc.is_empty(), "{blocks:?}");
+        for q in on_arc {
+            assert!(
+                (q.tip.norm() - 10.0).abs() < 1e-9 && q.tip[normal].abs() < 1e-12,
+                "{blocks:?}: {:?}",
+                q.tip
+            );
+        }
+    }
+}
+
+// Found by cargo-mutants: CP's absolute angle (its match arm deleted, and the start's angle
+// about the pole, `-` as `+` or `/`) survived: the tests gave CP an incremental IPA only.
+/// `CP PA+180` turns about the pole to the absolute polar angle 180° (TNC 426/430 User's
+/// Manual, CP): about CC (5, 5) from (5, 15), at 90° about the pole, DR+ turns 90°
+/// counter-clockwise to (−5, 5); DR− turns 270° clockwise to the same end, through (5, −5).
+#[test]
+fn cp_turns_to_an_absolute_polar_angle() {
+    let m = caz_head();
+    for (dr, below) in [("DR+", false), ("DR-", true)] {
+        let text = program(&[
+            "CC X+5 Y+5",
+            "L X+5 Y+15 Z+0 R0 FMAX",
+            &format!("CP PA+180 {dr} F500"),
+        ]);
+        let (p, _) = read_all(&text, H, Some(&m));
+        let pole = Vector3::new(5.0, 5.0, 0.0);
+        let on_arc: Vec<_> = p.iter().filter(|q| q.line == 4).collect();
+        for q in &on_arc {
+            assert!(
+                ((q.tip - pole).norm() - 10.0).abs() < 1e-9,
+                "{dr}: {:?}",
+                q.tip
+            );
+        }
+        close_vec(
+            &on_arc.last().unwrap().tip,
+            &Vector3::new(-5.0, 5.0, 0.0),
+            1e-9,
+            dr,
+        );
+        assert_eq!(on_arc.iter().any(|q| q.tip.y < -4.9), below, "{dr}");
+    }
+}

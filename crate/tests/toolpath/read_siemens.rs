@@ -578,3 +578,90 @@ fn a_variable_copies_a_plain_value_and_an_error_inside_ic_names_its_column() {
     let e = error("G0 X0 Y0 Z0\nG1 X=IC(R9)\n", S, Some(&m));
     at(&e, 2, 9, "R9");
 }
+
+// Found by cargo-mutants: the centre's `AC` test (`==` as `!=`) survived, the arcs above all
+// starting at the origin, where a centre relative to the start is the absolute centre.
+/// A centre written plainly or with `IC(…)` is relative to the arc's start; with `AC(…)` it is
+/// absolute (808D Programming Manual p.53). From (10, 0) to (20, 0) about (15, 0), each way.
+#[test]
+fn a_centre_is_relative_to_the_start_unless_written_ac() {
+    let m = caz_head();
+    for arc in [
+        "G2 X20 Y0 I5 J0",
+        "G2 X20 Y0 I=IC(5) J=IC(0)",
+        "G2 X20 Y0 I=AC(15) J=AC(0)",
+    ] {
+        let (p, _) = read_all(&format!("G17 G0 X10 Y0 Z0\n{arc}\n"), S, Some(&m));
+        assert!(p.len() > 2, "{arc}: {} points", p.len());
+        for q in &p[1..] {
+            let r = (q.tip - Vector3::new(15.0, 0.0, 0.0)).norm();
+            assert!(
+                (r - 5.0).abs() < 1e-9,
+                "{arc}: {:?} is {r} from (15, 0)",
+                q.tip
+            );
+        }
+    }
+}
+
+// Found by cargo-mutants: the rotary-axis arm's `&&` (as `||`) survived: with it, a name of
+// two letters inside "ABC" (`AB`) was read as the axis of its first letter.
+/// A single letter A, B or C is a rotary axis; `AB=30` is a variable, and the axes stay.
+#[test]
+fn a_two_letter_name_is_a_variable_not_a_rotary_axis() {
+    let m = caz_head();
+    let (p, r) = read_all("G0 X0 Y0 Z0 A0 C0\nAB=30\nBC=45\nG1 X1 F100\n", S, Some(&m));
+    assert_eq!(p.len(), 2);
+    assert_eq!(p[1].axis, p[0].axis);
+    assert_eq!(p[1].angles, p[0].angles);
+    assert_eq!(skipped(&r, "variable assignments"), 2);
+}
+
+// Found by cargo-mutants: `TRAORI(…)` written as a call (its match arm deleted) and the
+// machining-cycle guard (made false, or one of its `||` as `&&`), the drilling cycle's length
+// test (`&&` as `||`, `==` as `!=`) survived.
+/// `TRAORI(1)` (the transformation's number, Programming Manual p.666) switches on
+/// tool-centre-point control as `TRAORI` does. A drilling cycle (`CYCLE8…`, `CYCLE7n`) and a
+/// machining cycle (`CYCLE…`, `POCKET…`, `SLOT…`, `LONGHOLE`, `HOLES…`) called directly are each
+/// noted by their kind; a name of 7 letters is not a drilling cycle for its length.
+#[test]
+fn traori_with_a_number_and_cycles_noted_by_kind() {
+    let m = caz_head();
+    let (_, r) = read_all(
+        "N10 TRAORI(1)\nN20 G1 X0 Y0 Z0 A3=0 B3=0 C3=1 F100\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(r.tcp.as_deref(), Some("TRAORI on line 1"));
+    for (cycle, kind) in [
+        ("CYCLE81", "drilling cycle"),
+        ("CYCLE78", "drilling cycle"),
+        ("CYCLE840", "drilling cycle"),
+        ("CYCLE61", "machining cycle"),
+        ("CYCLE7", "machining cycle"),
+        ("POCKET3", "machining cycle"),
+        ("SLOT1", "machining cycle"),
+        ("LONGHOLE", "machining cycle"),
+        ("HOLES1", "machining cycle"),
+    ] {
+        let (_, r) = read_all(
+            &format!("G0 X0 Y0 Z10\n{cycle}(10,0,2,-5)\nG0 X5\n"),
+            S,
+            Some(&m),
+        );
+        let n = note(&r, &format!("cycle {cycle}:"));
+        assert!(n.text.contains(kind), "{cycle}: {}", n.text);
+        assert_eq!((n.line, n.kind), (2, NoteKind::Partial), "{cycle}");
+    }
+}
+
+// Found by cargo-mutants: `RPL`'s test (`&&` as `||`) survived: with it, every assignment in
+// a frame statement was taken as the plane's rotation.
+/// A frame's axis words may be written as assignments (`TRANS X=10 Y=5`, the address form
+/// `X=…` of any axis word): the shift is (10, 5, 0).
+#[test]
+fn frame_words_written_as_assignments_shift() {
+    let m = caz_head();
+    let (p, _) = read_all("TRANS X=10 Y=5\nG0 X0 Y0 Z0\n", S, Some(&m));
+    assert_eq!(p[0].tip, Vector3::new(10.0, 5.0, 0.0));
+}
