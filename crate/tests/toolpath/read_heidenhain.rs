@@ -1244,11 +1244,19 @@ fn mb_and_max_belong_to_m140() {
 fn a_cycle_called_by_m99_alone_and_a_lone_f_refused() {
     let m = caz_head();
     for call in ["M99", "M89"] {
-        let text = program(&["CYCL DEF 200 DRILLING", "L X+10 Y+10 Z+10 R0 FMAX", call]);
+        let text = program(&[
+            "CYCL DEF 200 DRILLING Q200=2 Q201=-5",
+            "L X+10 Y+10 Z+10 R0 FMAX",
+            call,
+        ]);
         let (_, r) = read_all(&text, H, Some(&m));
         let n = note(&r, "is called at the current position");
         assert_eq!((n.line, n.kind), (4, NoteKind::Partial), "{call}");
-        assert!(n.text.contains("cycle 200"), "{call}: {}", n.text);
+        assert!(
+            n.text.contains("cycle 200 DRILLING is called"),
+            "{call}: {}",
+            n.text
+        );
     }
     let e = error(&program(&["L X+0 Y+0 Z+0 R0 FMAX", "M128 F"]), H, Some(&m));
     assert!(
@@ -1411,4 +1419,204 @@ fn cp_turns_to_an_absolute_polar_angle() {
         );
         assert_eq!(on_arc.iter().any(|q| q.tip.y < -4.9), below, "{dr}");
     }
+}
+
+// Found by cargo-mutants: CP's check of its angle against its direction (`||` as `&&`), CT's
+// incremental end (`+` as `-` or `*`), the parts of the end and of the tangent normal to the
+// plane (`-=` as `+=`, `-` as `+`) and the straight case's tolerance (`<` as `==`, `*` as `/`)
+// survived.
+/// CP refuses an angle whose sign disagrees with DR±. CT (TNC 320 User's Manual, "CT: circular
+/// path with tangential connection") from (10, 0) after a move along +X to (20, 10) turns about
+/// (10, 10) (ρ = |E − S|²/(2·n·(E − S)) = 200/20 = 10), whether the end is incremental, the end
+/// or the move before climbs along Z (a helix: the part in the plane is the same), and an end
+/// 5·10⁻⁹ mm off the tangent (under its 10⁻⁹ of the chord) is a straight move.
+#[test]
+fn cp_s_direction_and_ct_in_its_plane() {
+    let m = caz_head();
+    for cp in ["CP IPA-90 DR+", "CP IPA+90 DR-"] {
+        let e = error(
+            &program(&["CC X+0 Y+0", "L X+10 Y+0 Z+0 R0 FMAX", cp]),
+            H,
+            Some(&m),
+        );
+        assert!(
+            e.starts_with("line 4") && e.contains("disagree"),
+            "{cp}: {e}"
+        );
+    }
+    for (before, ct, z) in [
+        ("L X+10 Y+0 Z+0 F100", "CT IX+10 IY+10", 0.0),
+        ("L X+10 Y+0 Z+0 F100", "CT X+20 Y+10 Z+5", 5.0),
+        ("L X+10 Y+0 Z+10 F100", "CT X+20 Y+10", 10.0),
+    ] {
+        let (p, _) = read_all(
+            &program(&["L X+0 Y+0 Z+0 R0 FMAX", before, ct]),
+            H,
+            Some(&m),
+        );
+        let on_arc: Vec<_> = p.iter().filter(|q| q.line == 4).collect();
+        assert!(on_arc.len() > 1, "{ct}");
+        for q in &on_arc {
+            let r = (q.tip.xy() - nalgebra::Vector2::new(10.0, 10.0)).norm();
+            assert!((r - 10.0).abs() < 1e-9, "{before} {ct}: {:?}", q.tip);
+        }
+        close_vec(
+            &on_arc.last().unwrap().tip,
+            &Vector3::new(20.0, 10.0, z),
+            1e-9,
+            ct,
+        );
+    }
+    let (p, _) = read_all(
+        &program(&[
+            "L X+0 Y+0 Z+0 R0 FMAX",
+            "L X+10 F100",
+            "CT X+20 Y+0.000000005",
+        ]),
+        H,
+        Some(&m),
+    );
+    let last = p.last().unwrap();
+    assert_eq!((last.line, last.motion), (4, Motion::Feed));
+}
+
+// Found by cargo-mutants: the `||` of "neither M91/M92 nor M140" (as `&&`) survived; the
+// condition itself dropped a cycle call in such a block without a word, and is gone.
+/// M99 in a block that moves in machine coordinates (M91) or retracts (M140) still calls the
+/// cycle: it is noted at its line, like M99 in any line block.
+#[test]
+fn m99_with_m91_or_m140_is_noted() {
+    let m = caz_head();
+    for block in [
+        "L X+10 Y+10 Z+100 R0 FMAX M91 M99",
+        "L Z+100 R0 FMAX M140 MB MAX M99",
+        "L X+10 Y+10 Z+10 R0 FMAX M99",
+    ] {
+        let text = program(&["CYCL DEF 200 DRILLING", "L X+0 Y+0 Z+0 R0 FMAX", block]);
+        let (_, r) = read_all(&text, H, Some(&m));
+        let n = note(&r, "is called at the block's end point");
+        assert_eq!((n.line, n.kind), (4, NoteKind::Partial), "{block}");
+    }
+}
+
+// Found by cargo-mutants: the arms of CYCL DEF 247 and of the settings cycles deleted, and
+// IROT's `+=` (as `-=` or `*=`), survived.
+/// CYCL DEF 247 DATUM SETTING selects another preset: the path breaks there (a note). CYCL
+/// DEF 32 TOLERANCE is a setting, counted as one. CYCL DEF 10 IROT adds to the rotation:
+/// ROT+30 then IROT+60 is 90°, which takes (10, 0, 0) to (0, 10, 0).
+#[test]
+fn datum_setting_tolerance_and_an_incremental_rotation() {
+    let m = caz_head();
+    let start = "L X+0 Y+0 Z+0 R0 FMAX";
+    let (p, r) = read_all(
+        &program(&[start, "CYCL DEF 247 DATUM SETTING", "L X+10 Y+0 Z+0 F500"]),
+        H,
+        Some(&m),
+    );
+    let n = note(&r, "CYCL DEF 247");
+    assert_eq!((n.line, n.kind), (3, NoteKind::Break));
+    assert_eq!(p.last().unwrap().motion, Motion::Rapid);
+    for def in ["CYCL DEF 32.0 TOLERANCE", "CYCL DEF 9.0 DWELL TIME"] {
+        let (_, r) = read_all(&program(&[start, def]), H, Some(&m));
+        assert_eq!(skipped(&r, "settings cycles"), 1, "{def}");
+        assert_eq!(skipped(&r, "cycle definitions"), 0, "{def}");
+    }
+    let text = program(&[
+        "CYCL DEF 10.0 ROTATION",
+        "CYCL DEF 10.1 ROT+30",
+        "CYCL DEF 10.0 ROTATION",
+        "CYCL DEF 10.1 IROT+60",
+        "L X+10 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(0.0, 10.0, 0.0),
+        1e-12,
+        "ROT+30 IROT+60",
+    );
+}
+
+// Found by cargo-mutants: PLANE RELATIV (its arm, each angle's arm, and the product with the
+// plane before as a sum) and the datum shift kept when the plane changes (`!=` as `==`, `+=`
+// as `-=`) survived.
+/// PLANE RELATIV turns the working plane about one axis of the current one (TNC 620 User's
+/// Manual, PLANE RELATIV: "incremental spatial angle"): SPA+90 alone is R_X(90°) (tool axis
+/// (0, −1, 0), (0, 10, 0) of the plane at (0, 0, 10)); SPB+90 is R_Y(90°) (axis (1, 0, 0),
+/// (0, 0, 10) at (10, 0, 0)); SPC+90 is R_Z(90°) ((10, 0, 0) at (0, 10, 0)); after SPB+45,
+/// SPC+90 gives R_Y(45°)·R_Z(90°): axis (sin 45°, 0, cos 45°), (10, 0, 0) at (0, 10, 0).
+/// A datum shift programmed in a tilted plane stays where it is when the plane changes:
+/// X+10 in R_Y(90°) is (0, 0, −10) of the workpiece, after PLANE RESET too (a note); a new
+/// plane without such a shift makes no such note.
+#[test]
+fn plane_relativ_and_a_tilted_shift_kept() {
+    let m = caz_head();
+    let s = 0.5f64.sqrt();
+    for (planes, point, tip, axis) in [
+        (
+            vec!["PLANE RELATIV SPA+90 STAY"],
+            "L X+0 Y+10 Z+0 R0 FMAX",
+            [0.0, 0.0, 10.0],
+            [0.0, -1.0, 0.0],
+        ),
+        (
+            vec!["PLANE RELATIV SPB+90 STAY"],
+            "L X+0 Y+0 Z+10 R0 FMAX",
+            [10.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+        ),
+        (
+            vec!["PLANE RELATIV SPC+90 STAY"],
+            "L X+10 Y+0 Z+0 R0 FMAX",
+            [0.0, 10.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ),
+        (
+            vec![
+                "PLANE SPATIAL SPA+0 SPB+45 SPC+0 STAY",
+                "PLANE RELATIV SPC+90 STAY",
+            ],
+            "L X+10 Y+0 Z+0 R0 FMAX",
+            [0.0, 10.0, 0.0],
+            [s, 0.0, s],
+        ),
+    ] {
+        let mut blocks = planes.clone();
+        blocks.push(point);
+        let (p, _) = read_all(&program(&blocks), H, Some(&m));
+        close_vec(
+            &p[0].tip,
+            &Vector3::from(tip),
+            1e-12,
+            planes.last().unwrap(),
+        );
+        close_vec(
+            &p[0].axis,
+            &Vector3::from(axis),
+            1e-15,
+            planes.last().unwrap(),
+        );
+    }
+    let text = program(&[
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 STAY",
+        "TRANS DATUM AXIS X+10",
+        "PLANE RESET STAY",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (p, r) = read_all(&text, H, Some(&m));
+    close_vec(&p[0].tip, &Vector3::new(0.0, 0.0, -10.0), 1e-12, "kept");
+    assert_eq!(note(&r, "the datum is kept where it is").line, 4);
+    let text = program(&[
+        "PLANE SPATIAL SPA+0 SPB+90 SPC+0 STAY",
+        "PLANE RESET STAY",
+        "L X+0 Y+0 Z+0 R0 FMAX",
+    ]);
+    let (_, r) = read_all(&text, H, Some(&m));
+    assert!(
+        r.notes
+            .iter()
+            .all(|n| !n.text.contains("the datum is kept")),
+        "{:#?}",
+        r.notes
+    );
 }

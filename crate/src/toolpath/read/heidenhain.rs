@@ -679,7 +679,7 @@ impl Heidenhain {
         if tcp_off {
             core.set_tcp(false, no, "M129", log);
         }
-        if cycle_call && !(machine || retract) {
+        if cycle_call {
             self.cycle_called(no, log, " at the block's end point");
         }
         Ok(())
@@ -1064,7 +1064,7 @@ impl Heidenhain {
                     let name = body
                         .split_whitespace()
                         .skip(3)
-                        .take_while(|w| !(w.starts_with(['Q', 'q']) && w[1..].starts_with(|c: char| c.is_ascii_digit())))
+                        .take_while(|w| !w.contains('=')) // up to the first parameter, `Q200=2`
                         .collect::<Vec<_>>()
                         .join(" ");
                     self.cycle = Some((major, name));
