@@ -1390,15 +1390,16 @@ fn the_pole_incremental_and_its_plane_from_its_axes() {
 // Found by cargo-mutants: CP's absolute angle (its match arm deleted, and the start's angle
 // about the pole, `-` as `+` or `/`) survived: the tests gave CP an incremental IPA only.
 /// `CP PA+180` turns about the pole to the absolute polar angle 180° (TNC 426/430 User's
-/// Manual, CP): about CC (5, 5) from (5, 15), at 90° about the pole, DR+ turns 90°
-/// counter-clockwise to (−5, 5); DR− turns 270° clockwise to the same end, through (5, −5).
+/// Manual, CP): about CC (5, 5) from (11, 13), at atan2(8, 6) = 53.13° about the pole, DR+
+/// turns 126.87° counter-clockwise to (−5, 5); DR− turns 233.13° clockwise to the same end,
+/// through (5, −5).
 #[test]
 fn cp_turns_to_an_absolute_polar_angle() {
     let m = caz_head();
     for (dr, below) in [("DR+", false), ("DR-", true)] {
         let text = program(&[
             "CC X+5 Y+5",
-            "L X+5 Y+15 Z+0 R0 FMAX",
+            "L X+11 Y+13 Z+0 R0 FMAX",
             &format!("CP PA+180 {dr} F500"),
         ]);
         let (p, _) = read_all(&text, H, Some(&m));
@@ -1618,5 +1619,61 @@ fn plane_relativ_and_a_tilted_shift_kept() {
             .all(|n| !n.text.contains("the datum is kept")),
         "{:#?}",
         r.notes
+    );
+}
+
+// Found by cargo-mutants: the arc's plane from its end words (the three arms deleted), the
+// plane's polar axes (always X and Y), and CT's tangent in the plane (`-` as `+`) survived.
+/// An arc's plane comes from its two end words whatever the tool axis (TNC 320 User's Manual,
+/// CR): CR X+10 Y+0 after `TOOL CALL 1 X` is in XY, about (5, 0, 0); CR X+10 Z+0 in ZX, about
+/// (5, 0, 0); CR Y+10 Z+0 in YZ, about (0, 5, 0). In the ZX plane CP's polar angle runs from
+/// Z towards X: from (10, 0, 0), at 90°, `CP PA+180 DR+` ends at (0, 0, −10). CT after a move
+/// along the plane's normal has no tangent in the plane: refused.
+#[test]
+fn an_arc_s_plane_from_its_words_and_polar_angles_in_zx() {
+    let m = caz_head();
+    for (blocks, centre) in [
+        (
+            vec![
+                "TOOL CALL 1 X S5000",
+                "L X+0 Y+0 Z+0 R0 FMAX",
+                "CR X+10 Y+0 R+5 DR- F500",
+            ],
+            [5.0, 0.0, 0.0],
+        ),
+        (
+            vec!["L X+0 Y+0 Z+0 R0 FMAX", "CR X+10 Z+0 R+5 DR- F500"],
+            [5.0, 0.0, 0.0],
+        ),
+        (
+            vec!["L X+0 Y+0 Z+0 R0 FMAX", "CR Y+10 Z+0 R+5 DR- F500"],
+            [0.0, 5.0, 0.0],
+        ),
+    ] {
+        let (p, _) = read_all(&program(&blocks), H, Some(&m));
+        let arc_line = blocks.len() as u32 + 1;
+        let on_arc: Vec<_> = p.iter().filter(|q| q.line == arc_line).collect();
+        assert!(on_arc.len() > 2, "{blocks:?}");
+        for q in &on_arc {
+            let r = (q.tip - Vector3::from(centre)).norm();
+            assert!((r - 5.0).abs() < 1e-9, "{blocks:?}: {:?}", q.tip);
+        }
+    }
+    let text = program(&["CC X+0 Z+0", "L X+10 Y+0 Z+0 R0 FMAX", "CP PA+180 DR+ F500"]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    close_vec(
+        &p.last().unwrap().tip,
+        &Vector3::new(0.0, 0.0, -10.0),
+        1e-9,
+        "PA+180 in ZX",
+    );
+    let e = error(
+        &program(&["L X+0 Y+0 Z+0 R0 FMAX", "L Z+10 F100", "CT X+10 Y+10"]),
+        H,
+        Some(&m),
+    );
+    assert!(
+        e.starts_with("line 4") && e.contains("normal to the plane of the arc"),
+        "{e}"
     );
 }

@@ -665,3 +665,37 @@ fn frame_words_written_as_assignments_shift() {
     let (p, _) = read_all("TRANS X=10 Y=5\nG0 X0 Y0 Z0\n", S, Some(&m));
     assert_eq!(p[0].tip, Vector3::new(10.0, 5.0, 0.0));
 }
+
+// Found by cargo-mutants: the arm of `MCALL(…)` as a call deleted survived; it accepted a form
+// Sinumerik does not have and set a state nothing read. Now `MCALL` (before a cycle, or alone
+// to end the modal call) is counted, and `RPL=` outside ROT/AROT is refused (it was read as a
+// variable).
+/// `MCALL CYCLE81(…)` … `MCALL` (Programming Manual, "MCALL: modal subprogram call"): the
+/// cycle is noted and both MCALLs are counted; `MCALL(1)` is a call the reader does not know;
+/// `RPL=30` without ROT or AROT is refused at its column, `ROT RPL=90` turns the plane.
+#[test]
+fn mcall_is_counted_and_rpl_needs_rot() {
+    let m = caz_head();
+    let (p, r) = read_all(
+        "G0 X0 Y0 Z10\nMCALL CYCLE81(10,0,2,-5)\nX5\nMCALL\n",
+        S,
+        Some(&m),
+    );
+    assert_eq!(p.len(), 2);
+    assert_eq!(skipped(&r, "modal cycle calls (MCALL)"), 2);
+    assert_eq!(note(&r, "drilling cycle CYCLE81").line, 2);
+    let e = error("G0 X0 Y0 Z0\nMCALL(1)\n", S, Some(&m));
+    assert!(
+        e.starts_with("line 2") && e.contains("MCALL(…) calls a subprogram"),
+        "{e}"
+    );
+    let e = error("G0 X0 Y0 Z0\nG1 X1 RPL=30\n", S, Some(&m));
+    at(&e, 2, 7, "RPL= turns the plane in a ROT or AROT statement");
+    let (p, _) = read_all("ROT RPL=90\nG0 X10 Y0 Z0\n", S, Some(&m));
+    close_vec(
+        &p[0].tip,
+        &Vector3::new(0.0, 10.0, 0.0),
+        1e-12,
+        "ROT RPL=90",
+    );
+}

@@ -969,14 +969,14 @@ impl Heidenhain {
         out: &mut Vec<Point>,
     ) -> Result<()> {
         if let Some(rest) = u.strip_prefix("CYCL CALL") {
-            if let Some(pos) = rest.trim_start().strip_prefix("POS") {
+            if rest.trim_start().starts_with("POS") {
                 // `CYCL CALL POS X Y Z FMAX|F`: a positioning move there (drawn as a rapid, the
-                // tool axis does not turn), then the cycle.
-                let words = &body[body.len() - pos.len()..];
+                // tool axis does not turn), then the cycle; its words are those after POS.
+                let words = body.split_whitespace().skip(3).collect::<Vec<_>>();
                 self.linear(
                     core,
                     no,
-                    &format!("L {words} FMAX"),
+                    &format!("L {} FMAX", words.join(" ")),
                     at,
                     loc,
                     log,

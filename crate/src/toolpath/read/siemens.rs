@@ -30,21 +30,21 @@
 //!   one later breaks the path (a note).
 //! * `CYCLE800(…)` with all its offsets and angles 0 (a reset, as posts write it at the start):
 //!   no frame.
-//! * Drilling cycles called at positions (`MCALL CYCLE81(…)` … `MCALL`, `CYCLE81(…)`): the
-//!   positions are read, the strokes not drawn (a note).
+//! * Drilling cycles called at positions (`MCALL CYCLE81(…)` … `MCALL`, `CYCLE81(…)`) and
+//!   machining cycles (`POCKET3(…)`): the positions are read, their moves not drawn (a note).
 //! * `M30`, `M2`, `M17`, `RET`: the end.
 //!
 //! # Skipped and counted
 //! `F`, `S`, `T`, `D`, `M`-functions, `G4` (its `F` is a time), path and feed modes (`G60`,
 //! `G64`, `G641`, `G642`, `G94`, `G95`, `SOFT`, `BRISK`, `FFWON`, `COMPCAD`, `CUT3DC`, `ORIWKS`,
 //! `ORIAXES`, `UPATH` …), `CYCLE832(…)` (high-speed settings), `WORKPIECE(…)`, `STOPRE`,
-//! `G40`, `G25`/`G26` limits, variable definitions and assignments.
+//! `G40`, `G25`/`G26` limits, `MCALL` (its cycle is noted), variable definitions and assignments.
 //!
 //! # Refused, with the line and why
 //! Expressions and undefined variables in values, control flow (`IF`, `GOTOF`, `GOTOB`,
 //! `GOTO`, `WHILE`, `FOR`, `REPEAT`, `LOOP`, `CASE`), subprogram calls (`L100`, `NAME(…)`,
 //! `CALL`, `PCALL`), `PROC` (a subprogram's values come from its caller), `CYCLE800` that
-//! swivels, other machining cycles called directly (`POCKET3(…)`), polar coordinates
+//! swivels, `RPL=` outside a `ROT`/`AROT` statement, polar coordinates
 //! (`AP=`, `RP=`, `G110`–`G112`), `CIP`, `CT`, `SCALE`/`MIRROR` with values, orientation by
 //! angles (`A2 B2 C2`, `LEAD`, `TILT`), a rotary word that is not one of the machine's.
 
@@ -162,8 +162,6 @@ pub struct Siemens {
     offset: Option<String>,
     /// A point has been written.
     any_point: bool,
-    /// MCALL of a cycle is on.
-    mcall: bool,
 }
 
 /// One token of a block.
@@ -315,6 +313,7 @@ impl Siemens {
                             vector[i] = Some(self.value(value, *value_at, &loc)?.0);
                         }
                         "AP" | "RP" => return Err(loc.err(*at, "AP=/RP= are polar coordinates (angle and radius about a pole); the calculator reads X Y Z: post the program in Cartesian coordinates")),
+                        "RPL" => return Err(loc.err(*at, "RPL= turns the plane in a ROT or AROT statement, and this block has none: write ROT RPL=… or AROT RPL=…")),
                         "AR" => return Err(loc.err(*at, "AR= gives an arc by its opening angle, which the reader does not read; post the arc with its centre (I J K) or radius (CR=)")),
                         "A2" | "B2" | "C2" | "LEAD" | "TILT" | "A4" | "B4" | "C4" | "A5" | "B5" | "C5" => {
                             return Err(loc.err(*at, format!("{n}= gives the orientation by angles or surface normals the reader does not read; post the program with the rotary axes or the vector A3 B3 C3")))
@@ -344,7 +343,7 @@ impl Siemens {
                             frame_stmt = Some((n.to_string(), *at));
                         }
                         "SUPA" => machine_coords = true,
-                        "MCALL" => self.mcall = false,
+                        "MCALL" => log.skip("modal cycle calls (MCALL)", no),
                         "RET" => core.ended = true,
                         "STOPRE" | "SOFT" | "BRISK" | "FFWON" | "FFWOF" | "COMPCAD" | "COMPCURV" | "COMPSURF" | "COMPOF" | "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIAXPOS" | "ORIPLANE" | "ORICONO" | "ORIPATH" | "ORIROTA" | "ORIROTR" | "ORIROTT" | "UPATH" | "SPATH" | "CFTCP" | "CFC" | "CFIN" | "FNORM" | "FLIN" | "FCUB" | "DYNNORM" | "DYNROUGH" | "DYNSEMIFIN" | "DYNFINISH" | "DYNPOS" | "SPOF" | "CPROTDEF" | "FGROUP" | "SOFTA" | "BRISKA" | "DRIVE" | "ACC" | "G642" | "G641" | "G645" | "G643" | "G644" | "G60" | "G64" => {
                             log.skip("path, feed and look-ahead modes (SOFT, COMPCAD, ORIWKS …)", no)
@@ -654,10 +653,6 @@ impl Siemens {
                 log.note("sie-machining-cycle", NoteKind::Partial, no, || {
                     format!("line {no}: machining cycle {n}: its moves are computed by the control and are not drawn (the tool axis does not turn in them)")
                 });
-                Ok(())
-            }
-            "MCALL" => {
-                self.mcall = true;
                 Ok(())
             }
             _ => Err(loc.err(at, format!("{name}(…) calls a subprogram or a function the reader does not know: the calculator reads one program without its subprograms; post the program with the moves written out"))),
