@@ -1677,3 +1677,20 @@ fn an_arc_s_plane_from_its_words_and_polar_angles_in_zx() {
         "{e}"
     );
 }
+
+// Found by cargo-mutants: the quotes of `strip_comment` (the arm of `"` deleted, its `!`
+// deleted, the `;` guard made true) survived: no test had a `;` inside quotes.
+/// A `;` inside quotes is text, not the start of a comment: the tool named "T;1" is called
+/// along X, so cycle 10's rotation of 90° turns about X and takes (0, 10, 0) to (0, 0, 10).
+#[test]
+fn a_semicolon_inside_quotes_is_not_a_comment() {
+    let m = caz_head();
+    let text = program(&[
+        "TOOL CALL \"T;1\" X S5000 ; a comment",
+        "CYCL DEF 10.0 ROTATION",
+        "CYCL DEF 10.1 ROT+90",
+        "L X+0 Y+10 Z+0 R0 FMAX",
+    ]);
+    let (p, _) = read_all(&text, H, Some(&m));
+    close_vec(&p[0].tip, &Vector3::new(0.0, 0.0, 10.0), 1e-12, "about X");
+}
