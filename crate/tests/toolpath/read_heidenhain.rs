@@ -1632,7 +1632,7 @@ fn plane_relativ_and_a_tilted_shift_kept() {
 #[test]
 fn an_arc_s_plane_from_its_words_and_polar_angles_in_zx() {
     let m = caz_head();
-    for (blocks, centre) in [
+    for (blocks, centre, normal) in [
         (
             vec![
                 "TOOL CALL 1 X S5000",
@@ -1640,14 +1640,17 @@ fn an_arc_s_plane_from_its_words_and_polar_angles_in_zx() {
                 "CR X+10 Y+0 R+5 DR- F500",
             ],
             [5.0, 0.0, 0.0],
+            2,
         ),
         (
             vec!["L X+0 Y+0 Z+0 R0 FMAX", "CR X+10 Z+0 R+5 DR- F500"],
             [5.0, 0.0, 0.0],
+            1,
         ),
         (
             vec!["L X+0 Y+0 Z+0 R0 FMAX", "CR Y+10 Z+0 R+5 DR- F500"],
             [0.0, 5.0, 0.0],
+            0,
         ),
     ] {
         let (p, _) = read_all(&program(&blocks), H, Some(&m));
@@ -1657,6 +1660,11 @@ fn an_arc_s_plane_from_its_words_and_polar_angles_in_zx() {
         for q in &on_arc {
             let r = (q.tip - Vector3::from(centre)).norm();
             assert!((r - 5.0).abs() < 1e-9, "{blocks:?}: {:?}", q.tip);
+            assert!(
+                q.tip[normal].abs() < 1e-12,
+                "{blocks:?}: {:?} off the plane",
+                q.tip
+            );
         }
     }
     let text = program(&["CC X+0 Z+0", "L X+10 Y+0 Z+0 R0 FMAX", "CP PA+180 DR+ F500"]);
