@@ -557,7 +557,9 @@ fn plane_distance_machine_offset_and_refused_words() {
     for (block, part) in [
         ("CIP X10 Y10 I1=5 J1=5", "through an intermediate point"),
         ("CT X10 Y10", "tangential arc"),
-        ("G0 X0 PCALL SUB", "calls a subprogram"),
+        ("G0 X0 PCALL SUB", "PCALL calls a subprogram"),
+        ("G0 X0 CALL SUB", "CALL calls a subprogram"),
+        ("G0 X0 EXTCALL SUB", "EXTCALL calls a subprogram"),
         ("G0 X0 PROC", "PROC starts a subprogram"),
     ] {
         let e = error(&format!("G0 X0 Y0 Z0\n{block}\n"), S, Some(&m));
@@ -698,4 +700,17 @@ fn mcall_is_counted_and_rpl_needs_rot() {
         1e-12,
         "ROT RPL=90",
     );
+}
+
+// Found by cargo-mutants: the end of the blanks after a block number or a skip mark (`<` as
+// `<=`) survived: no test had a line that ends there.
+/// A line holding only a block number (`N20`) or only a skip mark (`/`) is a block without
+/// words: the moves around it are read.
+#[test]
+fn a_block_number_or_skip_mark_alone() {
+    let m = caz_head();
+    for line in ["N20", "/", "N20 ", "/N20"] {
+        let (p, _) = read_all(&format!("G0 X0 Y0 Z0\n{line}\nG1 X1 F100\n"), S, Some(&m));
+        assert_eq!(p.len(), 2, "{line:?}");
+    }
 }
