@@ -714,3 +714,32 @@ fn a_block_number_or_skip_mark_alone() {
         assert_eq!(p.len(), 2, "{line:?}");
     }
 }
+
+// Found by cargo-mutants: the block number's test (`&&` as `||`: any letter and a digit taken
+// for a block number) and the label's non-empty name (`>` as `>=`) survived.
+/// `DEF` starts its block, after a block number or a label (`N10 DEF …`, `MARKE1: DEF …`); after
+/// a word (`G1 DEF …`), or after a `:` without a label's name, it is no definition and is
+/// refused at its column.
+#[test]
+fn def_only_at_the_start_of_its_block() {
+    let m = caz_head();
+    for text in [
+        "N10 DEF REAL A=5\nG0 X=A Y0 Z0\n",
+        "MARKE1: DEF REAL A=5\nG0 X=A Y0 Z0\n",
+    ] {
+        let (p, _) = read_all(text, S, Some(&m));
+        assert_eq!(p[0].tip, Vector3::new(5.0, 0.0, 0.0), "{text:?}");
+    }
+    at(
+        &error("G0 X0 Y0 Z0\nG1 DEF REAL A\n", S, Some(&m)),
+        2,
+        4,
+        "DEF",
+    );
+    at(
+        &error("G0 X0 Y0 Z0\nN10 : DEF REAL A\n", S, Some(&m)),
+        2,
+        5,
+        ":",
+    );
+}
