@@ -739,7 +739,7 @@ fn def_only_at_the_start_of_its_block() {
     at(
         &error("G0 X0 Y0 Z0\nN10 : DEF REAL A\n", S, Some(&m)),
         2,
-        5,
-        ":",
+        7,
+        "DEF",
     );
 }
