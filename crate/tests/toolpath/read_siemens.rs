@@ -703,7 +703,8 @@ fn mcall_is_counted_and_rpl_needs_rot() {
 }
 
 // Found by cargo-mutants: the end of the blanks after a block number or a skip mark (`<` as
-// `<=`) survived: no test had a line that ends there.
+// `<=`) and the lexer's step past the skip mark (`+=` as `-=` or `*=`) survived: no test had a
+// line that ends there or a skip-marked block.
 /// A line holding only a block number (`N20`) or only a skip mark (`/`) is a block without
 /// words: the moves around it are read.
 #[test]
@@ -713,6 +714,12 @@ fn a_block_number_or_skip_mark_alone() {
         let (p, _) = read_all(&format!("G0 X0 Y0 Z0\n{line}\nG1 X1 F100\n"), S, Some(&m));
         assert_eq!(p.len(), 2, "{line:?}");
     }
+    // A skip-marked block is read, as if the skip level were off (as the other readers do).
+    let (p, _) = read_all("G0 X0 Y0 Z0\n/G1 X1 F100\n/ N30 X2\n", S, Some(&m));
+    assert_eq!(
+        p.iter().map(|q| (q.line, q.tip.x)).collect::<Vec<_>>(),
+        [(1, 0.0), (2, 1.0), (3, 2.0)]
+    );
 }
 
 // Found by cargo-mutants: the block number's test (`&&` as `||`: any letter and a digit taken
