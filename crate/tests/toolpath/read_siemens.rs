@@ -750,3 +750,99 @@ fn def_only_at_the_start_of_its_block() {
         "DEF",
     );
 }
+
+/// The points of a program as (line, tip).
+fn tips(text: &str) -> Vec<(u32, [f64; 3])> {
+    let m = caz_head();
+    let (p, _) = read_all(text, S, Some(&m));
+    p.iter().map(|q| (q.line, q.tip.into())).collect()
+}
+
+/// An assignment's value runs to a blank outside brackets and quotes, or to a `;` outside
+/// quotes (Programming Manual 12/2019 p.52: `"` marks a character string, `;` starts a
+/// comment, a blank separates): blanks after `=` and inside `IC( 2)` belong to it, a `(` or `;`
+/// inside a string does not end or open anything, and the words after the value are read.
+/// `X= 5` is X 5; `Y=IC( 2)` is 0 + 2.
+#[test]
+fn an_assignment_value_with_blanks_brackets_quotes_and_a_comment() {
+    // Found by cargo-mutants: the blank skip after `=`, the depth of ( and [, and the `"` and
+    // `;` guards in lex were not tested.
+    let text = "N05 DEF STRING[10] TXT\n\
+                N10 G0 X0 Y0 Z0\n\
+                N20 G1 X= 5 Y=IC( 2) Z=3;no blank before the comment\n\
+                N30 TXT=\"a(\" Y5\n\
+                N40 TXT=\"a;b\" X7\n\
+                N50 TXT=SPRINT(\"R1 = %F)\", R1) Z9\n";
+    assert_eq!(
+        tips(text),
+        [
+            (2, [0.0, 0.0, 0.0]),
+            (3, [5.0, 2.0, 3.0]),
+            (4, [5.0, 5.0, 3.0]),
+            (5, [7.0, 5.0, 3.0]),
+            (6, [7.0, 5.0, 9.0]),
+        ]
+    );
+}
+
+/// `X=` with nothing after it, and `X==5` (`==` compares, in an `IF`; it assigns nothing), are
+/// refused at their columns.
+#[test]
+fn an_empty_assignment_and_a_comparison_are_refused() {
+    // Found by cargo-mutants: the end of the line after `=` and the `==` test in lex were not
+    // tested.
+    let m = caz_head();
+    at(&error("G1 X=\n", S, Some(&m)), 1, 4, "X= has no value");
+    at(&error("G1 X= ;c\n", S, Some(&m)), 1, 4, "X= has no value");
+    at(&error("G1 X==5\n", S, Some(&m)), 1, 5, "expected a word");
+}
+
+/// A call's arguments run to its own closing parenthesis: parentheses inside quotes do not
+/// count, nested ones do, and the words after it are read (`MSG("x") G1 X5`). A `CYCLE800` of
+/// 13 arguments (the trailing ones left out) with every offset and angle 0 is a reset.
+#[test]
+fn a_call_ends_at_its_own_parenthesis() {
+    // Found by cargo-mutants: the depth and quote tests in a call's arguments, and the
+    // argument slice, were not tested.
+    let m = caz_head();
+    let text = "N10 G0 X0 Y0 Z0\n\
+                N20 MSG(\"a)b\")\n\
+                N30 MSG(\"(\")\n\
+                N40 MSG(\"Z \"<<(R1+2))\n\
+                N50 MSG(\"x\") G1 X5\n\
+                N60 CYCLE800(1,\"TC1\",0,57,0,0,0,0,0,0,0,0,0)\n";
+    let (p, r) = read_all(text, S, Some(&m));
+    let got: Vec<_> = p.iter().map(|q| (q.line, q.tip)).collect();
+    assert_eq!(
+        got,
+        [(1, Vector3::zeros()), (5, Vector3::new(5.0, 0.0, 0.0))]
+    );
+    assert_eq!(skipped(&r, "messages"), 4);
+    assert_eq!(skipped(&r, "swivel resets"), 1);
+}
+
+/// An address letter alone takes the number after it, blanks between or not (Programming
+/// Manual 12/2019 p.44: the sign stands between the address and the digits); a letter with
+/// no number after it is refused as such, at its column.
+#[test]
+fn an_address_and_its_number_with_blanks_between() {
+    // Found by cargo-mutants: an address followed by a blank and its number (at the start of
+    // a block, too) was not tested.
+    assert_eq!(
+        tips("X 10 Y  20 Z -5\nG1 X .5\n"),
+        [(1, [10.0, 20.0, -5.0]), (2, [0.5, 20.0, -5.0])]
+    );
+    let m = caz_head();
+    at(
+        &error("G1 X Y10\n", S, Some(&m)),
+        1,
+        4,
+        "X has no number: expected a number after X",
+    );
+    at(
+        &error("G1 TRAORX Y10\n", S, Some(&m)),
+        1,
+        4,
+        "\"TRAORX\" is not a word the reader knows",
+    );
+}

@@ -356,7 +356,7 @@ impl Siemens {
                         "CIP" => return Err(loc.err(*at, "CIP gives an arc through an intermediate point, which the reader does not read; post the arc with its centre (I J K) or radius (CR=)")),
                         "CT" => return Err(loc.err(*at, "CT gives a tangential arc, which the reader does not read; post the arc with its centre (I J K) or radius (CR=)")),
                         "G110" | "G111" | "G112" => return Err(loc.err(*at, format!("{n} sets a pole for polar coordinates; the calculator reads X Y Z: post the program in Cartesian coordinates"))),
-                        _ => return Err(loc.err(*at, format!("{} is not a word the reader knows; if it calls a subprogram, post the program with it written out", shown(n)))),
+                        _ => return Err(loc.err(*at, unknown(n))),
                     }
                 }
             }
@@ -810,9 +810,6 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             ));
         }
         let at = i;
-        // An address letter with its number: `X10`, `G0X10`, `X-5.5`.
-        let next = b.get(i + 1).copied();
-        let numeric = |c: Option<u8>| matches!(c, Some(b'0'..=b'9' | b'.' | b'-' | b'+'));
         let mut j = i;
         while j < b.len() && ident(b[j]) {
             j += 1;
@@ -823,8 +820,8 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             k += 1;
         }
         let after = b.get(k).copied();
-        if after == Some(b'=') && !(after == Some(b'=') && b.get(k + 1) == Some(&b'=')) {
-            // name=value: the value runs to a blank at depth 0.
+        if after == Some(b'=') && b.get(k + 1) != Some(&b'=') {
+            // name=value (`==` is a comparison): the value runs to a blank at depth 0.
             let mut v = k + 1;
             while v < b.len() && matches!(b[v], b' ' | b'\t') {
                 v += 1;
@@ -842,6 +839,12 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
                 }
                 v += 1;
             }
+            if v == start {
+                return Err(loc.err(
+                    at,
+                    format!("{id}= has no value: expected a number or a variable after ="),
+                ));
+            }
             toks.push(Tok::Assign {
                 name: id.to_ascii_uppercase(),
                 value: &line[start..v],
@@ -852,7 +855,8 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             continue;
         }
         if after == Some(b'(') && id.len() >= 2 {
-            let mut v = k + 1;
+            let start = k + 1;
+            let mut v = start;
             let (mut depth, mut quote) = (1i32, false);
             while v < b.len() && depth > 0 {
                 match b[v] {
@@ -866,7 +870,7 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             if depth > 0 {
                 return Err(loc.err(at, format!("{id}( is not closed on its line: expected ')'")));
             }
-            let args = &line[k + 1..v - 1];
+            let args = &line[start..v - 1];
             toks.push(Tok::Call {
                 name: id.to_ascii_uppercase(),
                 args,
@@ -885,24 +889,15 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
             continue;
         }
         let letter = c.to_ascii_uppercase() as char;
-        let keyword =
-            id.len() >= 2 && id[1..].starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
-        let is_g_keyword = id.len() >= 2
-            && letter == 'G'
-            && id[1..].bytes().all(|c| c.is_ascii_digit())
-            && matches!(
-                id.to_ascii_uppercase().as_str(),
-                "G64" | "G641" | "G642" | "G643" | "G644" | "G645" | "G60"
-            );
-        if (keyword || c == b'_' || c == b'$') && !is_g_keyword {
-            toks.push(Tok::Name {
-                name: id.to_ascii_uppercase(),
-                at,
-            });
-            i = j;
-            continue;
-        }
-        if !(numeric(next) || next == Some(b' ') && numeric(b.get(i + 2).copied())) {
+        // An address is a letter with digits after it (`X10`, `G0X10`), or a letter alone with a
+        // number after it, blanks between or not (`X-5.5`, `X 10`); any other identifier is a
+        // name (`TRAORI`, `SUPA`, `$P_UIFR`, `_X`, an `X` without a number).
+        let address = match id.as_bytes() {
+            [_] => matches!(after, Some(b'0'..=b'9' | b'.' | b'-' | b'+')),
+            [_, second, ..] => second.is_ascii_digit(),
+            [] => false,
+        };
+        if !address {
             toks.push(Tok::Name {
                 name: id.to_ascii_uppercase(),
                 at,
@@ -935,4 +930,14 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
 }
 
 #[allow(dead_code)]
+/// The refusal of a name the reader does not know: a letter alone is an address without its
+/// number (`G1 X F500`).
+fn unknown(name: &str) -> String {
+    if name.len() == 1 {
+        format!("{name} has no number: expected a number after {name} (like {name}10 or {name}=10)")
+    } else {
+        format!("{} is not a word the reader knows; if it calls a subprogram, post the program with it written out", shown(name))
+    }
+}
+
 fn _unused(_: Error) {}
