@@ -792,9 +792,13 @@ fn an_empty_assignment_and_a_comparison_are_refused() {
     // Found by cargo-mutants: the end of the line after `=` and the `==` test in lex were not
     // tested.
     let m = caz_head();
-    at(&error("G1 X=\n", S, Some(&m)), 1, 4, "X= has no value");
-    at(&error("G1 X= ;c\n", S, Some(&m)), 1, 4, "X= has no value");
-    at(&error("G1 X==5\n", S, Some(&m)), 1, 5, "expected a word");
+    for (text, column, part) in [
+        ("G1 X=\n", 4, "X= has no value"),
+        ("G1 X= ;c\n", 4, "X= has no value"),
+        ("G1 X==5\n", 5, "expected a word"),
+    ] {
+        at(&error(text, S, Some(&m)), 1, column, part);
+    }
 }
 
 /// A call's arguments run to its own closing parenthesis: parentheses inside quotes do not
@@ -833,16 +837,13 @@ fn an_address_and_its_number_with_blanks_between() {
         [(1, [10.0, 20.0, -5.0]), (2, [0.5, 20.0, -5.0])]
     );
     let m = caz_head();
-    at(
-        &error("G1 X Y10\n", S, Some(&m)),
-        1,
-        4,
-        "X has no number: expected a number after X",
-    );
-    at(
-        &error("G1 TRAORX Y10\n", S, Some(&m)),
-        1,
-        4,
-        "\"TRAORX\" is not a word the reader knows",
-    );
+    for (text, part) in [
+        ("G1 X Y10\n", "X has no number: expected a number after X"),
+        (
+            "G1 TRAORX Y10\n",
+            "\"TRAORX\" is not a word the reader knows",
+        ),
+    ] {
+        at(&error(text, S, Some(&m)), 1, 4, part);
+    }
 }

@@ -929,9 +929,9 @@ fn lex<'a>(line: &'a str, loc: &Loc) -> Result<Vec<Tok<'a>>> {
     Ok(toks)
 }
 
-#[allow(dead_code)]
-/// The refusal of a name the reader does not know: a letter alone is an address without its
-/// number (`G1 X F500`).
+/// The refusal of a name the reader does not know.
+/// A letter alone is an address written without its number
+/// (`G1 X F500`).
 fn unknown(name: &str) -> String {
     if name.len() == 1 {
         format!("{name} has no number: expected a number after {name} (like {name}10 or {name}=10)")
